@@ -1,0 +1,242 @@
+"""Terms, atoms (fluents with values) and goals (conjunctions of atoms).
+
+An :class:`Atom` is ``predicate(args) = value``.  Boolean fluents use ``True``
+and ``False`` (a negative literal is the atom with value ``False``); belief
+fluents carry a value such as a tolerance: ``BVRelPose(A) = 0.01``.
+
+Entailment and contradiction between atoms of the same fluent (same predicate
+and arguments) are decided by a :class:`ValueRule` that the domain chooses per
+predicate; conflicts between *different* fluents are domain rules too (see
+:class:`Rules`).  Everything here is immutable and hashable.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+
+@dataclass(frozen=True, order=True)
+class Var:
+    """A schema variable, written ``?name``."""
+
+    name: str
+
+    def __str__(self) -> str:
+        return "?" + self.name
+
+
+Term = Hashable
+Bindings = Mapping[Var, Any]
+
+
+def substitute(term: Term, bindings: Bindings) -> Term:
+    """The value bound to ``term`` if it is a bound variable, else ``term``."""
+    if isinstance(term, Var):
+        return bindings.get(term, term)
+    return term
+
+
+def fmt_term(term: Term) -> str:
+    if isinstance(term, float):
+        return f"{term:g}"
+    return str(term)
+
+
+@dataclass(frozen=True, order=True)
+class Atom:
+    """``predicate(*args) = value``; ``value`` defaults to ``True``."""
+
+    predicate: str
+    args: tuple[Term, ...] = ()
+    value: Any = True
+
+    @property
+    def key(self) -> tuple[str, tuple[Term, ...]]:
+        """The fluent this atom constrains (predicate and arguments)."""
+        return (self.predicate, self.args)
+
+    @property
+    def ground(self) -> bool:
+        return not any(isinstance(a, Var) for a in self.args) and not isinstance(self.value, Var)
+
+    def bind(self, bindings: Bindings) -> Atom:
+        return Atom(
+            self.predicate,
+            tuple(substitute(a, bindings) for a in self.args),
+            substitute(self.value, bindings),
+        )
+
+    def negate(self) -> Atom:
+        if not isinstance(self.value, bool):
+            raise ValueError(f"only boolean atoms can be negated, not {self}")
+        return Atom(self.predicate, self.args, not self.value)
+
+    def __str__(self) -> str:
+        body = f"{self.predicate}({', '.join(fmt_term(a) for a in self.args)})"
+        if self.value is True:
+            return body
+        if self.value is False:
+            return "not " + body
+        return f"{body}={fmt_term(self.value)}"
+
+
+def atom(predicate: str, *args: Term, value: Any = True) -> Atom:
+    """Shorthand constructor: ``atom("at", "p1", "l2")``."""
+    return Atom(predicate, tuple(args), value)
+
+
+# --------------------------------------------------------------------------- rules
+
+
+class ValueRule:
+    """How values of one fluent relate: the default is plain equality."""
+
+    def entails(self, have: Any, want: Any) -> bool:
+        """Does the fluent having value ``have`` guarantee ``want``?"""
+        return bool(have == want)
+
+    def compatible(self, a: Any, b: Any) -> bool:
+        """Can a goal ask for both values at once?"""
+        return bool(a == b)
+
+    def meet(self, a: Any, b: Any) -> Any:
+        """The single value that entails both (only called when compatible)."""
+        return a
+
+
+class ToleranceRule(ValueRule):
+    """Values are tolerances: a tighter (smaller) one entails a looser one."""
+
+    def entails(self, have: Any, want: Any) -> bool:
+        return bool(have <= want)
+
+    def compatible(self, a: Any, b: Any) -> bool:
+        return True
+
+    def meet(self, a: Any, b: Any) -> Any:
+        return min(a, b)
+
+
+class AtLeastRule(ValueRule):
+    """Values are lower bounds (e.g. a probability): a larger one entails a smaller."""
+
+    def entails(self, have: Any, want: Any) -> bool:
+        return bool(have >= want)
+
+    def compatible(self, a: Any, b: Any) -> bool:
+        return True
+
+    def meet(self, a: Any, b: Any) -> Any:
+        return max(a, b)
+
+
+EQUALITY = ValueRule()
+
+ConflictRule = Callable[[Atom, Atom], bool]
+
+
+@dataclass(frozen=True)
+class Rules:
+    """Fluent-specific entailment (per predicate) and cross-fluent conflict rules."""
+
+    value_rules: Mapping[str, ValueRule] = field(default_factory=dict, hash=False, compare=False)
+    conflicts: tuple[ConflictRule, ...] = field(default=(), hash=False, compare=False)
+
+    def rule(self, predicate: str) -> ValueRule:
+        return self.value_rules.get(predicate, EQUALITY)
+
+    def atom_entails(self, have: Atom, want: Atom) -> bool:
+        return have.key == want.key and self.rule(have.predicate).entails(have.value, want.value)
+
+    def atoms_conflict(self, a: Atom, b: Atom) -> bool:
+        if a.key == b.key:
+            return not self.rule(a.predicate).compatible(a.value, b.value)
+        return any(c(a, b) or c(b, a) for c in self.conflicts)
+
+
+DEFAULT_RULES = Rules()
+
+
+# --------------------------------------------------------------------------- goals
+
+
+@dataclass(frozen=True)
+class Goal:
+    """A conjunction of ground atoms, kept with at most one atom per fluent."""
+
+    atoms: frozenset[Atom] = frozenset()
+
+    @staticmethod
+    def of(atoms: Iterable[Atom], rules: Rules = DEFAULT_RULES) -> Goal:
+        """Build a goal, merging atoms of the same fluent; raises if contradictory."""
+        g = conjoin(Goal(), atoms, rules)
+        if g is None:
+            from nowplan.errors import ContradictoryGoalError
+
+            bad = contradiction(list(atoms), rules)
+            raise ContradictoryGoalError(
+                f"goal is contradictory: {bad[0]} and {bad[1]} cannot both hold"
+                if bad
+                else "goal is contradictory"
+            )
+        return g
+
+    def __iter__(self) -> Iterator[Atom]:
+        return iter(sorted(self.atoms, key=_sort_key))
+
+    def __len__(self) -> int:
+        return len(self.atoms)
+
+    def by_key(self) -> dict[tuple[str, tuple[Term, ...]], Atom]:
+        return {a.key: a for a in self.atoms}
+
+    def __str__(self) -> str:
+        if not self.atoms:
+            return "True"
+        return " & ".join(str(a) for a in self)
+
+
+def _sort_key(a: Atom) -> tuple[str, str, str]:
+    return (a.predicate, repr(a.args), repr(a.value))
+
+
+TRUE = Goal()
+
+
+def conjoin(goal: Goal, extra: Iterable[Atom], rules: Rules = DEFAULT_RULES) -> Goal | None:
+    """``goal ∧ extra`` simplified per fluent, or ``None`` if contradictory."""
+    table = goal.by_key()
+    for a in extra:
+        old = table.get(a.key)
+        if old is None:
+            table[a.key] = a
+            continue
+        rule = rules.rule(a.predicate)
+        if not rule.compatible(old.value, a.value):
+            return None
+        table[a.key] = Atom(a.predicate, a.args, rule.meet(old.value, a.value))
+    atoms = list(table.values())
+    if rules.conflicts and contradiction(atoms, rules) is not None:
+        return None
+    return Goal(frozenset(atoms))
+
+
+def contradiction(atoms: list[Atom], rules: Rules = DEFAULT_RULES) -> tuple[Atom, Atom] | None:
+    """A pair of atoms that cannot hold together, or ``None``."""
+    for i, a in enumerate(atoms):
+        for b in atoms[i + 1 :]:
+            if rules.atoms_conflict(a, b):
+                return (a, b)
+    return None
+
+
+def entails(strong: Goal, weak: Goal, rules: Rules = DEFAULT_RULES) -> bool:
+    """Every state satisfying ``strong`` satisfies ``weak`` (syntactically)."""
+    table = strong.by_key()
+    for w in weak.atoms:
+        s = table.get(w.key)
+        if s is None or not rules.rule(w.predicate).entails(s.value, w.value):
+            return False
+    return True

@@ -1,0 +1,157 @@
+"""Operator schemas and their ground instances (actions).
+
+An :class:`Operator` has parameters, preconditions each with an integer
+*criticality* (seed 002 II-B), results (effects), a cost (a number or a
+function of the bindings and belief), declared *resources* with their kind of
+use (seed 002 III-C) and *generators* that bind "choose" variables given the
+goal, the belief and a planning context (seed 000: the plan stack, for
+foresight).  :class:`Action` is a ground instance.
+"""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from nowplan.core.atoms import Atom, Bindings, Term, Var, fmt_term, substitute
+
+if TYPE_CHECKING:
+    from nowplan.core.atoms import Goal
+
+
+class ResourceUse(enum.Enum):
+    """How achieving a subgoal uses a resource (seed 002 III-C)."""
+
+    SHAREABLE = "shareable"  # stays available while used
+    CONTAINED = "contained"  # unavailable while the goal is being achieved, then free
+    CONTINUAL = "continual"  # unavailable for as long as the goal holds
+
+
+@dataclass(frozen=True)
+class Resource:
+    """A resource template, e.g. ``Resource(("truck", Var("t")), ResourceUse.SHAREABLE)``."""
+
+    name: tuple[Term, ...]
+    use: ResourceUse = ResourceUse.CONTAINED
+
+    def bind(self, b: Bindings) -> Resource:
+        return Resource(tuple(substitute(t, b) for t in self.name), self.use)
+
+
+@dataclass(frozen=True)
+class Precondition:
+    atom: Atom
+    criticality: int = 0
+
+
+GeneratorFn = Callable[..., Iterable[Mapping[Var, Any]]]
+
+
+@dataclass(frozen=True)
+class Generator:
+    """Binds ``outputs`` given the bindings so far, the goal, the belief and a context.
+
+    ``fn(bindings, goal, belief, context)`` yields mappings from output
+    variables to values, best first.  ``context`` is a
+    :class:`nowplan.planning.context.PlanningContext` (or ``None``).
+    """
+
+    name: str
+    outputs: tuple[Var, ...]
+    fn: GeneratorFn = field(compare=False, hash=False)
+    inputs: tuple[Var, ...] = ()
+
+
+CostFn = Callable[[Bindings, Any], float]
+
+
+@dataclass(frozen=True)
+class Operator:
+    name: str
+    params: tuple[Var, ...]
+    preconditions: tuple[Precondition, ...] = ()
+    effects: tuple[Atom, ...] = ()
+    cost: float | CostFn = field(default=1.0, compare=False, hash=False)
+    param_types: tuple[str | None, ...] = ()
+    resources: tuple[Resource, ...] = ()
+    generators: tuple[Generator, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.param_types and len(self.param_types) != len(self.params):
+            raise ValueError(f"operator {self.name}: param_types and params differ in length")
+
+    @property
+    def criticalities(self) -> tuple[int, ...]:
+        return tuple(sorted({p.criticality for p in self.preconditions}, reverse=True))
+
+    def type_of(self, v: Var) -> str | None:
+        if not self.param_types:
+            return None
+        return self.param_types[self.params.index(v)]
+
+    def instantiate(self, bindings: Bindings) -> Action:
+        missing = [v for v in self.params if v not in bindings]
+        if missing:
+            raise ValueError(f"operator {self.name}: unbound parameters {missing}")
+        return Action(self, tuple(bindings[v] for v in self.params))
+
+
+@dataclass(frozen=True, eq=False)
+class Action:
+    """A ground operator instance.  Equality is by name and arguments."""
+
+    operator: Operator
+    args: tuple[Term, ...]
+
+    @property
+    def name(self) -> str:
+        return self.operator.name
+
+    @property
+    def key(self) -> tuple[str, tuple[Term, ...]]:
+        return (self.name, self.args)
+
+    @property
+    def bindings(self) -> dict[Var, Term]:
+        return dict(zip(self.operator.params, self.args, strict=True))
+
+    def preconditions(self, level: int | None = None) -> tuple[Atom, ...]:
+        """Ground preconditions of ``abs(op, level)``: criticality > level (all if None)."""
+        b = self.bindings
+        return tuple(
+            p.atom.bind(b)
+            for p in self.operator.preconditions
+            if level is None or p.criticality > level
+        )
+
+    def effects(self) -> tuple[Atom, ...]:
+        b = self.bindings
+        return tuple(e.bind(b) for e in self.operator.effects)
+
+    def cost(self, belief: Any = None) -> float:
+        c = self.operator.cost
+        return float(c(self.bindings, belief)) if callable(c) else float(c)
+
+    def resources(self) -> tuple[Resource, ...]:
+        b = self.bindings
+        return tuple(r.bind(b) for r in self.operator.resources)
+
+    def is_primitive(self, level: int) -> bool:
+        """At ``level`` every precondition is kept, so this instance is concrete."""
+        return all(p.criticality > level for p in self.operator.preconditions)
+
+    def pddl(self) -> str:
+        return "(" + " ".join([self.name, *(fmt_term(a) for a in self.args)]) + ")"
+
+    def __str__(self) -> str:
+        return f"{self.name}({', '.join(fmt_term(a) for a in self.args)})"
+
+    def __hash__(self) -> int:
+        return hash((self.name, self.args))
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Action) and (self.name, self.args) == (other.name, other.args)
+
+

@@ -1,0 +1,78 @@
+"""A symbolic (fully known) state: a mapping from fluents to values.
+
+Boolean fluents are closed-world: a fluent that is absent is ``False``.  A
+state is immutable; :meth:`State.apply` returns a new one.  Belief states of
+other kinds need not subclass this: the planner only asks a belief to *test*
+atoms (through the domain's predicates) and, for static predicates, to list
+the true facts of a predicate when it can (:meth:`State.facts`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Mapping
+from typing import Any
+
+from nowplan.core.atoms import Atom, Term
+
+Key = tuple[str, tuple[Term, ...]]
+
+
+class State:
+    """An immutable assignment of values to fluents (closed world for booleans)."""
+
+    __slots__ = ("_map", "_hash", "_by_pred")
+
+    def __init__(self, values: Mapping[Key, Any] | Iterable[Atom] = ()) -> None:
+        if isinstance(values, Mapping):
+            m = {k: v for k, v in values.items() if v is not False}
+        else:
+            m = {a.key: a.value for a in values if a.value is not False}
+        self._map: dict[Key, Any] = m
+        self._hash: int | None = None
+        self._by_pred: dict[str, list[tuple[Term, ...]]] | None = None
+
+    # -- queries -------------------------------------------------------------
+    def value(self, key: Key) -> Any:
+        """The fluent's value; ``False`` when absent (closed world)."""
+        return self._map.get(key, False)
+
+    def holds(self, a: Atom) -> bool:
+        return bool(self.value(a.key) == a.value)
+
+    def facts(self, predicate: str) -> list[tuple[Term, ...]]:
+        """Argument tuples of the true (non-False) fluents of ``predicate``."""
+        if self._by_pred is None:
+            idx: dict[str, list[tuple[Term, ...]]] = {}
+            for (p, args) in self._map:
+                idx.setdefault(p, []).append(args)
+            self._by_pred = idx
+        return self._by_pred.get(predicate, [])
+
+    def atoms(self) -> Iterator[Atom]:
+        for (p, args), v in sorted(self._map.items(), key=lambda kv: (kv[0][0], repr(kv[0][1]))):
+            yield Atom(p, args, v)
+
+    # -- updates -------------------------------------------------------------
+    def apply(self, effects: Iterable[Atom]) -> State:
+        m = dict(self._map)
+        for e in effects:
+            if e.value is False:
+                m.pop(e.key, None)
+            else:
+                m[e.key] = e.value
+        return State(m)
+
+    # -- protocol ------------------------------------------------------------
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, State) and self._map == other._map
+
+    def __hash__(self) -> int:
+        if self._hash is None:
+            self._hash = hash(frozenset(self._map.items()))
+        return self._hash
+
+    def __len__(self) -> int:
+        return len(self._map)
+
+    def __repr__(self) -> str:
+        return "State({" + ", ".join(str(a) for a in self.atoms()) + "})"
