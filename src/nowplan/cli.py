@@ -1,0 +1,72 @@
+"""The ``nowplan`` command line: one entry point, one module per subcommand.
+
+Each module in :mod:`nowplan.commands` exposes ``register(subparsers)``,
+which adds its parser and sets ``func`` (a callable taking the parsed
+arguments and returning an exit code).  Errors derived from
+:class:`nowplan.errors.NowplanError` are printed as one line, never a
+traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import logging
+import sys
+from collections.abc import Sequence
+
+from nowplan import __version__
+from nowplan.errors import NowplanError
+
+# subcommand modules under nowplan.commands, in --help order
+COMMANDS = ("plan", "run", "demo", "sweep", "report", "reproduce", "view")
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors that name the fix."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="nowplan",
+        description="Hierarchical planning and acting under uncertainty.",
+    )
+    parser.add_argument("--version", action="version", version=f"nowplan {__version__}")
+    parser.add_argument("-v", "--verbose", action="count", default=0, help="log more (-v info, -vv debug)")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for name in COMMANDS:
+        try:
+            mod = importlib.import_module(f"nowplan.commands.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"nowplan.commands.{name}":
+                raise
+            continue
+        mod.register(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(
+        level=[logging.WARNING, logging.INFO, logging.DEBUG][min(args.verbose, 2)],
+        format="%(levelname)s %(name)s: %(message)s",
+    )
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return 2
+    try:
+        return int(args.func(args) or 0)
+    except NowplanError as err:
+        print(f"nowplan {args.command}: error: {err}", file=sys.stderr)
+        return err.exit_code
+    except KeyboardInterrupt:
+        print("nowplan: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,200 @@
+"""Goal-directed grounding: the operator instances that can achieve an atom.
+
+An effect template is unified with the goal atom; the parameters left
+unbound are filled, in this order, by the operator's generators (which see
+the goal, the belief and the planning context), by joining static
+preconditions against the facts the belief lists, and last by enumerating
+typed objects.  Static preconditions (of predicates no operator changes) are
+checked here once, so they never enter a pre-image (static fluents with a
+test function are ordinary preconditions: they stay in pre-images when kept
+at the plan's level).
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+from nowplan.core.atoms import Atom, Goal, Var
+from nowplan.core.domain import Domain
+from nowplan.core.operators import Action, Operator
+from nowplan.planning.context import PlanningContext
+
+
+def unify_effect(effect: Atom, target: Atom, domain: Domain) -> dict[Var, Any] | None:
+    """Bindings that make ``effect`` entail ``target``, or ``None``."""
+    if effect.predicate != target.predicate or len(effect.args) != len(target.args):
+        return None
+    b: dict[Var, Any] = {}
+    for e, t in zip(effect.args, target.args, strict=True):
+        if isinstance(e, Var):
+            if e in b and b[e] != t:
+                return None
+            b[e] = t
+        elif e != t:
+            return None
+    ev = effect.value
+    if isinstance(ev, Var):
+        if ev in b and not domain.rules.rule(target.predicate).entails(b[ev], target.value):
+            return None
+        b.setdefault(ev, target.value)
+    elif not domain.rules.rule(target.predicate).entails(ev, target.value):
+        return None
+    return b
+
+
+class Grounder:
+    """Caches achievers per atom for one planning problem (domain, objects, belief)."""
+
+    def __init__(
+        self,
+        domain: Domain,
+        objects: Mapping[str, str | None],
+        belief: Any,
+        context: PlanningContext | None = None,
+        max_generator_values: int = 8,
+    ) -> None:
+        self.domain = domain
+        self.objects = dict(objects)
+        self.belief = belief
+        self.context = context
+        self.max_generator_values = max_generator_values
+        self._cache: dict[Atom, list[Action]] = {}
+        self._static_cache: dict[Atom, bool] = {}
+        self._by_type: dict[str | None, list[str]] = {}
+        self._facts_ok = hasattr(belief, "facts")
+
+    # -- helpers -------------------------------------------------------------
+    def objects_of(self, t: str | None) -> list[str]:
+        if t not in self._by_type:
+            allobj = {**dict(self.domain.constants), **self.objects}
+            ok = self.domain.subtypes(t) if t is not None else None
+            self._by_type[t] = sorted(o for o, ot in allobj.items() if ok is None or ot in ok)
+        return self._by_type[t]
+
+    def is_static(self, a: Atom) -> bool:
+        return a.predicate in self.domain.static_predicates
+
+    def static_holds(self, a: Atom) -> bool:
+        r = self._static_cache.get(a)
+        if r is None:
+            r = self.domain.holds(a, self.belief)
+            self._static_cache[a] = r
+        return r
+
+    # -- achievers -----------------------------------------------------------
+    def achievers(self, target: Atom, goal: Goal) -> list[Action]:
+        """Ground actions one of whose effects entails ``target``."""
+        cached = self._cache.get(target)
+        if cached is not None:
+            return cached
+        out: list[Action] = []
+        seen: set[tuple[str, tuple[Any, ...]]] = set()
+        for op in self.domain.operators:
+            for eff in op.effects:
+                b = unify_effect(eff, target, self.domain)
+                if b is None:
+                    continue
+                for full in self._complete(op, b, goal):
+                    act = op.instantiate(full)
+                    if act.key not in seen:
+                        seen.add(act.key)
+                        out.append(act)
+        # generators see the goal, so only cache when no operator uses one
+        if not any(op.generators for op in self.domain.operators):
+            self._cache[target] = out
+        return out
+
+    def _complete(self, op: Operator, b: dict[Var, Any], goal: Goal) -> Iterator[dict[Var, Any]]:
+        """All full bindings extending ``b`` (generators, static joins, typed objects)."""
+        for gb in self._run_generators(op, b, goal):
+            yield from self._fill(op, gb)
+
+    def _run_generators(self, op: Operator, b: dict[Var, Any], goal: Goal) -> Iterator[dict[Var, Any]]:
+        def rec(i: int, cur: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
+            if i == len(op.generators):
+                yield cur
+                return
+            gen = op.generators[i]
+            if all(v in cur for v in gen.outputs):
+                yield from rec(i + 1, cur)
+                return
+            for n, vals in enumerate(gen.fn(dict(cur), goal, self.belief, self.context)):
+                if n >= self.max_generator_values:
+                    break
+                nxt = dict(cur)
+                if any(k in nxt and nxt[k] != v for k, v in vals.items()):
+                    continue
+                nxt.update(vals)
+                yield from rec(i + 1, nxt)
+
+        yield from rec(0, b)
+
+    def _fill(self, op: Operator, b: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
+        statics = [
+            p.atom for p in op.preconditions if self.is_static(p.atom) and _is_plain(self.domain, p.atom)
+        ]
+
+        def check(bind: dict[Var, Any]) -> bool:
+            for s in statics:
+                g = s.bind(bind)
+                if g.ground and not self.static_holds(g):
+                    return False
+            return True
+
+        def join(i: int, cur: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
+            if i == len(statics):
+                yield cur
+                return
+            s = statics[i]
+            if all(not isinstance(a, Var) or a in cur for a in s.args):
+                if self.static_holds(s.bind(cur)):
+                    yield from join(i + 1, cur)
+                return
+            if not self._facts_ok or s.value is not True:
+                yield from join(i + 1, cur)  # enumerate later
+                return
+            for args in self.belief.facts(s.predicate):
+                nxt = dict(cur)
+                ok = True
+                for t, v in zip(s.args, args, strict=False):
+                    if isinstance(t, Var):
+                        if t in nxt and nxt[t] != v:
+                            ok = False
+                            break
+                        nxt[t] = v
+                    elif t != v:
+                        ok = False
+                        break
+                if ok and len(args) == len(s.args):
+                    yield from join(i + 1, nxt)
+
+        for jb in join(0, b):
+            free = [v for v in op.params if v not in jb]
+            domains = [self.objects_of(op.type_of(v)) for v in free]
+            for combo in itertools.product(*domains):
+                full = dict(jb)
+                full.update(zip(free, combo, strict=True))
+                if not self._typed_ok(op, full) or not check(full):
+                    continue
+                yield full
+
+    def _typed_ok(self, op: Operator, full: Mapping[Var, Any]) -> bool:
+        if not op.param_types:
+            return True
+        for v, t in zip(op.params, op.param_types, strict=True):
+            if t is None or op.generators and any(v in g.outputs for g in op.generators):
+                continue
+            val = full[v]
+            if isinstance(val, str) and val in self.objects_of(None):
+                if val not in self.objects_of(t):
+                    return False
+        return True
+
+
+def _is_plain(domain: Domain, a: Atom) -> bool:
+    """A static fluent that a belief can list facts of (no test function, boolean)."""
+    pred = domain.predicates.get(a.predicate)
+    return pred is not None and pred.test is None and a.value in (True, False)
+

@@ -1,0 +1,276 @@
+"""Regression (pre-image backchaining) A* over an abstraction level.
+
+``plan(...)`` searches backwards from the goal γ: a node is a subgoal G (a
+conjunction), a successor is the pre-image of G under an operator instance
+ω at ω's level (seed 002 II-A/B), and the search stops at a subgoal the
+current belief satisfies.  HPN's shortcuts (seed 002 V-B) run first when
+switched on: a random serialization of the goal's conjuncts, then a
+monotonic plan (never undoing a goal fluent that already holds), then full
+backward search.  Limits end the search with a typed :class:`PlanResult`.
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import logging
+import random
+import time
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from nowplan.core.atoms import Atom, Goal, conjoin
+from nowplan.core.domain import Domain
+from nowplan.core.levels import LevelMap
+from nowplan.core.operators import Action
+from nowplan.planning.context import PlanningContext
+from nowplan.planning.grounding import Grounder
+from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class PlannerConfig:
+    max_nodes: int = 50_000  # expansions for the full search
+    time_limit: float = 60.0  # wall seconds for one call (all methods)
+    weight: float = 1.0  # f = g + weight * h
+    serialization: bool = True  # HPN shortcut 1
+    monotonic: bool = True  # HPN shortcut 2
+    shortcut_nodes: int = 2_000  # expansions allowed to each shortcut
+    max_generator_values: int = 8
+    seed: int = 0
+
+
+def preimage(
+    goal: Goal, action: Action, level: int | None, domain: Domain, drop: frozenset[str] = frozenset()
+) -> Goal | None:
+    """Regress ``goal`` through ``action`` at ``level``; ``None`` if ω destroys it.
+
+    Atoms that an effect entails are removed, atoms whose fluent an effect
+    sets to an incompatible value make the regression fail, and the kept
+    preconditions (criticality > level; all if ``level`` is None) are added.
+    Preconditions of predicates in ``drop`` (static facts checked at
+    grounding) are left out.
+    """
+    rules = domain.rules
+    effects = {e.key: e for e in action.effects()}
+    remaining: list[Atom] = []
+    for a in goal.atoms:
+        e = effects.get(a.key)
+        if e is None:
+            remaining.append(a)
+        elif not rules.rule(a.predicate).entails(e.value, a.value):
+            return None
+    if rules.conflicts:
+        for e in effects.values():
+            for a in remaining:
+                if rules.atoms_conflict(e, a):
+                    return None
+    pre = [p for p in action.preconditions(level) if p.predicate not in drop]
+    return conjoin(Goal(frozenset(remaining)), pre, rules)
+
+
+def achieves(goal: Goal, action: Action, domain: Domain) -> bool:
+    rules = domain.rules
+    table = goal.by_key()
+    for e in action.effects():
+        a = table.get(e.key)
+        if a is not None and rules.rule(a.predicate).entails(e.value, a.value):
+            return True
+    return False
+
+
+class _Search:
+    def __init__(
+        self,
+        domain: Domain,
+        objects: Mapping[str, str | None],
+        belief: Any,
+        levels: LevelMap,
+        config: PlannerConfig,
+        context: PlanningContext | None,
+        deadline: float,
+    ) -> None:
+        self.domain = domain
+        self.belief = belief
+        self.levels = levels
+        self.config = config
+        self.deadline = deadline
+        self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values)
+        self.drop = frozenset(
+            n
+            for n in domain.static_predicates
+            if domain.predicates[n].test is None and hasattr(belief, "facts")
+        )
+        self._holds: dict[Atom, bool] = {}
+        self._costs: dict[tuple[str, tuple[Any, ...]], float] = {}
+        self.expanded = 0
+        self.generated = 0
+        self.min_cost = min(
+            (float(o.cost) for o in domain.operators if not callable(o.cost)), default=1.0
+        )
+        self.min_cost = max(self.min_cost, 0.0)
+
+    def holds(self, a: Atom) -> bool:
+        r = self._holds.get(a)
+        if r is None:
+            r = self.domain.holds(a, self.belief)
+            self._holds[a] = r
+        return r
+
+    def satisfied(self, g: Goal) -> bool:
+        return all(self.holds(a) for a in g.atoms)
+
+    def h(self, g: Goal) -> float:
+        unmet = sum(1 for a in g.atoms if not self.holds(a))
+        return unmet * (self.min_cost if self.min_cost > 0 else 1.0)
+
+    def cost(self, act: Action) -> float:
+        c = self._costs.get(act.key)
+        if c is None:
+            c = act.cost(self.belief)
+            self._costs[act.key] = c
+        return c
+
+    def run(
+        self,
+        goal: Goal,
+        max_nodes: int,
+        order: Sequence[Atom] | None = None,
+        protect: frozenset[Atom] = frozenset(),
+    ) -> tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str]:
+        """A* from ``goal``; ``order`` = serialization, ``protect`` = monotonic atoms."""
+        focus0 = len(order) if order is not None else 0
+        counter = itertools.count()
+        start = (goal, focus0)
+        frontier: list[tuple[float, float, int, tuple[Goal, int]]] = [
+            (self.config.weight * self.h(goal), self.h(goal), next(counter), start)
+        ]
+        best_g: dict[tuple[Goal, int], float] = {start: 0.0}
+        parent: dict[tuple[Goal, int], tuple[tuple[Goal, int], Action] | None] = {start: None}
+        closed: set[tuple[Goal, int]] = set()
+        exp = 0
+        while frontier:
+            _, _, _, node = heapq.heappop(frontier)
+            if node in closed:
+                continue
+            closed.add(node)
+            g_node, focus = node
+            if order is not None:
+                # shift the focus down once the non-focused part already holds
+                while focus > 0 and all(
+                    self.holds(a) for a in g_node.atoms if a not in order[: focus - 1]
+                ):
+                    focus -= 1
+            if self.satisfied(g_node):
+                return PlanStatus.SOLVED, self._path(node, parent), ""
+            exp += 1
+            self.expanded += 1
+            if exp > max_nodes:
+                return PlanStatus.NODE_LIMIT, None, f"expanded {max_nodes} nodes without a plan"
+            if time.perf_counter() > self.deadline:
+                return PlanStatus.TIME_LIMIT, None, f"time limit of {self.config.time_limit:g} s reached"
+            gcost = best_g[node]
+            allowed = [
+                a
+                for a in sorted(g_node.atoms)
+                if order is None or a not in order[: max(focus - 1, 0)]
+            ]
+            tried: set[tuple[str, tuple[Any, ...]]] = set()
+            for target in allowed:
+                for act in self.grounder.achievers(target, g_node):
+                    if act.key in tried:
+                        continue
+                    tried.add(act.key)
+                    if protect and any(
+                        e.key == p.key and e.value != p.value
+                        for e in act.effects()
+                        for p in protect
+                    ):
+                        continue
+                    pre = preimage(g_node, act, self.levels.level(act), self.domain, self.drop)
+                    if pre is None:
+                        continue
+                    child = (pre, focus)
+                    ng = gcost + self.cost(act)
+                    if child in closed or ng >= best_g.get(child, float("inf")):
+                        continue
+                    best_g[child] = ng
+                    parent[child] = (node, act)
+                    self.generated += 1
+                    hh = self.h(pre)
+                    heapq.heappush(frontier, (ng + self.config.weight * hh, hh, next(counter), child))
+        return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
+
+    def _path(
+        self,
+        node: tuple[Goal, int],
+        parent: dict[tuple[Goal, int], tuple[tuple[Goal, int], Action] | None],
+    ) -> list[tuple[Action | None, Goal]]:
+        steps: list[tuple[Action | None, Goal]] = [(None, node[0])]
+        cur = node
+        while parent[cur] is not None:
+            prev, act = parent[cur]  # type: ignore[misc]
+            steps.append((act, prev[0]))
+            cur = prev
+        return steps
+
+
+def plan(
+    domain: Domain,
+    objects: Mapping[str, str | None],
+    belief: Any,
+    goal: Goal,
+    levels: LevelMap | None = None,
+    config: PlannerConfig | None = None,
+    context: PlanningContext | None = None,
+    rng: random.Random | None = None,
+) -> PlanResult:
+    """Find ``[(None, g0), (ω1, g1), …, (ωn, γ)]`` with ``belief ∈ g0`` at ``levels``."""
+    config = config or PlannerConfig()
+    levels = levels or LevelMap(domain.top_level)
+    rng = rng or random.Random(config.seed)
+    t_cpu = time.process_time()
+    t0 = time.perf_counter()
+    search = _Search(
+        domain, objects, belief, levels, config, context, deadline=t0 + config.time_limit
+    )
+    attempts: list[str] = []
+    result: tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str] = (
+        PlanStatus.UNSOLVABLE,
+        None,
+        "",
+    )
+    method = "full"
+    unmet = [a for a in goal.atoms if not search.holds(a)]
+    if config.serialization and len(goal) > 1:
+        order = sorted(goal.atoms)
+        rng.shuffle(order)
+        result = search.run(goal, config.shortcut_nodes, order=order)
+        attempts.append(f"serialization:{result[0].value}")
+        method = "serialization"
+    if result[0] is not PlanStatus.SOLVED and config.monotonic and len(goal) > 1 and unmet != list(goal.atoms):
+        protect = frozenset(a for a in goal.atoms if search.holds(a))
+        if time.perf_counter() < search.deadline:
+            result = search.run(goal, config.shortcut_nodes, protect=protect)
+            attempts.append(f"monotonic:{result[0].value}")
+            method = "monotonic"
+    if result[0] is not PlanStatus.SOLVED and time.perf_counter() < search.deadline:
+        result = search.run(goal, config.max_nodes)
+        attempts.append(f"full:{result[0].value}")
+        method = "full"
+    elif result[0] is not PlanStatus.SOLVED:
+        result = (PlanStatus.TIME_LIMIT, None, f"time limit of {config.time_limit:g} s reached")
+    status, steps, reason = result
+    cpu = time.process_time() - t_cpu
+    common = dict(
+        expanded=search.expanded, generated=search.generated, cpu_time_s=cpu, attempts=tuple(attempts)
+    )
+    if status is not PlanStatus.SOLVED or steps is None:
+        log.info("planning failed for %s: %s (%s)", goal, status.value, reason)
+        return PlanResult(status, None, reason, method=method, **common)  # type: ignore[arg-type]
+    p = Plan(tuple(PlanStep(a, g) for a, g in steps), levels)
+    log.info("plan of %d steps by %s search (%d expanded)", len(p), method, search.expanded)
+    return PlanResult(PlanStatus.SOLVED, p, "", method=method, **common)  # type: ignore[arg-type]
