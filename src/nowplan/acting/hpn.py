@@ -1,0 +1,250 @@
+"""The HPN executive (seed 002 Alg. 1) as a plan stack (seed 000 Fig. 2).
+
+Alg. 1 is recursive: plan at level α, then for each step execute it if it is
+concrete, else call HPN on its pre-image goal at ``NextLevel(α, ω)``.  The
+plan stack is the same recursion made explicit and bounded: the top plan is
+*applicable* while its next step's pre-image ``g_i`` holds in the belief;
+``nextStep`` returns ``(ω_{i+1}, g_{i+1})``; an abstract step pushes a plan
+for ``g_{i+1}`` one level deeper; a primitive one is executed and the belief
+updated.  A plan that is no longer applicable is popped, so a failed action
+sends control up to the nearest plan whose pre-image still holds, which is
+HPN's failure-driven replanning.  The root plan ``[(None, True), (None, γ)]``
+replans γ from scratch until it holds.
+"""
+
+from __future__ import annotations
+
+import logging
+import random
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+from nowplan.acting.metrics import Metrics, Outcome
+from nowplan.acting.strategy import Strategy
+from nowplan.core.atoms import TRUE, Goal
+from nowplan.core.domain import Problem
+from nowplan.core.levels import LevelMap, flat_levels
+from nowplan.core.operators import Action
+from nowplan.planning.context import PlanningContext
+from nowplan.planning.plan import Plan, PlanStep
+from nowplan.planning.regression import plan as regression_plan
+from nowplan.trace import Trace
+from nowplan.worlds.base import World
+
+log = logging.getLogger(__name__)
+
+
+@dataclass
+class Frame:
+    """A plan on the stack, with the index of the last step taken."""
+
+    plan: Plan
+    plan_id: int
+    parent: int | None
+    parent_step: int | None
+    i: int = 0
+    root: bool = False
+    info: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def n(self) -> int:
+        return len(self.plan)
+
+
+class Executive:
+    """Runs one problem to the end under a strategy; see :func:`nowplan.acting.run.run_episode`."""
+
+    def __init__(
+        self,
+        problem: Problem,
+        world: World,
+        belief: Any,
+        strategy: Strategy,
+        *,
+        seed: int = 0,
+        trace: Trace | None = None,
+    ) -> None:
+        self.problem = problem
+        self.domain = problem.domain
+        self.world = world
+        self.belief = belief
+        self.strategy = strategy
+        self.rng = random.Random(seed)
+        self.trace = trace or Trace()
+        self.metrics = Metrics()
+        self.stack: list[Frame] = []
+        self._next_id = 0
+        self._pending_trigger: str | None = None
+        self.base_levels = (
+            LevelMap(self.domain.top_level) if strategy.hierarchical else flat_levels()
+        )
+
+    # -- plan-stack operations ------------------------------------------------
+    def applicable(self, f: Frame) -> bool:
+        if f.root:
+            return not self.domain.satisfies(self.belief, self.problem.goal)
+        return f.i < f.n and self.domain.satisfies(self.belief, f.plan.preimage(f.i))
+
+    def next_step(self, f: Frame) -> PlanStep:
+        if f.root:
+            return f.plan.steps[1]
+        f.i += 1
+        return f.plan.steps[f.i]
+
+    def push(self, plan: Plan, parent: Frame | None, root: bool = False) -> Frame:
+        fr = Frame(
+            plan,
+            self._next_id,
+            parent.plan_id if parent else None,
+            parent.i if parent else None,
+            root=root,
+        )
+        self._next_id += 1
+        self.stack.append(fr)
+        self.trace.emit("push", plan_id=fr.plan_id, depth=len(self.stack))
+        return fr
+
+    def pop(self, reason: str) -> Frame:
+        f = self.stack.pop()
+        self.trace.emit("pop", plan_id=f.plan_id, reason=reason)
+        if reason != "done" and not f.root:
+            self._pending_trigger = self._pending_trigger or "failure"
+        return f
+
+    def context(self) -> PlanningContext:
+        return PlanningContext(tuple(f.plan for f in self.stack))
+
+    # -- planning --------------------------------------------------------------
+    def make_plan(self, goal: Goal, levels: LevelMap, parent: Frame) -> Plan | None:
+        if self._pending_trigger is not None:
+            self.metrics.replans += 1
+            self.trace.emit(
+                "replan", plan_id=parent.plan_id, trigger=self._pending_trigger,
+                reason="a plan was popped before finishing" if self._pending_trigger == "failure"
+                else self._pending_trigger,
+            )
+            self._pending_trigger = None
+        remaining = self.strategy.time_limit - (time.perf_counter() - self._t0)
+        cfg = self.strategy.planner
+        if remaining < cfg.time_limit:
+            from dataclasses import replace
+
+            cfg = replace(cfg, time_limit=max(remaining, 0.01))
+        res = regression_plan(
+            self.domain, self.problem.objects, self.belief, goal, levels, cfg,
+            self.context(), self.rng,
+        )
+        self.metrics.planning_cpu_s += res.cpu_time_s
+        if not res.solved or res.plan is None:
+            self.metrics.plan_failures += 1
+            self.trace.emit(
+                "plan_failed", parent=parent.plan_id, parent_step=parent.i,
+                goal=[str(a) for a in goal], status=res.status.value, reason=res.reason,
+                cpu_s=round(res.cpu_time_s, 6),
+            )
+            self._last_failure = f"{res.status.value}: {res.reason}"
+            return None
+        self.metrics.plans_made += 1
+        self.trace.emit(
+            "plan", plan_id=self._next_id, parent=parent.plan_id, parent_step=parent.i,
+            goal=[str(a) for a in goal], levels=levels.top, method=res.method,
+            cpu_s=round(res.cpu_time_s, 6), expanded=res.expanded,
+            cost=res.plan.cost(self.belief), steps=res.plan.to_json(),
+        )
+        return res.plan
+
+    # -- acting ----------------------------------------------------------------
+    def execute(self, f: Frame, action: Action) -> None:
+        cost = action.cost(self.belief)
+        self.trace.emit(
+            "action", plan_id=f.plan_id, index=f.i, action=action.pddl(), cost=cost,
+            n=self.metrics.actions,
+        )
+        obs = self.world.execute(action)
+        self.metrics.actions += 1
+        self.metrics.action_counts[action.name] += 1
+        self.metrics.execution_cost += cost
+        self.belief.update(action, obs)
+        self.trace.emit(
+            "observation", n=self.metrics.actions - 1, action=action.pddl(), success=obs.success,
+            observation=obs.info or None,
+        )
+        if obs.exogenous:
+            self.trace.emit("exogenous", n=self.metrics.actions - 1, change=list(obs.exogenous))
+        if not obs.success or not self.domain.satisfies(self.belief, f.plan.preimage(f.i)):
+            self.trace.emit(
+                "failure", plan_id=f.plan_id, index=f.i, action=action.pddl(),
+                reason=str(obs.info.get("reason", "expected result does not hold")),
+            )
+
+    def reconsider(self) -> None:
+        """Hook after each action; the aggressive strategy replans from the root."""
+        if self.strategy.aggressive and len(self.stack) > 1 and not self._goal_holds():
+            while len(self.stack) > 1:
+                self.pop("replaced")
+            self._pending_trigger = "aggressive"
+
+    def _goal_holds(self) -> bool:
+        return self.domain.satisfies(self.belief, self.problem.goal)
+
+    # -- the loop ------------------------------------------------------------------
+    def run(self) -> Metrics:
+        self._t0 = time.perf_counter()
+        self._last_failure = ""
+        goal = self.problem.goal
+        root_plan = Plan((PlanStep(None, TRUE), PlanStep(None, goal)), self.base_levels)
+        self.push(root_plan, None, root=True)
+        outcome, reason = Outcome.REACHED, ""
+        consecutive_failures = 0
+        while self.stack:
+            if self.metrics.actions >= self.strategy.max_actions:
+                outcome, reason = Outcome.LIMIT, f"action budget of {self.strategy.max_actions} spent"
+                break
+            if self.metrics.plans_made + self.metrics.plan_failures >= self.strategy.max_plans:
+                outcome, reason = Outcome.LIMIT, f"planning budget of {self.strategy.max_plans} calls spent"
+                break
+            if time.perf_counter() - self._t0 > self.strategy.time_limit:
+                outcome, reason = Outcome.LIMIT, f"time limit of {self.strategy.time_limit:g} s reached"
+                break
+            f = self.stack[-1]
+            if not self.applicable(f):
+                done = (not f.root and f.i >= f.n) or f.root
+                self.pop("done" if done else "not applicable")
+                continue
+            step = self.next_step(f)
+            action = step.action
+            self.trace.emit(
+                "step", plan_id=f.plan_id, index=f.i if not f.root else 1,
+                action=action.pddl() if action is not None else None,
+                primitive=bool(action is not None and f.plan.levels.is_primitive(action)),
+            )
+            if action is None or not f.plan.levels.is_primitive(action):
+                if len(self.stack) >= self.strategy.max_depth:
+                    outcome, reason = Outcome.LIMIT, f"plan stack deeper than {self.strategy.max_depth}"
+                    break
+                levels = f.plan.levels if action is None else f.plan.levels.next_level(action)
+                if f.root:
+                    levels = self.base_levels
+                new = self.make_plan(step.goal, levels, f)
+                if new is None:
+                    consecutive_failures += 1
+                    if f.root:
+                        outcome, reason = Outcome.FAILED, f"no plan for the goal ({self._last_failure})"
+                        break
+                    if consecutive_failures > 3 * self.strategy.max_depth:
+                        outcome, reason = Outcome.FAILED, f"repeated planning failures ({self._last_failure})"
+                        break
+                    self.pop("failed")  # the refined step cannot be achieved from here
+                    continue
+                consecutive_failures = 0
+                self.push(new, f)
+            else:
+                self.execute(f, action)
+                self.reconsider()
+        if outcome is Outcome.REACHED and not self._goal_holds():
+            outcome, reason = Outcome.FAILED, "plan stack emptied before the goal held"
+        self.metrics.outcome = outcome
+        self.metrics.reason = reason
+        self.metrics.wall_s = time.perf_counter() - self._t0
+        return self.metrics

@@ -1,0 +1,39 @@
+"""A point belief over a symbolic state: what the agent thinks the state is.
+
+With full observations it adopts the observed state; with outcome-only
+observations it applies the action's expected effects when the action is
+reported successful (its model may then drift from the world, which is what
+the replanning mechanisms are for).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from nowplan.core.atoms import Term
+from nowplan.core.operators import Action
+from nowplan.core.state import State
+from nowplan.worlds.base import Observation
+
+
+class SymbolicBelief:
+    def __init__(self, state: State) -> None:
+        self.state = state
+
+    def value(self, key: tuple[str, tuple[Term, ...]]) -> Any:
+        return self.state.value(key)
+
+    def facts(self, predicate: str) -> list[tuple[Term, ...]]:
+        return self.state.facts(predicate)
+
+    def update(self, action: Action, observation: Observation) -> None:
+        if isinstance(observation.data, State):
+            self.state = observation.data
+        elif observation.success:
+            self.state = self.state.apply(action.effects())
+
+    def copy(self) -> SymbolicBelief:
+        return SymbolicBelief(self.state)
+
+    def __repr__(self) -> str:
+        return f"SymbolicBelief({self.state!r})"
