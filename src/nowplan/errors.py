@@ -54,6 +54,10 @@ class MissingExtraError(NowplanError):
         self.extra = extra
 
 
+class UsageError(NowplanError):
+    """Command-line arguments that cannot work together."""
+
+
 class ExecutionError(NowplanError):
     """A world could not execute an action it was given (not a modelled failure)."""
 

@@ -8,9 +8,10 @@ the replanning mechanisms are for).
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from typing import Any
 
-from nowplan.core.atoms import Term
+from nowplan.core.atoms import Atom, Term
 from nowplan.core.operators import Action
 from nowplan.core.state import State
 from nowplan.worlds.base import Observation
@@ -25,6 +26,9 @@ class SymbolicBelief:
 
     def facts(self, predicate: str) -> list[tuple[Term, ...]]:
         return self.state.facts(predicate)
+
+    def atoms(self) -> Iterator[Atom]:
+        return self.state.atoms()
 
     def update(self, action: Action, observation: Observation) -> None:
         if isinstance(observation.data, State):

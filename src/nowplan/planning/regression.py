@@ -12,6 +12,7 @@ backward search.  Limits end the search with a typed :class:`PlanResult`.
 from __future__ import annotations
 
 import heapq
+import math
 import itertools
 import logging
 import random
@@ -26,6 +27,7 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding import Grounder
+from nowplan.planning.heuristics import HAdd, can_relax, hadd_table
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 
 log = logging.getLogger(__name__)
@@ -41,6 +43,7 @@ class PlannerConfig:
     shortcut_nodes: int = 2_000  # expansions allowed to each shortcut
     max_generator_values: int = 8
     seed: int = 0
+    heuristic: str = "hadd"  # hadd (HSPr-style, when the belief lists its facts) | count
 
 
 def preimage(
@@ -112,6 +115,9 @@ class _Search:
             (float(o.cost) for o in domain.operators if not callable(o.cost)), default=1.0
         )
         self.min_cost = max(self.min_cost, 0.0)
+        self.hadd: HAdd | None = None
+        if config.heuristic == "hadd" and can_relax(self.grounder, belief):
+            self.hadd = HAdd(hadd_table(self.grounder, levels, self.drop, self.cost), self.holds)
 
     def holds(self, a: Atom) -> bool:
         r = self._holds.get(a)
@@ -124,6 +130,8 @@ class _Search:
         return all(self.holds(a) for a in g.atoms)
 
     def h(self, g: Goal) -> float:
+        if self.hadd is not None:
+            return self.hadd(g)
         unmet = sum(1 for a in g.atoms if not self.holds(a))
         return unmet * (self.min_cost if self.min_cost > 0 else 1.0)
 
@@ -201,6 +209,8 @@ class _Search:
                     parent[child] = (node, act)
                     self.generated += 1
                     hh = self.h(pre)
+                    if hh == math.inf:
+                        continue  # an atom of the pre-image is unreachable
                     heapq.heappush(frontier, (ng + self.config.weight * hh, hh, next(counter), child))
         return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
 

@@ -1,0 +1,91 @@
+"""``nowplan run``: run a problem with the executive and write its trace."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+from typing import Any
+
+from nowplan.acting.run import run_episode
+from nowplan.acting.strategy import parse_strategy, strategy_names
+from nowplan.commands.common import existing_file, nonneg_int, positive_float, probability
+from nowplan.domains.registry import Episode, get_domain
+from nowplan.errors import UsageError
+from nowplan.trace import Trace
+from nowplan.tree import render_text
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "run",
+        help="run a problem with the executive (plan, act, observe, replan) and write a trace",
+        description=(
+            "Run a registered domain scenario (--domain/--scenario) or a PDDL problem "
+            "(DOMAIN.pddl PROBLEM.pddl [--criticality FILE]) in a simulated world."
+        ),
+    )
+    p.add_argument("pddl", nargs="*", type=existing_file, help="DOMAIN.pddl PROBLEM.pddl (optional)")
+    p.add_argument("--domain", help="a registered domain, e.g. logistics")
+    p.add_argument("--scenario", help="a scenario of the domain (default: the domain's default)")
+    p.add_argument("--criticality", type=existing_file, help="criticality side file for PDDL input")
+    p.add_argument(
+        "--strategy", default="hpn",
+        help=f"strategy switches joined by '+' (available: {', '.join(strategy_names())})",
+    )
+    p.add_argument("--seed", type=nonneg_int, default=0, help="seed for every random choice")
+    p.add_argument("--failure-prob", type=probability, help="probability that an action fails in the world")
+    p.add_argument("--exogenous-prob", type=probability, help="probability of an exogenous change after an action")
+    p.add_argument("--max-actions", type=nonneg_int, help="action budget")
+    p.add_argument("--time-limit", type=positive_float, help="wall-clock budget for the whole run (s)")
+    p.add_argument("--trace", type=Path, help="write the JSONL trace here")
+    p.add_argument("--tree", action="store_true", help="print the plan tree")
+    p.add_argument("--json", action="store_true", help="print the metrics as JSON")
+    p.set_defaults(func=main)
+
+
+def build_episode(args: argparse.Namespace) -> Episode:
+    if args.pddl:
+        if args.domain:
+            raise UsageError("give either DOMAIN.pddl PROBLEM.pddl or --domain, not both")
+        if len(args.pddl) != 2:
+            raise UsageError("expected two files: DOMAIN.pddl PROBLEM.pddl")
+        from nowplan.belief.symbolic import SymbolicBelief
+        from nowplan.io.pddl_read import load_pddl
+        from nowplan.worlds.symbolic import SymbolicWorld
+
+        prob = load_pddl(args.pddl[0], args.pddl[1], args.criticality)
+        world = SymbolicWorld(prob.domain, prob.init, seed=args.seed)
+        return Episode(prob, world, SymbolicBelief(prob.init), f"PDDL {args.pddl[1]}")
+    if not args.domain:
+        raise UsageError("give --domain NAME (e.g. --domain logistics) or DOMAIN.pddl PROBLEM.pddl")
+    spec = get_domain(args.domain)
+    return spec.scenario(args.scenario or spec.default_scenario)(args.seed)
+
+
+def main(args: argparse.Namespace) -> int:
+    overrides: dict[str, Any] = {}
+    if args.max_actions is not None:
+        overrides["max_actions"] = args.max_actions
+    if args.time_limit is not None:
+        overrides["time_limit"] = args.time_limit
+    strategy = parse_strategy(args.strategy, **overrides)
+    episode = build_episode(args)
+    for attr in ("failure_prob", "exogenous_prob"):
+        val = getattr(args, attr)
+        if val is not None:
+            if not hasattr(episode.world, attr):
+                raise UsageError(f"--{attr.replace('_', '-')} is not supported by this domain's world")
+            setattr(episode.world, attr, val)
+    with Trace(args.trace) as trace:
+        metrics = run_episode(episode, strategy, seed=args.seed, trace=trace)
+    if args.json:
+        print(json.dumps(metrics.to_dict(), indent=2))
+    else:
+        if args.tree:
+            print(render_text(trace.events))
+            print()
+        print(metrics.summary())
+        if args.trace:
+            print(f"trace: {args.trace}")
+    return 0 if metrics.outcome.value == "reached" else 1
