@@ -1,0 +1,187 @@
+"""Reproductions of the seed papers' tables: a registry the domain packages fill.
+
+A domain package that can reproduce a seed's table calls :func:`register`
+at import time with a :class:`Reproduction` whose ``run`` function sweeps
+its configurations (quick or full) and returns a
+:class:`ReproductionResult` with rows shaped like the paper's
+(:mod:`nowplan.experiments.papers`).  A seed nobody has registered yet
+gets an honest ``not_implemented`` result: no rows, the paper's numbers,
+and a note saying what is missing.
+"""
+
+from __future__ import annotations
+
+import enum
+import logging
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from nowplan.errors import ScenarioError
+from nowplan.experiments.papers import PAPERS, SeedPaper
+from nowplan.experiments.report import Table, table
+
+log = logging.getLogger(__name__)
+
+
+class ReproStatus(enum.Enum):
+    DONE = "done"
+    NOT_IMPLEMENTED = "not_implemented"
+
+
+@dataclass
+class ReproductionResult:
+    seed: str
+    status: ReproStatus
+    rows: list[dict[str, Any]] = field(default_factory=list)
+    paper: list[dict[str, Any]] = field(default_factory=list)
+    notes: str = ""
+    title: str = ""
+    outputs: list[Path] = field(default_factory=list)  # report files written, if any
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "seed": self.seed,
+            "title": self.title,
+            "status": self.status.value,
+            "rows": self.rows,
+            "paper": self.paper,
+            "notes": self.notes,
+        }
+
+
+@dataclass(frozen=True)
+class ReproductionOptions:
+    quick: bool = False  # a small version: a few minutes on 2 cores
+    out_dir: Path | None = None  # write a report (ours beside the paper's) here
+    jobs: int | None = None
+
+
+ReproduceFn = Callable[[ReproductionOptions], ReproductionResult]
+
+
+@dataclass(frozen=True)
+class Reproduction:
+    seed: str
+    title: str
+    run: ReproduceFn
+
+
+_REGISTRY: dict[str, Reproduction] = {}
+
+
+def seeds() -> list[str]:
+    return sorted(PAPERS)
+
+
+def normalize_seed(text: str) -> str:
+    s = text.strip()
+    if s.isdigit():
+        s = s.zfill(3)
+    if s not in PAPERS:
+        raise ScenarioError(f"unknown seed '{text}'; valid seeds: {', '.join(seeds())}")
+    return s
+
+
+def register(repro: Reproduction) -> Reproduction:
+    """Called by a domain package at import time."""
+    seed = normalize_seed(repro.seed)
+    _REGISTRY[seed] = repro
+    return repro
+
+
+def _load_domains() -> None:
+    """Import the domain packages, which register their reproductions."""
+    from nowplan.domains.registry import domain_names
+
+    try:
+        domain_names()
+    except ImportError as exc:  # a domain package still under construction must not hide the rest
+        log.warning("could not load every domain package: %s", exc)
+
+
+def registered() -> list[str]:
+    _load_domains()
+    return sorted(_REGISTRY)
+
+
+def paper_of(seed: str) -> SeedPaper:
+    return PAPERS[normalize_seed(seed)]
+
+
+def reproduce(seed: str, options: ReproductionOptions | None = None) -> ReproductionResult:
+    """Run the registered reproduction of ``seed``, or say plainly why there is none."""
+    s = normalize_seed(seed)
+    _load_domains()
+    paper = PAPERS[s]
+    repro = _REGISTRY.get(s)
+    if repro is None:
+        return not_implemented(paper)
+    result = repro.run(options or ReproductionOptions())
+    if not result.paper:
+        result.paper = [dict(r) for r in paper.rows]
+    result.title = result.title or repro.title
+    return result
+
+
+def missing_strategies(paper: SeedPaper) -> list[str]:
+    from nowplan.acting.strategy import parse_strategy
+
+    missing = []
+    for name in paper.strategies:
+        try:
+            parse_strategy(name)
+        except ScenarioError:
+            missing.append(name)
+    return missing
+
+
+def not_implemented(paper: SeedPaper) -> ReproductionResult:
+    missing = missing_strategies(paper)
+    parts = [f"its domain ({paper.domain}) has not landed"]
+    if missing:
+        names = ", ".join(repr(m) for m in missing)
+        parts.append(f"the strateg{'ies' if len(missing) > 1 else 'y'} {names} "
+                     f"{'are' if len(missing) > 1 else 'is'} not implemented yet")
+    note = (
+        f"not yet implemented: the reproduction of seed {paper.seed} ({paper.system}) is not "
+        f"registered: {'; '.join(parts)}. No rows are reported until it is. "
+        f"Paper: {paper.notes}"
+    )
+    return ReproductionResult(
+        seed=paper.seed,
+        status=ReproStatus.NOT_IMPLEMENTED,
+        rows=[],
+        paper=[dict(r) for r in paper.rows],
+        notes=note,
+        title=f"seed {paper.seed}: {paper.system}",
+    )
+
+
+def side_by_side(
+    rows: Sequence[dict[str, Any]], paper: Sequence[dict[str, Any]], labels: Sequence[str], caption: str = ""
+) -> Table:
+    """A report table with our value and the paper's for each label and metric column."""
+    metrics = [k for r in [*rows, *paper] for k in r if k not in labels and k != "source"]
+    metrics = list(dict.fromkeys(metrics))
+
+    def key(r: dict[str, Any]) -> tuple[str, ...]:
+        return tuple(str(r.get(c, "")) for c in labels)
+
+    ours = {key(r): r for r in rows}
+    theirs = {key(r): r for r in paper}
+    header = [*labels, *(f"{m} ({who})" for m in metrics for who in ("ours", "paper"))]
+    out = []
+    for k in dict.fromkeys([*ours, *theirs]):
+        a, b = ours.get(k, {}), theirs.get(k, {})
+        out.append([*k, *(_fmt(src.get(m)) for m in metrics for src in (a, b))])
+    return table(header, out, caption)
+
+
+def _fmt(v: Any) -> str:
+    if v is None:
+        return "–"
+    if isinstance(v, float):
+        return f"{v:.3g}"
+    return str(v)
