@@ -1,0 +1,61 @@
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from nowplan.cli import main
+
+
+def test_run_logistics_json(capsys, tmp_path):
+    trace = tmp_path / "trace.jsonl"
+    code = main(["run", "--domain", "logistics", "--scenario", "tiny", "--seed", "2", "--json", "--trace", str(trace)])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0 and out["outcome"] == "reached" and out["actions"] > 0
+    assert trace.read_text().count("\n") > 5
+
+
+def test_run_prints_tree(capsys):
+    assert main(["run", "--domain", "logistics", "--scenario", "tiny", "--tree"]) == 0
+    out = capsys.readouterr().out
+    assert "plan 1" in out and "<prim>" in out and "outcome: reached" in out
+
+
+def test_demo_runs(capsys, tmp_path):
+    assert main(["demo", "--size", "small", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "plan tree" in out and "outcome: reached" in out
+    assert (tmp_path / "trace.jsonl").exists()
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["run", "--domain", "nope"], "valid domains: logistics"),
+        (["run", "--domain", "logistics", "--scenario", "huge"], "valid scenarios:"),
+        (["run", "--domain", "logistics", "--strategy", "zzz"], "valid strategies:"),
+        (["run"], "give --domain NAME"),
+    ],
+)
+def test_bad_input_is_one_clear_line(capsys, argv, message):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["run", "--bogus"], "unrecognized arguments: --bogus"),
+        (["run", "--seed", "-3"], "expected a number >= 0"),
+        (["run", "--failure-prob", "2"], "probability in [0, 1]"),
+        (["run", "missing.pddl"], "no such file"),
+        (["frobnicate"], "invalid choice"),
+    ],
+)
+def test_bad_options_exit_2(capsys, argv, message):
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err
