@@ -76,12 +76,18 @@ class Executive:
         self.stack: list[Frame] = []
         self._next_id = 0
         self._pending_trigger: str | None = None
+        self._pending_reason = ""
+        self.mechanisms = strategy.mechanisms()
         self.base_levels = (
             LevelMap(self.domain.top_level) if strategy.hierarchical else flat_levels()
         )
 
     # -- plan-stack operations ------------------------------------------------
     def applicable(self, f: Frame) -> bool:
+        for m in self.mechanisms:
+            verdict = m.applicable(self, f)
+            if verdict is not None:
+                return verdict
         if f.root:
             return not self.domain.satisfies(self.belief, self.problem.goal)
         return f.i < f.n and self.domain.satisfies(self.belief, f.plan.preimage(f.i))
@@ -89,6 +95,10 @@ class Executive:
     def next_step(self, f: Frame) -> PlanStep:
         if f.root:
             return f.plan.steps[1]
+        for m in self.mechanisms:
+            chosen = m.next_step(self, f)
+            if chosen is not None:
+                return chosen
         f.i += 1
         return f.plan.steps[f.i]
 
@@ -103,6 +113,8 @@ class Executive:
         self._next_id += 1
         self.stack.append(fr)
         self.trace.emit("push", plan_id=fr.plan_id, depth=len(self.stack))
+        for m in self.mechanisms:
+            m.after_push(self, fr)
         return fr
 
     def pop(self, reason: str) -> Frame:
@@ -121,10 +133,10 @@ class Executive:
             self.metrics.replans += 1
             self.trace.emit(
                 "replan", plan_id=parent.plan_id, trigger=self._pending_trigger,
-                reason="a plan was popped before finishing" if self._pending_trigger == "failure"
-                else self._pending_trigger,
+                reason=self._pending_reason or "a plan was popped before finishing",
             )
             self._pending_trigger = None
+            self._pending_reason = ""
         remaining = self.strategy.time_limit - (time.perf_counter() - self._t0)
         cfg = self.strategy.planner
         if remaining < cfg.time_limit:
@@ -179,13 +191,16 @@ class Executive:
             )
 
     def reconsider(self) -> None:
-        """Hook after each action; the aggressive strategy replans from the root."""
-        if self.strategy.aggressive and len(self.stack) > 1 and not self._goal_holds():
-            while len(self.stack) > 1:
-                self.pop("replaced")
-            self._pending_trigger = "aggressive"
+        """After each action, every mechanism may reconsider the plan stack (seed 000 Fig. 2, line 14)."""
+        for m in self.mechanisms:
+            m.after_action(self)
 
-    def _goal_holds(self) -> bool:
+    def request_replan(self, trigger: str, reason: str) -> None:
+        """Mark the next plan made as a replan, with what triggered it."""
+        self._pending_trigger = trigger
+        self._pending_reason = reason
+
+    def goal_holds(self) -> bool:
         return self.domain.satisfies(self.belief, self.problem.goal)
 
     # -- the loop ------------------------------------------------------------------
@@ -242,7 +257,7 @@ class Executive:
             else:
                 self.execute(f, action)
                 self.reconsider()
-        if outcome is Outcome.REACHED and not self._goal_holds():
+        if outcome is Outcome.REACHED and not self.goal_holds():
             outcome, reason = Outcome.FAILED, "plan stack emptied before the goal held"
         self.metrics.outcome = outcome
         self.metrics.reason = reason

@@ -1,48 +1,62 @@
 """Strategies: named sets of switches for the executive.
 
-A strategy string is one base name or several joined by ``+`` (for example
-``hpn+aggressive``); each name turns on its switches.  Switches that belong
-to mechanisms not built yet are refused with a message saying so, never
-silently ignored.
+A strategy string is one switch name or several joined by ``+`` (for example
+``hpn+aggressive``).  Each switch may set strategy or planner fields and add
+a mechanism (see :mod:`nowplan.acting.mechanisms`).  Switches of mechanisms
+not built yet are refused with a message saying so, never silently ignored.
 """
 
 from __future__ import annotations
 
+import importlib
 from dataclasses import dataclass, field, replace
 from typing import Any
 
+from nowplan.acting.mechanisms import SWITCHES, Mechanism, Switch, register_switch
 from nowplan.errors import ScenarioError
 from nowplan.planning.regression import PlannerConfig
+
+# modules that register switches with mechanisms when imported
+MECHANISM_MODULES = ("nowplan.acting.aggressive",)
 
 
 @dataclass(frozen=True)
 class Strategy:
     name: str = "hpn"
+    switches: tuple[str, ...] = ("hpn",)
     hierarchical: bool = True  # plan over criticality levels (False: flat, every step primitive)
-    aggressive: bool = False  # replan after every action
     planner: PlannerConfig = field(default_factory=PlannerConfig)
     max_actions: int = 1_000  # executive budgets: no loop without a bound
     max_plans: int = 2_000
     max_depth: int = 64
     time_limit: float = 600.0
 
+    def mechanisms(self) -> list[Mechanism]:
+        _load()
+        out: list[Mechanism] = []
+        for s in self.switches:
+            sw = SWITCHES[s]
+            if sw.mechanism is not None:
+                out.append(sw.mechanism(self))
+        return out
+
     def to_dict(self) -> dict[str, Any]:
         return {
             "name": self.name,
+            "switches": list(self.switches),
             "hierarchical": self.hierarchical,
-            "aggressive": self.aggressive,
             "serialization": self.planner.serialization,
             "monotonic": self.planner.monotonic,
             "max_actions": self.max_actions,
         }
 
 
-_SWITCHES: dict[str, dict[str, Any]] = {
-    "hpn": {"hierarchical": True},
-    "flat": {"hierarchical": False},
-    "aggressive": {"aggressive": True},
-    "noshortcuts": {"planner": ("serialization", False, "monotonic", False)},
-}
+register_switch(Switch("hpn", "hierarchical planning over criticality levels", {"hierarchical": True}))
+register_switch(Switch("flat", "no hierarchy: plan every step concretely", {"hierarchical": False}))
+register_switch(
+    Switch("noshortcuts", "full backward search only (no serialization or monotonic tries)",
+           planner={"serialization": False, "monotonic": False})
+)
 
 # switches whose mechanisms arrive with later work; named so users are told plainly
 PLANNED = {
@@ -57,31 +71,39 @@ PLANNED = {
 }
 
 
+def _load() -> None:
+    for m in MECHANISM_MODULES:
+        importlib.import_module(m)
+
+
 def strategy_names() -> list[str]:
-    return sorted(_SWITCHES)
+    _load()
+    return sorted(SWITCHES)
 
 
 def parse_strategy(spec: str, **overrides: Any) -> Strategy:
     """``"hpn+aggressive"`` -> a :class:`Strategy`; unknown names list the valid ones."""
-    s = Strategy(name=spec)
-    for part in [p.strip() for p in spec.split("+") if p.strip()]:
-        if part in PLANNED:
+    _load()
+    parts = [p.strip() for p in spec.split("+") if p.strip()]
+    if not parts:
+        raise ScenarioError(f"empty strategy; valid strategies: {', '.join(strategy_names())}")
+    s = Strategy(name=spec, switches=tuple(parts))
+    for part in parts:
+        sw = SWITCHES.get(part)
+        if sw is None and part in PLANNED:
             raise ScenarioError(
                 f"strategy switch '{part}' ({PLANNED[part]}) is not implemented yet; "
                 f"available: {', '.join(strategy_names())}"
             )
-        sw = _SWITCHES.get(part)
         if sw is None:
             raise ScenarioError(
                 f"unknown strategy '{part}'; valid strategies: {', '.join(strategy_names())} "
                 "(combine with '+', e.g. hpn+aggressive)"
             )
-        for k, v in sw.items():
-            if k == "planner":
-                pairs = dict(zip(v[::2], v[1::2], strict=True))
-                s = replace(s, planner=replace(s.planner, **pairs))
-            else:
-                s = replace(s, **{k: v})
+        if sw.fields:
+            s = replace(s, **dict(sw.fields))
+        if sw.planner:
+            s = replace(s, planner=replace(s.planner, **dict(sw.planner)))
     if overrides:
         s = replace(s, **overrides)
     return s

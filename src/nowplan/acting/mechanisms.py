@@ -1,0 +1,58 @@
+"""Strategy switches and the mechanisms behind them.
+
+A *switch* is a name a user puts in a strategy string (``hpn+aggressive``).
+It may set fields of :class:`nowplan.acting.strategy.Strategy` and/or add a
+:class:`Mechanism`: an object whose hooks the executive calls at fixed
+points of the plan-stack loop.  Each seed mechanism is one small module that
+registers its switch here; the executive never names them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from nowplan.acting.hpn import Executive, Frame
+    from nowplan.planning.plan import PlanStep
+
+
+class Mechanism:
+    """Hooks a strategy switch can override; each default means "no opinion"."""
+
+    name = "mechanism"
+
+    def applicable(self, ex: Executive, frame: Frame) -> bool | None:
+        """Decide whether the top plan is still applicable (None: use the rigid test)."""
+        return None
+
+    def next_step(self, ex: Executive, frame: Frame) -> PlanStep | None:
+        """Choose the frame's next step, advancing ``frame.i`` (None: the sequentially next)."""
+        return None
+
+    def after_action(self, ex: Executive) -> None:
+        """Reconsider the plan stack after an action and belief update."""
+
+    def after_push(self, ex: Executive, frame: Frame) -> None:
+        """A new plan was pushed."""
+
+
+MechanismFactory = Callable[[Any], Mechanism]  # Strategy -> Mechanism
+
+
+@dataclass(frozen=True)
+class Switch:
+    name: str
+    description: str
+    fields: Mapping[str, Any] = field(default_factory=dict)  # Strategy fields it sets
+    planner: Mapping[str, Any] = field(default_factory=dict)  # PlannerConfig fields it sets
+    mechanism: MechanismFactory | None = None
+
+
+SWITCHES: dict[str, Switch] = {}
+
+
+def register_switch(switch: Switch) -> Switch:
+    SWITCHES[switch.name] = switch
+    return switch
