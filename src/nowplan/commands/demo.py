@@ -11,6 +11,8 @@ from nowplan.acting.run import run_episode
 from nowplan.acting.strategy import parse_strategy
 from nowplan.commands.common import nonneg_int, probability
 from nowplan.domains.logistics import episode
+from nowplan.domains.registry import domain_names, get_domain
+from nowplan.errors import ScenarioError
 from nowplan.trace import Trace
 from nowplan.tree import render_text
 
@@ -25,6 +27,10 @@ def register(sub: Any) -> None:
             "were executed or refined) and the metrics, and writes the trace."
         ),
     )
+    p.add_argument(
+        "domain", nargs="?", default="logistics",
+        help="which domain's demo to run (default: logistics; any registered domain with a demo)",
+    )
     p.add_argument("--seed", type=nonneg_int, default=0, help="problem and world seed (default 0)")
     p.add_argument("--size", default="medium", choices=["tiny", "small", "medium", "large"])
     p.add_argument("--failure-prob", type=probability, default=0.1, help="action failure probability (default 0.1)")
@@ -33,6 +39,14 @@ def register(sub: Any) -> None:
 
 
 def main(args: argparse.Namespace) -> int:
+    if args.domain != "logistics":
+        spec = get_domain(args.domain)
+        if spec.demo is None:
+            with_demo = [n for n in domain_names() if n == "logistics" or get_domain(n).demo]
+            raise ScenarioError(
+                f"domain '{args.domain}' has no demo; domains with a demo: {', '.join(with_demo)}"
+            )
+        return spec.demo(args)
     ep = episode(args.size, args.seed, failure_prob=args.failure_prob)
     print(f"nowplan demo: {ep.description}, seed {args.seed}")
     print(f"goal: {ep.problem.goal}\n")

@@ -32,6 +32,7 @@ class Episode:
 
 ScenarioFn = Callable[[int], Episode]  # seed -> episode
 RendererFn = Callable[[Any, Any], bytes]  # (world, belief) -> PNG bytes
+DemoFn = Callable[[Any], int]  # parsed `nowplan demo` arguments -> exit code
 
 
 @dataclass
@@ -41,6 +42,7 @@ class DomainSpec:
     scenarios: Mapping[str, ScenarioFn]
     renderer: RendererFn | None = None
     default_scenario: str = ""
+    demo: DemoFn | None = None  # `nowplan demo NAME` runs this
     extras: Mapping[str, Any] = field(default_factory=dict)
 
     def scenario(self, name: str) -> ScenarioFn:
