@@ -91,7 +91,7 @@ def test_same_seed_same_run():
 
 
 def test_unknown_and_planned_strategies_are_refused():
-    with pytest.raises(ScenarioError, match="valid strategies: aggressive, flat, hpn"):
+    with pytest.raises(ScenarioError, match="valid strategies: aggressive, flat, flexible, foresight, hpn"):
         parse_strategy("hpn+bogus")
     with pytest.raises(ScenarioError, match="not implemented yet"):
-        parse_strategy("hpn+peephole")
+        parse_strategy("hpn+reuse")

@@ -63,6 +63,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except NowplanError as err:
         print(f"nowplan {args.command}: error: {err}", file=sys.stderr)
         return err.exit_code
+    except BrokenPipeError:  # output piped into head & co.
+        sys.stderr.close()
+        return 0
     except KeyboardInterrupt:
         print("nowplan: interrupted", file=sys.stderr)
         return 130

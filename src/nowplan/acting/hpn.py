@@ -77,6 +77,8 @@ class Executive:
         self._next_id = 0
         self._pending_trigger: str | None = None
         self._pending_reason = ""
+        self.serendipity_events = 0
+        self._made: dict[int, dict[str, Any]] = {}  # plans made but not pushed yet
         self.mechanisms = strategy.mechanisms()
         self.base_levels = (
             LevelMap(self.domain.top_level) if strategy.hierarchical else flat_levels()
@@ -110,7 +112,17 @@ class Executive:
             parent.i if parent else None,
             root=root,
         )
+        fr.info["step_costs"] = [
+            s.action.cost(self.belief) if s.action is not None else 0.0 for s in plan.steps
+        ]
         self._next_id += 1
+        meta = self._made.pop(id(plan), None)
+        if meta is not None:
+            self.trace.emit(
+                "plan", plan_id=fr.plan_id, parent=fr.parent, parent_step=fr.parent_step,
+                goal=[str(a) for a in plan.goal], levels=plan.levels.top,
+                cost=sum(fr.info["step_costs"]), steps=plan.to_json(), **meta,
+            )
         self.stack.append(fr)
         self.trace.emit("push", plan_id=fr.plan_id, depth=len(self.stack))
         for m in self.mechanisms:
@@ -120,15 +132,19 @@ class Executive:
     def pop(self, reason: str) -> Frame:
         f = self.stack.pop()
         self.trace.emit("pop", plan_id=f.plan_id, reason=reason)
-        if reason != "done" and not f.root:
+        if reason in ("not applicable", "failed") and not f.root:
             self._pending_trigger = self._pending_trigger or "failure"
         return f
 
     def context(self) -> PlanningContext:
-        return PlanningContext(tuple(f.plan for f in self.stack))
+        """What the planner and generators see: the plan stack only with foresight on."""
+        if self.strategy.foresight:
+            return PlanningContext(tuple(f.plan for f in self.stack), {"foresight": True})
+        return PlanningContext((), {"foresight": False})
 
     # -- planning --------------------------------------------------------------
     def make_plan(self, goal: Goal, levels: LevelMap, parent: Frame) -> Plan | None:
+        """Plan for ``goal`` at ``levels`` from the current belief; ``None`` on failure (traced)."""
         if self._pending_trigger is not None:
             self.metrics.replans += 1
             self.trace.emit(
@@ -158,12 +174,9 @@ class Executive:
             self._last_failure = f"{res.status.value}: {res.reason}"
             return None
         self.metrics.plans_made += 1
-        self.trace.emit(
-            "plan", plan_id=self._next_id, parent=parent.plan_id, parent_step=parent.i,
-            goal=[str(a) for a in goal], levels=levels.top, method=res.method,
-            cpu_s=round(res.cpu_time_s, 6), expanded=res.expanded,
-            cost=res.plan.cost(self.belief), steps=res.plan.to_json(),
-        )
+        self._made[id(res.plan)] = {
+            "method": res.method, "cpu_s": round(res.cpu_time_s, 6), "expanded": res.expanded,
+        }
         return res.plan
 
     # -- acting ----------------------------------------------------------------

@@ -17,7 +17,12 @@ from nowplan.errors import ScenarioError
 from nowplan.planning.regression import PlannerConfig
 
 # modules that register switches with mechanisms when imported
-MECHANISM_MODULES = ("nowplan.acting.aggressive",)
+MECHANISM_MODULES = (
+    "nowplan.acting.aggressive",
+    "nowplan.acting.flexible",
+    "nowplan.acting.serendipity",
+    "nowplan.acting.selective",
+)
 
 
 @dataclass(frozen=True)
@@ -25,6 +30,8 @@ class Strategy:
     name: str = "hpn"
     switches: tuple[str, ...] = ("hpn",)
     hierarchical: bool = True  # plan over criticality levels (False: flat, every step primitive)
+    foresight: bool = False  # planner and generators see the whole plan stack (seed 000 III-B)
+    cost_increase: float = 0.25  # selective: replan when a plan's remaining cost grows by this fraction
     planner: PlannerConfig = field(default_factory=PlannerConfig)
     max_actions: int = 1_000  # executive budgets: no loop without a bound
     max_plans: int = 2_000
@@ -45,6 +52,7 @@ class Strategy:
             "name": self.name,
             "switches": list(self.switches),
             "hierarchical": self.hierarchical,
+            "foresight": self.foresight,
             "serialization": self.planner.serialization,
             "monotonic": self.planner.monotonic,
             "max_actions": self.max_actions,
@@ -54,16 +62,16 @@ class Strategy:
 register_switch(Switch("hpn", "hierarchical planning over criticality levels", {"hierarchical": True}))
 register_switch(Switch("flat", "no hierarchy: plan every step concretely", {"hierarchical": False}))
 register_switch(
+    Switch("foresight", "planner and generators see the plan stack (taboo regions, shadows)",
+           {"foresight": True})
+)
+register_switch(
     Switch("noshortcuts", "full backward search only (no serialization or monotonic tries)",
            planner={"serialization": False, "monotonic": False})
 )
 
 # switches whose mechanisms arrive with later work; named so users are told plainly
 PLANNED = {
-    "flexible": "flexible execution (seed 000 Fig. 4)",
-    "serendipity": "serendipity (seed 000 Fig. 5)",
-    "selective": "selective replanning triggers (seed 000 Fig. 5)",
-    "foresight": "foresight (seed 000)",
     "peephole": "RCHPN peephole optimization (seed 002)",
     "monitor": "expected-vs-observed monitor with a plan library (seed 003)",
     "reuse": "reuse-enforced replanning (seed 004)",

@@ -39,6 +39,8 @@ class Domain:
     types: Mapping[str, str | None] = field(default_factory=dict, hash=False)
     constants: Mapping[str, str | None] = field(default_factory=dict, hash=False)
     conflicts: tuple[ConflictRule, ...] = field(default=(), hash=False, compare=False)
+    # reconsideration triggers (seed 000 Fig. 5): fn(plan, belief) -> reason to replan, or None
+    triggers: tuple[Callable[[Any, Any], str | None], ...] = field(default=(), hash=False, compare=False)
 
     def __post_init__(self) -> None:
         names = [o.name for o in self.operators]

@@ -6,12 +6,16 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from nowplan.core.atoms import Atom
 from nowplan.planning.plan import Plan
 
 
 @dataclass(frozen=True)
 class PlanningContext:
     """The plan stack (outermost first) for foresight, plus free-form extras.
+
+    ``extras["foresight"]`` tells generators whether foresight is on; without
+    foresight the executive passes an empty stack.
 
     Seed 000 replaces line 10 of Fig. 2 so the planner receives the whole
     plan stack: generators can then avoid regions that later subgoals need.
@@ -20,10 +24,23 @@ class PlanningContext:
     plan_stack: tuple[Plan, ...] = ()
     extras: Mapping[str, Any] = field(default_factory=dict, hash=False, compare=False)
 
-    def future_requirements(self) -> list[Any]:
-        """Every atom still required by a pre-image of the stack's remaining steps."""
-        out: list[Any] = []
+    @property
+    def foresight(self) -> bool:
+        return bool(self.extras.get("foresight", False))
+
+    def requirements(self, predicate: str | None = None) -> list[Atom]:
+        """Atoms (of ``predicate``, or all) required by pre-images of the stack's plans.
+
+        With foresight these are the robot's intentions: a generator choosing,
+        say, where to put an object avoids every region some plan on the stack
+        still needs clear (seed 000 III-B, the *taboo* regions).
+        """
+        seen: set[Atom] = set()
+        out: list[Atom] = []
         for p in self.plan_stack:
             for s in p.steps:
-                out.extend(s.goal.atoms)
+                for a in s.goal:
+                    if (predicate is None or a.predicate == predicate) and a not in seen:
+                        seen.add(a)
+                        out.append(a)
         return out

@@ -1,0 +1,162 @@
+"""The seed 000 mechanisms against the semantics of Figs. 2, 4 and 5, on tiny domains."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from nowplan.acting.metrics import Outcome
+from nowplan.acting.run import run_episode
+from nowplan.acting.selective import is_part_of
+from nowplan.acting.strategy import parse_strategy
+from nowplan.belief.symbolic import SymbolicBelief
+from nowplan.core.atoms import Atom, Goal, Var, atom
+from nowplan.core.domain import Domain, Predicate, Problem
+from nowplan.core.operators import Generator, Operator, Precondition
+from nowplan.core.state import State
+from nowplan.domains.registry import Episode
+from nowplan.trace import Trace
+from nowplan.worlds.symbolic import SymbolicWorld
+
+PREDS = {n: Predicate(n, 0) for n in ("s0", "s1", "s2", "s3", "p", "x", "y", "q", "start", "done", "blocked", "alarm")}
+
+
+def op(name, pre, eff, cost=1.0, gens=()):
+    return Operator(name, (), tuple(Precondition(atom(a), c) for a, c in pre), tuple(atom(e) for e in eff),
+                    cost=cost, generators=gens)
+
+
+def after_action(n: int, changes: list[Atom]) -> Callable:
+    """An exogenous event that happens once, right after the n-th action."""
+    count = {"k": 0}
+
+    def fn(state, rng):
+        count["k"] += 1
+        return changes if count["k"] == n else []
+
+    return fn
+
+
+def run(domain, init, goal, strategy, exo=None, trace=None):
+    prob = Problem(domain, {}, State([atom(a) for a in init]), Goal.of([atom(g) for g in goal]))
+    world = SymbolicWorld(domain, prob.init, exogenous=exo, exogenous_prob=1.0 if exo else 0.0)
+    ep = Episode(prob, world, SymbolicBelief(prob.init))
+    m = run_episode(ep, parse_strategy(strategy), trace=trace)
+    assert m.outcome is Outcome.REACHED, m.reason
+    return m, ep
+
+
+CHAIN = Domain("chain", PREDS, (
+    op("step1", [("s0", 1)], ["s1"]), op("step2", [("s1", 1)], ["s2"]), op("step3", [("s2", 1)], ["s3"]),
+))
+
+
+def test_flexible_jumps_ahead_on_a_surprise():
+    surprise = after_action(1, [atom("s2")])
+    rigid, _ = run(CHAIN, ["s0"], ["s3"], "flat", exo=surprise)
+    flex, _ = run(CHAIN, ["s0"], ["s3"], "flat+flexible", exo=after_action(1, [atom("s2")]))
+    assert rigid.action_counts["step2"] == 1 and rigid.actions == 3
+    assert flex.action_counts["step2"] == 0 and flex.actions == 2
+
+
+def test_flexible_retries_a_step_whose_preimage_still_holds():
+    # the world undoes s1 right after step1: rigid pops and replans, flexible retries step1
+    undo = after_action(1, [atom("s1", value=False)])
+    tr_rigid, tr_flex = Trace(), Trace()
+    rigid, _ = run(CHAIN, ["s0"], ["s3"], "flat", exo=undo, trace=tr_rigid)
+    flex, _ = run(CHAIN, ["s0"], ["s3"], "flat+flexible", exo=after_action(1, [atom("s1", value=False)]), trace=tr_flex)
+    assert rigid.replans == 1 and rigid.plans_made == 2
+    assert flex.replans == 0 and flex.plans_made == 1
+    assert flex.action_counts["step1"] == 2
+    assert not [e for e in tr_flex.of("pop") if e["reason"] == "not applicable"]
+
+
+# two levels: gety needs x (criticality 2) and q (criticality 1); getx needs p (criticality 1)
+TWO = Domain("two", PREDS, (
+    op("getp", [], ["p"]), op("getq", [], ["q"]),
+    op("getx", [("p", 1)], ["x"]), op("gety", [("x", 2), ("q", 1)], ["y"]),
+))
+
+
+def test_serendipity_returns_directly_when_an_abstract_goal_comes_true():
+    tr = Trace()
+    plain, _ = run(TWO, [], ["y"], "hpn+flexible", exo=after_action(1, [atom("y")]))
+    lucky, _ = run(TWO, [], ["y"], "hpn+flexible+serendipity", exo=after_action(1, [atom("y")]), trace=tr)
+    assert plain.actions == 2  # finishes getx although y already holds
+    assert lucky.actions == 1
+    assert any(e["reason"] == "serendipity" for e in tr.of("pop"))
+
+
+def test_serendipity_resumes_a_deeper_plan_at_its_new_step():
+    # while refining getx (plan for x), x comes true together with q: the top plan's next step is gety
+    tr = Trace()
+    m, _ = run(TWO, [], ["y"], "hpn+serendipity", exo=after_action(1, [atom("x")]), trace=tr)
+    assert m.action_counts["getx"] == 0
+    notes = [e["text"] for e in tr.of("note")]
+    assert any("serendipity" in t for t in notes)
+
+
+def _route_cost(bindings, belief):
+    return 10.0 if belief.value(("blocked", ())) else 1.0
+
+
+ROUTES = Domain("routes", PREDS, (
+    op("prep", [], ["start"]),
+    op("route_a", [("start", 1)], ["done"], cost=_route_cost),
+    op("route_b", [("start", 1)], ["done"], cost=3.0),
+))
+
+
+def test_selective_replans_when_the_remaining_cost_rises():
+    blocked = [atom("blocked")]
+    tr = Trace()
+    plain, _ = run(ROUTES, [], ["done"], "flat", exo=after_action(1, blocked))
+    sel, _ = run(ROUTES, [], ["done"], "flat+selective", exo=after_action(1, blocked), trace=tr)
+    assert plain.action_counts["route_a"] == 1 and plain.execution_cost == 11
+    assert sel.action_counts["route_b"] == 1 and sel.execution_cost == 4
+    assert sel.replans == 1 and tr.of("replan")[0]["trigger"] == "reconsideration"
+    assert any(e["reason"] == "replaced" for e in tr.of("pop"))
+
+
+def test_selective_keeps_a_plan_when_the_new_one_is_part_of_it():
+    fired = []
+
+    def alarm(plan, belief):
+        if belief.value(("alarm", ())) and not fired:
+            fired.append(1)
+            return "alarm heard"
+        return None
+
+    dom = Domain("chain2", PREDS, CHAIN.operators, triggers=(alarm,))
+    tr = Trace()
+    m, _ = run(dom, ["s0"], ["s3"], "flat+selective", exo=after_action(1, [atom("alarm")]), trace=tr)
+    assert fired and m.plans_made == 2 and m.actions == 3
+    assert not any(e["reason"] == "replaced" for e in tr.of("pop"))
+    assert any("part of the old one" in e["text"] for e in tr.of("note"))
+
+
+def test_is_part_of():
+    a = CHAIN.operators[0].instantiate({})
+    b = CHAIN.operators[1].instantiate({})
+    c = CHAIN.operators[2].instantiate({})
+    assert is_part_of((b, c), (a, b, c)) and is_part_of((), (a,))
+    assert not is_part_of((a, c), (a, b, c))
+
+
+def test_foresight_shows_generators_the_plan_stack():
+    seen: list[tuple[bool, int]] = []
+    v = Var("v")
+
+    def gen(bindings, goal, belief, context):
+        seen.append((context.foresight, len(context.plan_stack)))
+        yield {v: "k"}
+
+    g = Generator("pick-v", (v,), gen)
+    dom = Domain("f", PREDS, (
+        Operator("getx", (v,), (Precondition(atom("p"), 1),), (atom("x"),), generators=(g,)),
+        op("getp", [], ["p"]), op("gety", [("x", 2)], ["y"]),
+    ))
+    run(dom, [], ["y"], "hpn")
+    assert seen and all(not f and n == 0 for f, n in seen)
+    seen.clear()
+    run(dom, [], ["y"], "hpn+foresight")
+    assert seen and all(f for f, _ in seen) and max(n for _, n in seen) >= 2
