@@ -19,7 +19,7 @@ from typing import Any
 
 from nowplan.errors import require
 from nowplan.experiments.records import RunConfig, RunRecord, crashed, timed_out
-from nowplan.experiments.runner import OnRecord, execute_dict, hard_limit
+from nowplan.experiments.runner import GRACE_S, OnRecord, execute_dict, hard_limit
 
 log = logging.getLogger(__name__)
 
@@ -27,9 +27,10 @@ log = logging.getLogger(__name__)
 class RayBackend:
     name = "ray"
 
-    def __init__(self, jobs: int | None = None, address: str | None = None) -> None:
+    def __init__(self, jobs: int | None = None, address: str | None = None, grace: float = GRACE_S) -> None:
         self.jobs = jobs
         self.address = address
+        self.grace = grace
 
     def _init(self, ray: Any) -> bool:
         """Start or join Ray unless already initialised; True if we must shut it down."""
@@ -66,7 +67,7 @@ class RayBackend:
                 while todo and len(inflight) < slots:
                     cfg = todo.pop()
                     now = time.monotonic()
-                    inflight[remote.remote(cfg.to_dict())] = (cfg, now, now + hard_limit(cfg.time_limit))
+                    inflight[remote.remote(cfg.to_dict())] = (cfg, now, now + hard_limit(cfg.time_limit, self.grace))
                 next_deadline = min(d for _, _, d in inflight.values())
                 ready, _ = ray.wait(
                     list(inflight), num_returns=1, timeout=max(0.0, next_deadline - time.monotonic())
@@ -80,7 +81,7 @@ class RayBackend:
                         del inflight[ref]
                         ray.cancel(ref, force=True)
                         log.warning("run %s cancelled after %.1f s", cfg.label(), now - start)
-                        on_record(timed_out(cfg, hard_limit(cfg.time_limit), now - start))
+                        on_record(timed_out(cfg, hard_limit(cfg.time_limit, self.grace), now - start))
         finally:
             for ref in inflight:
                 ray.cancel(ref, force=True)

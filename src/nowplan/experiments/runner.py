@@ -38,9 +38,12 @@ class Backend(Protocol):
     def run(self, configs: Sequence[RunConfig], on_record: OnRecord) -> None: ...
 
 
-def hard_limit(time_limit: float) -> float:
+GRACE_S = 5.0  # at least this long past the soft limit before a worker is killed
+
+
+def hard_limit(time_limit: float, grace: float = GRACE_S) -> float:
     """Seconds after which a worker is killed: the soft limit plus a grace period."""
-    return time_limit + max(5.0, 0.1 * time_limit)
+    return time_limit + max(grace, 0.1 * time_limit)
 
 
 def execute(config: RunConfig) -> RunRecord:
@@ -119,14 +122,17 @@ class LocalBackend:
 
     name = "local"
 
-    def __init__(self, jobs: int | None = None, start_method: str | None = None) -> None:
+    def __init__(self, jobs: int | None = None, start_method: str | None = None, grace: float = GRACE_S) -> None:
         self.jobs = max(1, jobs or os.cpu_count() or 1)
+        self.grace = grace
         methods = mp.get_all_start_methods()
         # fork is cheap and lets workers see domains registered at run time (tests, notebooks)
         self.start_method = start_method or ("fork" if "fork" in methods else "spawn")
 
     def run(self, configs: Sequence[RunConfig], on_record: OnRecord) -> None:
         ctx = mp.get_context(self.start_method)
+        if self.start_method == "fork":
+            import nowplan.acting.run  # noqa: F401 - imported once here, not in every worker
         todo = deque(configs)
         active: dict[Connection, _Active] = {}
         try:
@@ -141,7 +147,7 @@ class LocalBackend:
                     proc.start()
                     writer.close()
                     now = time.monotonic()
-                    active[reader] = _Active(cfg, proc, now, now + hard_limit(cfg.time_limit))
+                    active[reader] = _Active(cfg, proc, now, now + hard_limit(cfg.time_limit, self.grace))
                 next_deadline = min(a.deadline for a in active.values())
                 ready = wait(list(active), timeout=max(0.0, next_deadline - time.monotonic()))
                 for conn in ready:
@@ -156,7 +162,8 @@ class LocalBackend:
                         a.process.join()
                         conn.close()
                         log.warning("run %s killed after %.1f s", a.config.label(), now - a.started)
-                        on_record(timed_out(a.config, hard_limit(a.config.time_limit), now - a.started))
+                        limit = hard_limit(a.config.time_limit, self.grace)
+                        on_record(timed_out(a.config, limit, now - a.started))
         finally:
             for conn, a in active.items():  # interrupted: stop the workers still running
                 a.process.kill()

@@ -174,8 +174,8 @@ def run_sweep(
     def on_record(rec: RunRecord) -> None:
         store.put(rec, replace=retry_errors)
         counts[rec.outcome] += 1
-        bar.update(1)
         bar.set_postfix({k: counts[k] for k in sorted(counts)}, refresh=False)
+        bar.update(1)
         if rec.status is not RunStatus.DONE:
             log.info("run %s: %s (%s)", rec.config.label(), rec.status.value, rec.reason)
 

@@ -341,7 +341,7 @@
       li.appendChild(describe(e, li));
       var raw = el('button', 'raw-toggle', '{ }');
       raw.type = 'button';
-      raw.title = 'show the raw event (line ' + e.line + ')';
+      raw.title = 'show the raw event (line ' + data.lines[String(e.seq)] + ' of the trace)';
       var pre = null;
       raw.addEventListener('click', function () {
         if (!pre) { pre = el('pre', 'raw', JSON.stringify(e, null, 1)); li.appendChild(pre); } else { pre.remove(); pre = null; }

@@ -194,7 +194,8 @@ def build_model(trace: Trace) -> dict[str, Any]:
         "root_failed": root_failed,
         "root_replans": root_replans,
         "root_pop": pops.get(0) if 0 not in nodes else None,
-        "events": [{**e, "line": trace.lines.get(e["seq"])} for e in events],
+        "events": events,
+        "lines": {str(seq): line for seq, line in trace.lines.items()},
         "frames": frames,
         "version": __version__,
     }
