@@ -1,0 +1,133 @@
+"""The viewer page in a real headless browser (Debian's chromium, driven by selenium).
+
+`make test` installs chromium and chromium-driver when it runs as root
+(`make test-deps`); elsewhere this test is skipped with the reason.
+"""
+
+from __future__ import annotations
+
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from nowplan.viz.viewer import write_viewer
+
+CHROMIUM = Path("/usr/bin/chromium")
+CHROMEDRIVER = Path("/usr/bin/chromedriver")
+DATA = Path(__file__).parent / "data"
+
+if not (CHROMIUM.exists() and CHROMEDRIVER.exists()):
+    pytest.skip(
+        f"{CHROMIUM} or {CHROMEDRIVER} missing: run 'make test-deps' as root "
+        "(apt-get install chromium chromium-driver) to run the browser test",
+        allow_module_level=True,
+    )
+webdriver = pytest.importorskip(
+    "selenium.webdriver", reason="selenium is not installed: pip install -e '.[test]'"
+)
+
+FLAGS = (
+    "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync",
+    "--disable-dev-shm-usage", "--window-size=1400,1000",
+)
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Any]:
+    from selenium.webdriver.chrome.service import Service
+
+    profile = tempfile.TemporaryDirectory(prefix="nowplan-chromium-")
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = str(CHROMIUM)
+    for flag in (*FLAGS, f"--user-data-dir={profile.name}"):
+        opts.add_argument(flag)
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    # an explicit driver path: selenium-manager is never asked to download anything
+    driver = webdriver.Chrome(service=Service(str(CHROMEDRIVER)), options=opts)
+    try:
+        yield driver
+    finally:
+        driver.quit()
+        profile.cleanup()
+
+
+def _open(browser: Any, page: Path) -> list[dict[str, Any]]:
+    """Load a page, wait for the viewer to finish drawing, return the console messages."""
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    browser.get_log("browser")  # drop messages from earlier pages
+    browser.get(page.resolve().as_uri())
+    WebDriverWait(browser, 10).until(lambda d: d.execute_script("return document.body.dataset.ready") == "true")
+    return list(browser.get_log("browser"))
+
+
+def _errors(logs: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    return [e for e in logs if e.get("level") in ("SEVERE", "ERROR")]
+
+
+def _count(browser: Any, selector: str) -> int:
+    return int(browser.execute_script("return document.querySelectorAll(arguments[0]).length", selector))
+
+
+def test_logistics_trace_tree_and_timeline(browser: Any, tmp_path: Path) -> None:
+    from selenium.webdriver.common.by import By
+
+    page = write_viewer(DATA / "trace_logistics_small_failures.jsonl", tmp_path / "logistics.html")
+    logs = _open(browser, page)
+    assert _errors(logs) == [], logs
+    assert browser.execute_script("return performance.getEntriesByType('resource').length") == 0
+    assert _count(browser, ".plan:not(.root):not(.failed-plan)") == 23
+    assert _count(browser, "#plan-root > .children > .branch > .plan") == 4  # the first plan and 3 replans
+    assert _count(browser, "#plan-root > .plan-head .badge.replan") == 3
+    step = browser.find_element(By.ID, "p4-s1")
+    assert "(drive_truck truck1 c1-l2 c1-l0 c1)" in step.text and "executed" in step.get_attribute("class")
+    assert "primitive" in step.get_attribute("class")
+    # plan 4 hangs under step 1 of plan 3, which it refines
+    assert browser.execute_script(
+        "return document.getElementById('plan-4').parentElement.parentElement.parentElement.id"
+    ) == "plan-3"
+    assert "popped: not applicable" in browser.find_element(By.CSS_SELECTOR, "#plan-1 > .plan-head .badge.pop").text
+    assert _count(browser, "#plan-1 > .steps .node.op.unselected") == 4  # steps 3-6 never reached
+    assert _count(browser, "#tree .node.op.failed") == 3
+    assert _count(browser, "#timeline li.ev-action") == 15
+    assert _count(browser, "#timeline li.ev-failure") == 3
+    assert _count(browser, "#timeline li.ev-push.hidden") == 24  # push/step hidden by default
+    # collapsing a plan hides its sub-plans
+    child = browser.find_element(By.ID, "plan-2")
+    assert child.is_displayed()
+    browser.find_element(By.CSS_SELECTOR, "#plan-1 > .plan-head > .toggle").click()
+    assert not child.is_displayed()
+
+
+def test_frames_and_hostile_strings(browser: Any, tmp_path: Path) -> None:
+    from selenium.webdriver.common.by import By
+
+    page = write_viewer(DATA / "trace_toy_frames.jsonl", tmp_path / "toy.html")
+    logs = _open(browser, page)
+    assert _errors(logs) == [], logs
+    assert browser.execute_script("return window.__pwned === undefined")
+    assert browser.execute_script("return performance.getEntriesByType('resource').length") == 0
+    # trace strings are shown as text, not markup
+    assert '<img src=x onerror="window.__pwned=1">' in browser.find_element(By.ID, "run").text
+    assert _count(browser, "#tree img, #timeline img") == 0
+    note = browser.find_element(By.CSS_SELECTOR, "#timeline li.ev-note").text
+    assert "</script><script>window.__pwned=2</script>" in note
+    # the tree: root -> plan 1 -> (plan 2, a failed planner call) under step 1
+    assert _count(browser, ".plan:not(.root):not(.failed-plan)") == 2
+    assert "node_limit" in browser.find_element(By.CSS_SELECTOR, "#plan-1 .failed-plan").text
+    assert "replan ← failure" in browser.find_element(By.CSS_SELECTOR, "#plan-1 > .plan-head .badge.replan").text
+    assert "slipped" in browser.find_element(By.ID, "p2-s2").text
+    # frames: two embedded images that decode, one remote image refused; linked from the timeline
+    sizes = browser.execute_script(
+        "return [...document.querySelectorAll('#frames img')].map(i => [i.complete, i.naturalWidth])"
+    )
+    assert sizes == [[True, 48], [True, 48]]
+    assert "image not embedded" in browser.find_element(By.ID, "frames").text
+    link = browser.find_element(By.CSS_SELECTOR, "#ev-9 a.frame-link")
+    assert link.get_attribute("href").endswith("#frame-11")
+    link.click()
+    assert browser.execute_script("return location.hash") == "#frame-11"
