@@ -4,7 +4,7 @@ VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: demo test test-all bench clean
+.PHONY: demo test test-all test-deps bench clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -17,10 +17,28 @@ $(STAMP): $(BIN)/python pyproject.toml
 demo: $(STAMP)
 	$(BIN)/nowplan demo
 
-test: $(STAMP)
+# Test set-up beyond '.[test]': Ray for the Ray-backend test, and Debian's chromium +
+# chromium-driver for the viewer's browser test (apt-get only when root and missing).
+# Whatever cannot be installed, its tests skip with the reason.
+TESTDEPS := $(VENV)/.test-deps
+
+$(TESTDEPS): $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[test,test-ray]' \
+	  || echo "test-deps: could not install ray; the Ray backend test will be skipped"
+	touch $(TESTDEPS)
+
+test-deps: $(TESTDEPS)
+	@if [ -x /usr/bin/chromium ] && [ -x /usr/bin/chromedriver ]; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	  echo "test-deps: installing chromium and chromium-driver (apt-get)"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium chromium-driver >/dev/null \
+	    || echo "test-deps: apt-get failed; the browser test will be skipped"; \
+	else echo "test-deps: chromium missing and not root; the browser test will be skipped"; fi
+
+test: $(STAMP) test-deps
 	$(BIN)/python -m pytest
 
-test-all: $(STAMP)
+test-all: $(STAMP) test-deps
 	$(BIN)/python -m pytest -m ''
 
 bench: $(STAMP)
