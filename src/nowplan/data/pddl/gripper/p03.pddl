@@ -1,0 +1,8 @@
+; Move 6 balls from room a to room b.
+(define (problem gripper-6)
+  (:domain gripper)
+  (:objects rooma roomb - room left right - gripper
+            ball1 ball2 ball3 ball4 ball5 ball6 - ball)
+  (:init (at-robby rooma) (free left) (free right)
+        (at ball1 rooma) (at ball2 rooma) (at ball3 rooma) (at ball4 rooma) (at ball5 rooma) (at ball6 rooma) )
+  (:goal (and (at ball1 roomb) (at ball2 roomb) (at ball3 roomb) (at ball4 roomb) (at ball5 roomb) (at ball6 roomb))))

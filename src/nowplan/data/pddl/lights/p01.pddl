@@ -1,0 +1,10 @@
+; Three rooms in a row; turn the far lamp on and the near one off.
+(define (problem lights-corridor)
+  (:domain lights)
+  (:objects hall kitchen study - room lamp1 lamp2 - lamp)
+  (:init (guard-at hall)
+         (adjacent hall kitchen) (adjacent kitchen hall)
+         (adjacent kitchen study) (adjacent study kitchen)
+         (lamp-in lamp1 hall) (lamp-in lamp2 study)
+         (lit lamp1))
+  (:goal (and (lit lamp2) (not (lit lamp1)))))

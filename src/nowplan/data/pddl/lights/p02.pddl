@@ -1,0 +1,12 @@
+; The study is locked; its key is in the kitchen.  End up back in the hall.
+(define (problem lights-locked-study)
+  (:domain lights)
+  (:objects hall kitchen study cellar - room lamp1 lamp2 lamp3 - lamp key1 - key)
+  (:init (guard-at hall)
+         (adjacent hall kitchen) (adjacent kitchen hall)
+         (adjacent hall study) (adjacent study hall)
+         (adjacent kitchen cellar) (adjacent cellar kitchen)
+         (lamp-in lamp1 hall) (lamp-in lamp2 study) (lamp-in lamp3 cellar)
+         (lit lamp1) (lit lamp3)
+         (locked study) (key-at key1 kitchen) (opens key1 study))
+  (:goal (and (lit lamp2) (not (lit lamp3)) (lit lamp1) (guard-at hall))))
