@@ -22,6 +22,7 @@ MECHANISM_MODULES = (
     "nowplan.acting.flexible",
     "nowplan.acting.serendipity",
     "nowplan.acting.selective",
+    "nowplan.acting.peephole",
 )
 
 
@@ -72,7 +73,6 @@ register_switch(
 
 # switches whose mechanisms arrive with later work; named so users are told plainly
 PLANNED = {
-    "peephole": "RCHPN peephole optimization (seed 002)",
     "monitor": "expected-vs-observed monitor with a plan library (seed 003)",
     "reuse": "reuse-enforced replanning (seed 004)",
     "deferred": "deferred sampling (seed 004)",

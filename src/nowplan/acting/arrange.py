@@ -1,0 +1,126 @@
+"""The context-sensitive ordering preference ``arrange(g1, g2, s)`` (seed 002 III-B/C).
+
+``arrange`` answers, for two subgoals of an abstract plan and the current
+belief: serialize the first before the second (:attr:`Arrange.FIRST`, the
+paper's 0), the second before the first (:attr:`Arrange.SECOND`, 1), or
+combine them into one subgoal solved jointly (:attr:`Arrange.COMBINE`, 2).
+It compares the resources each subgoal is estimated to use
+(:mod:`nowplan.acting.resources`) with the seed's rules:
+
+* a resource *continual* for one subgoal and *contained* for the other:
+  the contained one first;
+* resources *contained* for both (or shareable ones the domain says cannot
+  really be shared): any order is acceptable, and we take the one that is
+  easier to reach from the current state first (greedy, seed Fig. 2);
+* only *shareable* resources in common: combine;
+* nothing in common: keep the order.
+
+One addition of ours: a subgoal whose operator needs an effect of the other
+(an Unload needing its package's Load) is never combined with or moved
+before it — doing both "in parallel" has nothing to share.
+"""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from nowplan.core.atoms import Goal
+from nowplan.core.domain import Domain
+from nowplan.core.levels import LevelMap
+from nowplan.core.operators import Action, ResourceUse
+from nowplan.acting.resources import Estimator, ResourceModel, ResourceName
+
+
+class Arrange(enum.IntEnum):
+    FIRST = 0  # serialize g1 before g2
+    SECOND = 1  # serialize g2 before g1
+    COMBINE = 2  # achieve them jointly
+
+
+@dataclass(frozen=True)
+class Subgoal:
+    """Plan steps taken as one: their operators and the pre-image after the last of them."""
+
+    actions: tuple[Action, ...]
+    goal: Goal
+
+    def __str__(self) -> str:
+        return " + ".join(str(a) for a in self.actions)
+
+
+def depends(
+    domain: Domain, first: Sequence[Action], second: Sequence[Action], levels: LevelMap | None = None
+) -> bool:
+    """Does an operator of ``second`` need an effect of one of ``first``?
+
+    Only the preconditions kept at each operator's level in ``levels`` count
+    (all of them without ``levels``): details hidden at this level are not
+    yet a reason to keep two subgoals apart.
+    """
+    rules = domain.rules
+    effects = {e.key: e for a in first for e in a.effects()}
+    for a in second:
+        for p in a.preconditions(levels.level(a) if levels is not None else None):
+            e = effects.get(p.key)
+            if e is not None and rules.rule(p.predicate).entails(e.value, p.value):
+                return True
+    return False
+
+
+def subgoal_uses(sg: Subgoal, est: Estimator, levels: LevelMap) -> dict[ResourceName, ResourceUse]:
+    from nowplan.acting.resources import merge_uses
+
+    uses: dict[ResourceName, ResourceUse] = {}
+    for a in sg.actions:
+        merge_uses(uses, est.estimate(a, levels).uses)
+    return uses
+
+
+def arrange(
+    s1: Subgoal,
+    s2: Subgoal,
+    belief: Any,
+    *,
+    domain: Domain,
+    levels: LevelMap,
+    estimator: Estimator,
+    model: ResourceModel | None = None,
+) -> Arrange:
+    """The seed's ``arrange(g1, g2, s)`` from declared resources (or the domain's own)."""
+    model = model or estimator.model
+    if model.arrange is not None:
+        return Arrange(model.arrange(s1, s2, belief, domain=domain, levels=levels, estimator=estimator))
+    if depends(domain, s1.actions, s2.actions, levels) or depends(domain, s2.actions, s1.actions, levels):
+        return Arrange.FIRST
+    u1 = subgoal_uses(s1, estimator, levels)
+    u2 = subgoal_uses(s2, estimator, levels)
+    pairs: list[tuple[ResourceName, ResourceUse, ResourceUse]] = [
+        (r, u1[r], u2[r]) for r in u1.keys() & u2.keys()
+    ]
+    if model.clash is not None:
+        for r1 in u1:
+            for r2 in u2:
+                if r1 != r2 and model.clash(r1, r2):
+                    pairs.append((r1, ResourceUse.CONTAINED, ResourceUse.CONTAINED))
+    if not pairs:
+        return Arrange.FIRST
+    C, K, S = ResourceUse.CONTINUAL, ResourceUse.CONTAINED, ResourceUse.SHAREABLE
+    # continual for one, contained for the other: the contained one first
+    second_first = any(a is C and b is K for _, a, b in pairs)
+    first_first = any(a is K and b is C for _, a, b in pairs)
+    if second_first != first_first:
+        return Arrange.SECOND if second_first else Arrange.FIRST
+    if second_first or any(a is C and b is C for _, a, b in pairs):
+        return Arrange.FIRST  # contradictory needs (DRP violated): leave the plan alone
+    exclusive = any(a is not S or b is not S for _, a, b in pairs)
+    if not exclusive and model.shareable is not None:
+        exclusive = not all(model.shareable(r, s1.actions, s2.actions, belief) for r, _, _ in pairs)
+    if exclusive:
+        # any serialization is acceptable: the one easier to reach from here first
+        e1 = sum(estimator.effort(a, levels) for a in s1.actions)
+        e2 = sum(estimator.effort(a, levels) for a in s2.actions)
+        return Arrange.SECOND if e2 < e1 else Arrange.FIRST
+    return Arrange.COMBINE

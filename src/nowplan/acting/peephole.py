@@ -1,0 +1,262 @@
+"""RCHPN: dynamic peephole optimization of abstract plans (seed 002 Alg. 2–4).
+
+Before each step of a plan is taken, the tail of the plan is looked at "in
+the now", with the current belief:
+
+* ``SelectGap`` (Alg. 3) starts at the highest pre-image ``g_i`` the belief
+  satisfies (the highest true kernel) and moves later steps in front of the
+  next one while :func:`~nowplan.acting.arrange.arrange` prefers them first;
+* ``SelectParallelOps`` (Alg. 4) pulls later steps next to the chosen one
+  while ``arrange`` says to combine them, up to a complexity limit, and
+  ``CombineGoals`` makes their joint subgoal;
+* every move is kept only if the reordered plan is still valid: its
+  pre-images, recomputed by regression from the plan's goal, chain back to
+  a ``g0`` that the current belief satisfies.
+
+:class:`Peephole` is the ``peephole`` strategy switch: its ``next_step`` hook
+rewrites the top frame's plan and returns the chosen step; for a combined
+step it returns the last operator with the joint subgoal, after lowering
+the level of the other combined operators in the frame's level map (Alg. 2,
+lines 11–13), so the executive pushes one plan for the joint subgoal.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Any
+
+from nowplan.acting.arrange import Arrange, Subgoal, arrange
+from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
+from nowplan.acting.resources import Estimator, ResourceModel, resource_model
+from nowplan.core.atoms import Goal
+from nowplan.core.domain import Domain
+from nowplan.core.levels import LevelMap
+from nowplan.core.operators import Action
+from nowplan.planning.plan import Plan, PlanStep
+from nowplan.planning.regression import PlannerConfig, preimage
+
+if TYPE_CHECKING:
+    from nowplan.acting.hpn import Executive, Frame
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class PeepholeConfig:
+    max_combined: int = 4  # complexity limit: operators in one combined subgoal
+    max_moves: int = 0  # moves per SelectGap call (0: the square of the plan length)
+    estimate_search: PlannerConfig = field(
+        default_factory=lambda: PlannerConfig(
+            max_nodes=300, time_limit=1.0, serialization=True, monotonic=False, shortcut_nodes=300
+        )
+    )
+
+
+def drop_set(domain: Domain, belief: Any) -> frozenset[str]:
+    """Static predicates the planner leaves out of pre-images (checked at grounding)."""
+    return frozenset(
+        n for n in domain.static_predicates if domain.predicates[n].test is None and hasattr(belief, "facts")
+    )
+
+
+class Reorderer:
+    """Alg. 3 and 4 on the tail of one plan, for one belief."""
+
+    def __init__(
+        self,
+        domain: Domain,
+        objects: Any,
+        belief: Any,
+        levels: LevelMap,
+        model: ResourceModel | None = None,
+        config: PeepholeConfig | None = None,
+    ) -> None:
+        self.domain = domain
+        self.belief = belief
+        self.levels = levels
+        self.model = model or resource_model(domain)
+        self.config = config or PeepholeConfig()
+        self.drop = drop_set(domain, belief)
+        self.estimator = Estimator(domain, objects, belief, self.model, self.config.estimate_search)
+        self.moves: list[str] = []
+        self.validity_checks = 0
+
+    # -- validity ---------------------------------------------------------------
+    def chain(self, ops: Sequence[Action], goal: Goal) -> list[Goal] | None:
+        """Pre-images ``[g0, g1, …, gm = goal]`` of ``ops`` by regression, or None."""
+        goals = [goal]
+        g: Goal | None = goal
+        for a in reversed(ops):
+            g = preimage(g, a, self.levels.level(a), self.domain, self.drop)
+            if g is None:
+                return None
+            goals.append(g)
+        goals.reverse()
+        return goals
+
+    def valid(self, ops: Sequence[Action], goal: Goal) -> list[Goal] | None:
+        """The recomputed pre-images if the plan ``ops`` is valid from the belief, else None."""
+        self.validity_checks += 1
+        goals = self.chain(ops, goal)
+        if goals is None or not self.domain.satisfies(self.belief, goals[0]):
+            return None
+        return goals
+
+    # -- the preference ---------------------------------------------------------
+    def arrangeable(self, a: Action) -> bool:
+        if self.levels.is_primitive(a):
+            return False
+        names = self.model.arrangeable
+        return names is None or a.name in names
+
+    def arrange(self, s1: Subgoal, s2: Subgoal) -> Arrange:
+        return arrange(
+            s1, s2, self.belief, domain=self.domain, levels=self.levels, estimator=self.estimator,
+            model=self.model,
+        )
+
+    # -- Alg. 3 -------------------------------------------------------------------
+    def select_gap(self, ops: list[Action], goals: list[Goal]) -> tuple[list[Action], list[Goal]]:
+        """Move later steps before the first while ``arrange`` prefers them (``goals`` = chain)."""
+        limit = self.config.max_moves or max(len(ops) ** 2, 1)
+        moves = 0
+        while ops and self.arrangeable(ops[0]) and moves < limit:
+            first = Subgoal((ops[0],), goals[1])
+            moved = False
+            for j in range(1, len(ops)):
+                if not self.arrangeable(ops[j]):
+                    continue
+                if self.arrange(first, Subgoal((ops[j],), goals[j + 1])) is not Arrange.SECOND:
+                    continue
+                new = [ops[j], *ops[:j], *ops[j + 1 :]]
+                g = self.valid(new, goals[-1])
+                if g is not None:
+                    self.moves.append(f"moved {ops[j]} before {ops[0]}")
+                    ops, goals, moved = new, g, True
+                    moves += 1
+                    break
+            if not moved:
+                break
+        return ops, goals
+
+    # -- Alg. 4 -------------------------------------------------------------------
+    def select_parallel_ops(
+        self, ops: list[Action], goals: list[Goal]
+    ) -> tuple[list[Action], list[Goal], int]:
+        """Pull steps to combine next to the first; returns the plan and the last combined index."""
+        last = 0
+        if not ops or not self.arrangeable(ops[0]):
+            return ops, goals, last
+        j = 1
+        while j < len(ops) and last + 1 < self.config.max_combined:
+            if self.arrangeable(ops[j]):
+                group = Subgoal(tuple(ops[: last + 1]), goals[last + 1])
+                if self.arrange(group, Subgoal((ops[j],), goals[j + 1])) is Arrange.COMBINE:
+                    new = [*ops[: last + 1], ops[j], *ops[last + 1 : j], *ops[j + 1 :]]
+                    g = self.valid(new, goals[-1])
+                    if g is not None:
+                        self.moves.append(f"combined {ops[j]} with {group}")
+                        ops, goals = new, g
+                        last += 1
+            j += 1
+        return ops, goals, last
+
+
+def combine_goals(ops: Sequence[Action], goals: Sequence[Goal], last: int) -> Subgoal:
+    """CombineGoals: the operators ``ops[0..last]`` with the pre-image after the last of them.
+
+    In a valid plan that pre-image holds exactly what the rest of the plan
+    needs from the combined operators, so planning for it achieves them jointly.
+    """
+    return Subgoal(tuple(ops[: last + 1]), goals[last + 1])
+
+
+def highest_applicable(domain: Domain, belief: Any, plan: Plan) -> int | None:
+    """The highest ``i`` with the belief in ``g_i`` (``n`` if the goal already holds)."""
+    for i in range(len(plan.steps) - 1, -1, -1):
+        if domain.satisfies(belief, plan.steps[i].goal):
+            return i
+    return None
+
+
+class Peephole(Mechanism):
+    """RCHPN (Alg. 2) as executive hooks: reorder and combine before each step."""
+
+    name = "peephole"
+
+    def __init__(self, config: PeepholeConfig | None = None) -> None:
+        self.config = config or PeepholeConfig()
+        self.reorders = 0
+        self.combinations = 0
+
+    def after_push(self, ex: Executive, frame: Frame) -> None:
+        frame.info["orig"] = list(range(len(frame.plan.steps)))
+
+    def applicable(self, ex: Executive, frame: Frame) -> bool | None:
+        if frame.root:
+            return None
+        if frame.i >= frame.n:
+            return False
+        k = highest_applicable(ex.domain, ex.belief, frame.plan)
+        if k is None:
+            return False
+        if k == frame.n:  # the plan's goal already holds: done
+            frame.i = frame.n
+            return False
+        return True
+
+    def next_step(self, ex: Executive, frame: Frame) -> PlanStep | None:
+        if frame.root:
+            return None
+        plan = frame.plan
+        k = highest_applicable(ex.domain, ex.belief, plan)
+        if k is None or k >= frame.n:
+            return None
+        ops = [s.action for s in plan.steps[k + 1 :] if s.action is not None]
+        before = list(ops)
+        goals = [s.goal for s in plan.steps[k:]]
+        r = Reorderer(ex.domain, ex.problem.objects, ex.belief, plan.levels, config=self.config)
+        last = 0
+        if r.arrangeable(ops[0]):
+            ops, goals = r.select_gap(ops, goals)
+            ops, goals, last = r.select_parallel_ops(ops, goals)
+        if r.moves:
+            orig = frame.info.get("orig") or list(range(len(plan.steps)))
+            frame.info["orig"] = [*orig[: k + 1], *_permuted(orig[k + 1 :], before, ops)]
+            levels = plan.levels
+            for a in ops[:last]:
+                levels = levels.next_level(a)  # Alg. 2 lines 11-13
+            steps = [*plan.steps[:k], PlanStep(plan.steps[k].action, goals[0])]
+            steps += [PlanStep(a, g) for a, g in zip(ops, goals[1:], strict=True)]
+            frame.plan = replace(plan, steps=tuple(steps), levels=levels)
+            self.reorders += sum(1 for m in r.moves if m.startswith("moved"))
+            self.combinations += last
+            ex.trace.emit(
+                "note", text="peephole: " + "; ".join(r.moves), plan_id=frame.plan_id,
+                peephole={"start": k, "order": frame.info["orig"], "combined": last + 1,
+                          "steps": frame.plan.to_json()},
+            )
+            log.info("peephole on plan %d: %s", frame.plan_id, "; ".join(r.moves))
+        frame.i = k + 1 + last
+        return frame.plan.steps[frame.i]
+
+
+def _permuted(labels: Sequence[int], before: Sequence[Action], after: Sequence[Action]) -> list[int]:
+    """The labels of ``before``'s positions, in the order the same actions have in ``after``."""
+    free = list(zip(before, labels, strict=True))
+    out: list[int] = []
+    for a in after:
+        i = next(i for i, (b, _) in enumerate(free) if b == a)
+        out.append(free.pop(i)[1])
+    return out
+
+
+register_switch(
+    Switch(
+        "peephole",
+        "RCHPN: reorder and combine abstract subgoals by resource use before each step (seed 002)",
+        mechanism=lambda s: Peephole(),
+    )
+)

@@ -1,0 +1,188 @@
+"""Resource-use estimates of abstract plan steps (seed 002 III-C).
+
+Achieving a subgoal uses resources, each in one of three ways
+(:class:`~nowplan.core.operators.ResourceUse`): *shareable*, *contained* or
+*continual*.  The resources of an abstract step are estimated from the
+operators' declared resources:
+
+* **0th order** — the resources the concrete operator declares;
+* **1st order** — plus the 0th-order resources of the operators in a small
+  plan (a limited regression search from the current belief) for the
+  preconditions hidden at the step's level that the next level exposes;
+* **2nd order** — plus the 1st-order estimates of those operators and the
+  0th-order resources of a small plan for the preconditions exposed two
+  levels down.
+
+The estimate also records the *effort*: the cost of those small plans, which
+says how far the step is from being achievable in the current state (the
+greedy tie-breaker of seed 002 Fig. 2).  A domain describes how its
+resources behave with a :class:`ResourceModel` registered under its name.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from nowplan.core.atoms import Goal
+from nowplan.core.domain import Domain
+from nowplan.core.levels import LevelMap
+from nowplan.core.operators import Action, Resource, ResourceUse
+from nowplan.planning.regression import PlannerConfig, plan
+
+log = logging.getLogger(__name__)
+
+ResourceName = tuple[Any, ...]
+# (resource name, actions of the first subgoal, actions of the second, belief) -> may they share it?
+ShareableFn = Callable[[ResourceName, Sequence[Action], Sequence[Action], Any], bool]
+# two different resources that cannot be used at once (e.g. one vehicle at two stops)
+ClashFn = Callable[[ResourceName, ResourceName], bool]
+
+# the strongest use wins when an estimate meets one resource several times
+_STRENGTH = {ResourceUse.SHAREABLE: 0, ResourceUse.CONTAINED: 1, ResourceUse.CONTINUAL: 2}
+
+
+@dataclass(frozen=True)
+class ResourceModel:
+    """How a domain's declared resources are estimated and shared.
+
+    ``orders`` gives the estimate order per operator name (default 0);
+    ``arrangeable`` names the operators whose abstract steps the peephole
+    optimizer may move or combine (``None``: every abstract step);
+    ``shareable`` is the domain's test that a shareable resource can really
+    be shared by two subgoals (for vehicles: does everything still fit);
+    ``clash`` says that two distinct resources exclude each other.
+    ``arrange`` replaces the rule-based ordering preference altogether.
+    """
+
+    orders: Mapping[str, int] = field(default_factory=dict, hash=False)
+    arrangeable: frozenset[str] | None = None
+    shareable: ShareableFn | None = field(default=None, compare=False, hash=False)
+    clash: ClashFn | None = field(default=None, compare=False, hash=False)
+    arrange: Callable[..., int] | None = field(default=None, compare=False, hash=False)
+
+    def order(self, action: Action) -> int:
+        return int(self.orders.get(action.name, 0))
+
+
+DEFAULT_MODEL = ResourceModel()
+_MODELS: dict[str, ResourceModel] = {}
+
+
+def register_resource_model(domain_name: str, model: ResourceModel) -> ResourceModel:
+    """Called by a domain package at import time."""
+    _MODELS[domain_name] = model
+    return model
+
+
+def resource_model(domain: Domain) -> ResourceModel:
+    return _MODELS.get(domain.name, DEFAULT_MODEL)
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """Resources used to achieve a subgoal, and the effort to reach it from the belief."""
+
+    uses: Mapping[ResourceName, ResourceUse] = field(hash=False)
+    effort: float = 0.0
+
+
+def merge_uses(
+    into: dict[ResourceName, ResourceUse], resources: Mapping[ResourceName, ResourceUse] | Sequence[Resource]
+) -> None:
+    items = resources.items() if isinstance(resources, Mapping) else ((r.name, r.use) for r in resources)
+    for name, use in items:
+        old = into.get(name)
+        if old is None or _STRENGTH[use] > _STRENGTH[old]:
+            into[name] = use
+
+
+def hidden_classes(action: Action, level: int) -> list[int]:
+    """Criticality classes of ``action`` not kept at ``level``, next-exposed first."""
+    return [c for c in action.operator.criticalities if c <= level]
+
+
+class Estimator:
+    """Resource estimates for one belief (cached per action, level and order)."""
+
+    def __init__(
+        self,
+        domain: Domain,
+        objects: Mapping[str, str | None],
+        belief: Any,
+        model: ResourceModel,
+        search: PlannerConfig | None = None,
+    ) -> None:
+        self.domain = domain
+        self.objects = objects
+        self.belief = belief
+        self.model = model
+        self.search = search or PlannerConfig(
+            max_nodes=300, time_limit=1.0, serialization=True, monotonic=False, shortcut_nodes=300
+        )
+        self._cache: dict[tuple[Any, int, int], Estimate] = {}
+        self._plans: dict[tuple[Any, int], tuple[Action, ...] | None] = {}
+        self.plan_calls = 0
+
+    def estimate(self, action: Action, levels: LevelMap, order: int | None = None) -> Estimate:
+        lvl = levels.level(action)
+        k = self.model.order(action) if order is None else order
+        key = (action.key, lvl, k)
+        hit = self._cache.get(key)
+        if hit is not None:
+            return hit
+        uses: dict[ResourceName, ResourceUse] = {}
+        merge_uses(uses, action.resources())
+        effort = 0.0
+        if k >= 1 and not action.is_primitive(lvl):
+            classes = hidden_classes(action, lvl)
+            # 1st order: a small plan for the preconditions the next level exposes
+            first = self._support(action, levels, classes[0])
+            if first is not None:
+                effort += sum(a.cost(self.belief) for a in first)
+                for a in first:
+                    sub = self.estimate(a, levels, k - 1)
+                    merge_uses(uses, sub.uses)
+            if k >= 2 and len(classes) > 1:
+                # 2nd order: and one for those exposed two levels down (0th order)
+                second = self._support(action, levels, classes[1])
+                if second is not None:
+                    effort += sum(a.cost(self.belief) for a in second)
+                    for a in second:
+                        merge_uses(uses, a.resources())
+        est = Estimate(uses, effort)
+        self._cache[key] = est
+        return est
+
+    def effort(self, action: Action, levels: LevelMap) -> float:
+        """The cost of a small plan for the preconditions exposed at the next level."""
+        lvl = levels.level(action)
+        if action.is_primitive(lvl):
+            return 0.0
+        first = self._support(action, levels, hidden_classes(action, lvl)[0])
+        return float("inf") if first is None else sum(a.cost(self.belief) for a in first)
+
+    def _support(self, action: Action, levels: LevelMap, crit: int) -> tuple[Action, ...] | None:
+        """Actions of a limited plan achieving ``action``'s unmet preconditions of criticality ``crit``."""
+        key = (action.key, crit)
+        if key in self._plans:
+            return self._plans[key]
+        b = action.bindings
+        want = [
+            p.atom.bind(b)
+            for p in action.operator.preconditions
+            if p.criticality == crit and p.atom.predicate not in self.domain.static_predicates
+        ]
+        unmet = [a for a in want if not self.domain.holds(a, self.belief)]
+        out: tuple[Action, ...] | None = ()
+        if unmet:
+            goal = Goal.of(unmet, self.domain.rules)
+            self.plan_calls += 1
+            res = plan(self.domain, self.objects, self.belief, goal, levels, self.search)
+            out = res.plan.actions if res.solved and res.plan is not None else None
+            if out is None:
+                log.debug("no small plan for %s of %s: %s", goal, action, res.reason)
+        self._plans[key] = out
+        return out
