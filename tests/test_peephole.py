@@ -1,0 +1,239 @@
+"""RCHPN's arrange rules, SelectGap and SelectParallelOps on hand-made subgoals and plans."""
+
+from __future__ import annotations
+
+import pytest
+
+from nowplan.acting.arrange import Arrange, Subgoal, arrange, depends
+from nowplan.acting.metrics import Outcome
+from nowplan.acting.peephole import Peephole, PeepholeConfig, Reorderer, highest_applicable
+from nowplan.acting.resources import Estimator, ResourceModel
+from nowplan.acting.run import run_episode
+from nowplan.acting.strategy import parse_strategy
+from nowplan.core.atoms import Atom, Goal, Var, atom
+from nowplan.core.domain import Domain, Predicate
+from nowplan.core.levels import LevelMap
+from nowplan.core.operators import Operator, Precondition, Resource, ResourceUse
+from nowplan.core.state import State
+from nowplan.domains.logistics import episode
+
+o, lc, a, b = Var("o"), Var("l"), Var("a"), Var("b")
+SH, CT, CN = ResourceUse.SHAREABLE, ResourceUse.CONTAINED, ResourceUse.CONTINUAL
+
+# A robot puts objects in a room (using the doorway while it does), carries
+# objects (using only itself) and closes the door (using the doorway for good).
+OPS = (
+    Operator("goto", (a, b), (Precondition(atom("robot_at", a), 2), Precondition(atom("link", a, b), 2)),
+             (atom("robot_at", b), atom("robot_at", a, value=False)), cost=3.0),
+    Operator("place", (o, lc), (Precondition(atom("obj_at", o, lc), 2), Precondition(atom("robot_at", lc), 1)),
+             (atom("inside", o), atom("obj_at", o, lc, value=False)), cost=1.0,
+             resources=(Resource(("robot",), SH), Resource(("doorway",), CT))),
+    Operator("carry", (o, lc), (Precondition(atom("obj_at", o, lc), 2), Precondition(atom("robot_at", lc), 1)),
+             (atom("carried", o), atom("obj_at", o, lc, value=False)), cost=1.0,
+             resources=(Resource(("robot",), SH),)),
+    Operator("close", (), (Precondition(atom("robot_at", "door"), 1),), (atom("closed"),), cost=1.0,
+             resources=(Resource(("doorway",), CN),)),
+    Operator("grab", (o,), (Precondition(atom("obj_at", o, "shelf"), 2),),
+             (atom("have", o), atom("obj_at", o, "shelf", value=False)), cost=1.0),
+    Operator("stow", (o,), (Precondition(atom("have", o), 2), Precondition(atom("robot_at", "door"), 1)),
+             (atom("inside", o), atom("have", o, value=False)), cost=1.0,
+             resources=(Resource(("doorway",), CT),)),
+)
+
+
+def one_place(x: Atom, y: Atom) -> bool:
+    return x.predicate == y.predicate == "robot_at" and x.value is True and y.value is True and x.args != y.args
+
+
+PREDS = {n: Predicate(n, k) for n, k in [("robot_at", 1), ("link", 2), ("obj_at", 2), ("inside", 1),
+                                          ("carried", 1), ("closed", 0), ("have", 1)]}
+TOY = Domain("toy-rooms", PREDS, OPS, conflicts=(one_place,))
+PLACES = ("door", "hall", "yard", "shelf")
+OBJECTS = {**{p: "loc" for p in PLACES}, **{x: "obj" for x in ("x", "y", "z", "w", "v")}}
+
+
+def state(robot: str = "hall", **where: str) -> State:
+    facts = [atom("robot_at", robot)]
+    links = [("door", "hall"), ("hall", "yard"), ("hall", "shelf")]
+    facts += [atom("link", p, q) for p, q in links] + [atom("link", q, p) for p, q in links]
+    facts += [atom("obj_at", obj, place) for obj, place in where.items()]
+    return State(facts)
+
+
+def act(name: str, *args: str):
+    op = next(x for x in OPS if x.name == name)
+    return op.instantiate(dict(zip(op.params, args, strict=True)))
+
+
+def reorderer(s: State, model: ResourceModel | None = None, **cfg: int) -> Reorderer:
+    return Reorderer(TOY, OBJECTS, s, LevelMap(TOY.top_level), model or ResourceModel(), PeepholeConfig(**cfg))
+
+
+def arr(s1, s2, s: State, model: ResourceModel | None = None) -> Arrange:
+    model = model or ResourceModel(orders={"place": 1, "carry": 1, "close": 1, "stow": 1})
+    est = Estimator(TOY, OBJECTS, s, model)
+    sg1, sg2 = Subgoal(tuple(s1), Goal()), Subgoal(tuple(s2), Goal())
+    return arrange(sg1, sg2, s, domain=TOY, levels=LevelMap(TOY.top_level), estimator=est)
+
+
+# ------------------------------------------------------------------ arrange rules
+
+
+def test_only_shareable_resources_in_common_combine():
+    s = state(x="yard", y="yard")
+    assert arr([act("carry", "x", "yard")], [act("carry", "y", "yard")], s) is Arrange.COMBINE
+
+
+def test_contained_before_continual_either_way_round():
+    s = state(x="hall")
+    assert arr([act("close")], [act("place", "x", "hall")], s) is Arrange.SECOND
+    assert arr([act("place", "x", "hall")], [act("close")], s) is Arrange.FIRST
+
+
+def test_all_contained_any_order_easier_first():
+    # both use the doorway (contained): the one reachable with less effort goes first
+    s = state(robot="hall", x="yard", y="hall")
+    assert arr([act("place", "x", "yard")], [act("place", "y", "hall")], s) is Arrange.SECOND
+    assert arr([act("place", "y", "hall")], [act("place", "x", "yard")], s) is Arrange.FIRST
+
+
+def test_nothing_in_common_keeps_the_order():
+    s = state(x="yard")
+    assert arr([act("carry", "x", "yard")], [act("close")], s) is Arrange.FIRST
+
+
+def test_a_step_needing_the_other_is_not_combined_or_moved():
+    s = state(x="shelf")
+    first, second = [act("grab", "x")], [act("stow", "x")]
+    assert depends(TOY, first, second) and not depends(TOY, second, first)
+    assert arr(second, first, s) is Arrange.FIRST
+
+
+def test_domain_can_refuse_to_share_and_can_declare_clashes():
+    s = state(robot="yard", x="yard", y="hall")
+    no_share = ResourceModel(orders={"carry": 1}, shareable=lambda r, s1, s2, bel: False)
+    # not shareable after all: a serialization, the easier (x: robot already there) first
+    assert arr([act("carry", "y", "hall")], [act("carry", "x", "yard")], s, no_share) is Arrange.SECOND
+    clash = ResourceModel(clash=lambda r1, r2: {r1, r2} == {("robot",), ("doorway",)})
+    assert arr([act("carry", "x", "yard")], [act("close")], s, clash) is Arrange.FIRST
+    assert arr([act("close")], [act("carry", "x", "yard")], s, clash) is Arrange.SECOND
+
+
+def test_estimate_orders_add_hidden_preconditions_resources():
+    s = state(robot="yard", x="hall")
+    levels = LevelMap(TOY.top_level)
+    zeroth = Estimator(TOY, OBJECTS, s, ResourceModel()).estimate(act("place", "x", "hall"), levels)
+    first = Estimator(TOY, OBJECTS, s, ResourceModel(orders={"place": 1})).estimate(
+        act("place", "x", "hall"), levels)
+    assert set(zeroth.uses) == {("robot",), ("doorway",)}
+    assert zeroth.effort == 0.0 and first.effort == 3.0  # one goto to reach the hall
+
+
+# ------------------------------------------------------------------ SelectGap / SelectParallelOps
+
+
+def test_select_gap_moves_the_contained_step_before_the_continual_one():
+    s = state(robot="door", x="hall")
+    r = reorderer(s)
+    ops = [act("close"), act("place", "x", "hall")]
+    goal = Goal.of([atom("closed"), atom("inside", "x")])
+    goals = r.chain(ops, goal)
+    assert goals is not None and TOY.satisfies(s, goals[0])
+    new, new_goals = r.select_gap(ops, goals)
+    assert [str(x) for x in new] == ["place(x, hall)", "close()"]
+    assert new_goals == r.valid(new, goal) and len(r.moves) == 1
+
+
+def test_select_gap_does_not_move_when_the_result_is_invalid():
+    s = state(robot="door", x="shelf")
+    r = reorderer(s)
+    ops = [act("close"), act("grab", "x"), act("stow", "x")]  # stow needs the grab before it
+    goal = Goal.of([atom("closed"), atom("inside", "x")])
+    goals = r.chain(ops, goal)
+    assert goals is not None
+    assert r.arrange(Subgoal((ops[0],), goals[1]), Subgoal((ops[2],), goals[3])) is Arrange.SECOND
+    new, _ = r.select_gap(list(ops), goals)
+    assert new == ops and not r.moves and r.validity_checks >= 1
+    # once the object is held, the same preference may be followed
+    s2 = State([*state(robot="door").atoms(), atom("have", "x")])
+    r2 = reorderer(s2)
+    ops2 = [act("close"), act("stow", "x")]
+    new2, _ = r2.select_gap(ops2, r2.chain(ops2, goal))
+    assert [str(x) for x in new2] == ["stow(x)", "close()"]
+
+
+def test_select_gap_terminates_on_a_cyclic_preference():
+    s = state(x="hall", y="hall", z="hall")
+    always_second = ResourceModel(arrange=lambda s1, s2, bel, **kw: Arrange.SECOND)
+    r = reorderer(s, always_second, max_moves=7)
+    ops = [act("carry", "x", "hall"), act("carry", "y", "hall"), act("carry", "z", "hall")]
+    goal = Goal.of([atom("carried", q) for q in "xyz"])
+    new, goals = r.select_gap(ops, r.chain(ops, goal))
+    assert len(r.moves) == 7 and sorted(map(str, new)) == sorted(map(str, ops))
+    assert r.valid(new, goal) == goals
+
+
+def test_select_parallel_ops_combines_up_to_the_complexity_limit():
+    s = state(robot="yard", x="yard", y="hall", z="yard", w="yard")
+    r = reorderer(s, ResourceModel(), max_combined=3)
+    ops = [act("carry", "x", "yard"), act("close"), act("carry", "y", "hall"),
+           act("carry", "z", "yard"), act("carry", "w", "yard")]
+    goal = Goal.of([atom("closed"), *(atom("carried", q) for q in "xyzw")])
+    goals = r.chain(ops, goal)
+    new, new_goals, last = r.select_parallel_ops(ops, goals)
+    assert last == 2  # three operators in the combined subgoal
+    assert [x.name for x in new[:3]] == ["carry"] * 3 and str(new[3]) == "close()"
+    assert new_goals == r.valid(new, goal)
+    combined = new_goals[last + 1]
+    assert all(atom("carried", x.args[0]) in combined.atoms for x in new[:3])
+
+
+def test_select_parallel_ops_skips_a_combination_that_breaks_the_plan():
+    s = state(robot="hall", x="hall", y="shelf", z="hall")
+    r = reorderer(s, ResourceModel(arrange=lambda s1, s2, bel, **kw: Arrange.COMBINE))
+    # stow(y) needs the grab before it, so it cannot join carry(x); carry(z) can
+    ops = [act("carry", "x", "hall"), act("grab", "y"), act("stow", "y"), act("carry", "z", "hall")]
+    goal = Goal.of([atom("carried", "x"), atom("carried", "z"), atom("inside", "y")])
+    goals = r.chain(ops, goal)
+    new, new_goals, last = r.select_parallel_ops(list(ops), goals)
+    assert last == 1
+    assert [str(x) for x in new] == ["carry(x, hall)", "carry(z, hall)", "grab(y)", "stow(y)"]
+    assert new_goals == r.valid(new, goal)
+
+
+def test_highest_applicable_subgoal():
+    from nowplan.planning.plan import Plan, PlanStep
+
+    s = state(robot="hall", x="hall")
+    r = reorderer(s)
+    ops = [act("goto", "door", "hall"), act("place", "x", "hall")]
+    goals = r.chain(ops, Goal.of([atom("inside", "x")]))
+    p = Plan(tuple([PlanStep(None, goals[0]), *(PlanStep(op, g) for op, g in zip(ops, goals[1:]))]),
+             LevelMap(TOY.top_level))
+    assert highest_applicable(TOY, s, p) == 1  # the robot is already in the hall
+
+
+# ------------------------------------------------------------------ whole runs
+
+
+def test_peephole_switch_is_registered():
+    st = parse_strategy("hpn+peephole")
+    assert any(isinstance(m, Peephole) for m in st.mechanisms())
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_rchpn_on_logistics_reaches_the_goal_with_valid_actions(seed):
+    ep = episode("medium", seed)
+    world = ep.world
+    ran_ok: list[bool] = []
+    orig = world.execute
+
+    def checked(action):
+        ran_ok.append(world.applicable(action))
+        return orig(action)
+
+    world.execute = checked
+    m = run_episode(ep, parse_strategy("hpn+peephole"), seed=seed)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert ran_ok and all(ran_ok)
+    assert ep.problem.domain.satisfies(world.state, ep.problem.goal)
