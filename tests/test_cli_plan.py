@@ -1,0 +1,108 @@
+"""``nowplan plan``: every classic problem solved and validated, JSON output, exit codes, errors."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from nowplan.cli import main
+
+from test_pddl_read import DATA
+from test_pddl_write import CASES
+
+LOG = DATA / "logistics"
+
+
+def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    code = main(["plan", *argv])
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+@pytest.mark.parametrize(("domain", "problem"), CASES)
+def test_every_classic_problem_is_solved_and_valid(
+    capsys: pytest.CaptureFixture[str], domain: str, problem: str
+) -> None:
+    dpath, ppath = DATA / domain / "domain.pddl", DATA / domain / problem
+    code, out, err = run(capsys, str(dpath), str(ppath), "--time-limit", "20")
+    assert code == 0, out + err
+    lines = out.splitlines()
+    assert lines and all(line.startswith("(") and line.endswith(")") for line in lines)
+    validate = pytest.importorskip("nowplan.planning.validate")
+    ok, msg = validate.validate_plan(dpath, ppath, lines)
+    assert ok, msg
+
+
+def test_json_document(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(capsys, str(LOG / "domain.pddl"), str(LOG / "p01.pddl"), "--json", "--seed", "3")
+    doc = json.loads(out)
+    assert code == 0
+    assert doc["status"] == "solved" and doc["cost"] == len(doc["plan"]) > 0
+    assert doc["method"].startswith("regression:") and doc["level"] == "flat"
+    assert doc["planning_time_s"] >= 0
+
+
+def test_criticality_file_still_gives_a_concrete_plan(capsys: pytest.CaptureFixture[str]) -> None:
+    args = [str(LOG / "domain.pddl"), str(LOG / "p01.pddl"), "--criticality", str(LOG / "logistics.crit")]
+    code, flat, _ = run(capsys, *args)
+    assert code == 0 and ("(drive-truck" in flat or "(fly-airplane" in flat)
+    code, top, _ = run(capsys, *args, "--level", "top")
+    assert code == 0 and "drive-truck" not in top and "fly-airplane" not in top
+    code, _, err = run(capsys, *args, "--level", "5")
+    assert code == 2 and "--level 5 is out of range" in err
+
+
+def test_fd_engine(capsys: pytest.CaptureFixture[str]) -> None:
+    pytest.importorskip("up_fast_downward")
+    code, out, _ = run(capsys, str(LOG / "domain.pddl"), str(LOG / "p02.pddl"), "--engine", "fd", "--json")
+    doc = json.loads(out)
+    assert code == 0 and doc["status"] == "solved" and doc["method"] == "fd:fast-downward"
+
+
+def unsolvable(tmp_path: Path) -> Path:
+    bw = DATA / "blocksworld"
+    p = tmp_path / "p.pddl"
+    p.write_text((bw / "p01.pddl").read_text().replace("(on a b) (on b c)", "(on a b) (on b a)"))
+    return p
+
+
+def test_unsolvable_exits_1(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    dom = str(DATA / "blocksworld" / "domain.pddl")
+    code, out, _ = run(capsys, dom, str(unsolvable(tmp_path)))
+    assert code == 1 and out.startswith("unsolvable")
+    code, out, _ = run(capsys, dom, str(unsolvable(tmp_path)), "--json")
+    assert code == 1 and json.loads(out)["status"] == "unsolvable" and json.loads(out)["plan"] == []
+
+
+def test_node_limit_exits_1(capsys: pytest.CaptureFixture[str]) -> None:
+    bw = DATA / "blocksworld"
+    code, out, _ = run(capsys, str(bw / "domain.pddl"), str(bw / "p04.pddl"), "--max-nodes", "2")
+    assert code == 1 and out.startswith("node_limit")
+
+
+def test_missing_file_is_one_line(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    code, out, err = run(capsys, str(tmp_path / "none.pddl"), str(LOG / "p01.pddl"))
+    assert code == 2 and out == ""
+    assert err == f"nowplan plan: error: {tmp_path / 'none.pddl'}: file not found (check the path)\n"
+
+
+def test_bad_pddl_is_one_line(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    bad = tmp_path / "d.pddl"
+    bad.write_text((LOG / "domain.pddl").read_text().replace(":typing)", ":typing :conditional-effects)"))
+    code, _, err = run(capsys, str(bad), str(LOG / "p01.pddl"))
+    assert code == 2 and err.count("\n") == 1
+    assert "requirement :conditional-effects is outside the supported STRIPS fragment" in err
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [["--bogus"], ["--engine", "magic"], ["--time-limit", "-1"], ["--max-nodes", "x"], ["--level", "low"]],
+)
+def test_bad_options(capsys: pytest.CaptureFixture[str], argv: list[str]) -> None:
+    with pytest.raises(SystemExit) as info:
+        main(["plan", str(LOG / "domain.pddl"), str(LOG / "p01.pddl"), *argv])
+    assert info.value.code == 2
+    err = capsys.readouterr().err
+    assert "error:" in err and err.count("\n") == 1
