@@ -145,10 +145,22 @@
     return badge('popped: ' + reason, 'pop pop-' + reason.replace(/[^a-z]/g, ''));
   }
 
-  function replanBadge(r) {
-    var b = badge('replan ← ' + (r.trigger || '?') + (r.reason ? ': ' + r.reason : ''), 'replan');
-    b.addEventListener('click', function () { focusEvent(r.seq); });
-    return b;
+  // one badge per (trigger, reason), with a count: aggressive runs replan hundreds of times
+  function replanBadges(list, head) {
+    var groups = new Map();
+    (list || []).forEach(function (r) {
+      var k = (r.trigger || '?') + '\u0000' + (r.reason || '');
+      if (!groups.has(k)) { groups.set(k, []); }
+      groups.get(k).push(r);
+    });
+    groups.forEach(function (rs) {
+      var r = rs[0];
+      var b = badge('replan ← ' + (r.trigger || '?') + (r.reason ? ': ' + r.reason : '') +
+        (rs.length > 1 ? ' ×' + rs.length : ''), 'replan');
+      b.title = 'click: the first of these replans in the timeline';
+      b.addEventListener('click', function () { focusEvent(r.seq); });
+      head.appendChild(b);
+    });
   }
 
   function failedPlanBox(f) {
@@ -182,7 +194,7 @@
     if (typeof p.expanded === 'number') { meta.push(p.expanded + ' expanded'); }
     head.appendChild(el('span', 'plan-meta', meta.join(' · ')));
     if (p.pop) { head.appendChild(popBadge(p.pop)); }
-    (p.replans || []).forEach(function (r) { head.appendChild(replanBadge(r)); });
+    replanBadges(p.replans, head);
     box.appendChild(head);
 
     var row = el('div', 'steps');
@@ -229,7 +241,7 @@
     head.appendChild(el('span', 'plan-title', 'Plan 0 (root)'));
     head.appendChild(el('span', 'plan-meta', '[(None, True), (None, goal)]'));
     if (data.root_pop) { head.appendChild(popBadge(data.root_pop)); }
-    (data.root_replans || []).forEach(function (rp) { head.appendChild(replanBadge(rp)); });
+    replanBadges(data.root_replans, head);
     root.appendChild(head);
     var row = el('div', 'steps');
     row.appendChild(goalNode([], 'g0'));
