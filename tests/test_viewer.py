@@ -74,7 +74,7 @@ def test_page_is_self_contained_and_escapes_trace_strings(tmp_path: Path) -> Non
     assert "Content-Security-Policy" in page and "default-src 'none'" in page
     assert not re.search(r"(src|href)\s*=\s*[\"']?(https?:)?//", page)
     data = json.loads(re.search(r'<script type="application/json" id="trace-data">(.*?)</script>',
-                                page, re.S).group(1))  # type: ignore[union-attr]
+                                page, re.DOTALL).group(1))  # type: ignore[union-attr]
     frames = data["frames"]
     assert [f["src"] is not None for f in frames] == [True, True, False]  # data URI, file inlined, remote not
     assert frames[1]["src"].startswith("data:image/png;base64,")

@@ -59,7 +59,12 @@ def register(sub: Any) -> None:
 def main(args: argparse.Namespace) -> int:
     from nowplan.experiments.store import Store
     from nowplan.experiments.sweep import (
-        SweepSpec, SweepState, make_backend, parse_names, parse_seeds, run_sweep,
+        SweepSpec,
+        SweepState,
+        make_backend,
+        parse_names,
+        parse_seeds,
+        run_sweep,
     )
 
     spec = SweepSpec(

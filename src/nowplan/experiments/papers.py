@@ -25,7 +25,7 @@ class SeedPaper:
 def _bhpn_rows() -> tuple[dict[str, Any], ...]:
     # seed 000, Table I: per domain and algorithm, mean picks/places, looks, moves and the
     # total simulated execution time as a ratio to the original BHPN's
-    table = {
+    table: dict[str, list[tuple[float, float, float, float]]] = {
         "1": [(4.75, 4.25, 12, 1), (2.1, 3.2, 7.8, 1.01), (2, 3, 6.8, 0.57)],
         "2": [(3, 5, 11.8, 1), (2, 6.3, 11.1, 1.66), (2, 6.3, 10.7, 1.06)],
         "3": [(3, 6, 10.3, 1), (1, 5.8, 8, 1.40), (1, 5, 7, 0.89)],
@@ -43,7 +43,7 @@ def _bhpn_rows() -> tuple[dict[str, Any], ...]:
 
 def _ssreplan_rows() -> tuple[dict[str, Any], ...]:
     # seed 004, Table I: success rate (%) and mean total planning time (s) of successful trials
-    table = {
+    table: dict[str, list[tuple[float, float]]] = {
         "Inspect": [(96, 41), (100, 45), (100, 32), (100, 26)],
         "Stow": [(80, 124), (88, 226), (88, 92), (88, 108)],
         "Swap": [(52, 190), (40, 484), (60, 105), (80, 232)],

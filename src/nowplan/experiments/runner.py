@@ -58,7 +58,7 @@ def execute(config: RunConfig) -> RunRecord:
         strategy = parse_strategy(config.strategy, time_limit=config.time_limit)
         episode = make(config.seed)
         metrics = run_episode(episode, strategy, config.seed).to_dict()
-    except Exception as exc:  # noqa: BLE001 - a crashing run is recorded, the sweep goes on
+    except Exception as exc:  # a crashing run is recorded and the sweep goes on
         log.debug("run %s crashed", config.label(), exc_info=True)
         return crashed(
             config,
@@ -130,7 +130,7 @@ class LocalBackend:
         self.start_method = start_method or ("fork" if "fork" in methods else "spawn")
 
     def run(self, configs: Sequence[RunConfig], on_record: OnRecord) -> None:
-        ctx = mp.get_context(self.start_method)
+        ctx: Any = mp.get_context(self.start_method)
         if self.start_method == "fork":
             import nowplan.acting.run  # noqa: F401 - imported once here, not in every worker
         todo = deque(configs)

@@ -150,8 +150,9 @@ def build_model(trace: Trace) -> dict[str, Any]:
             failed_plans.setdefault((int(e["parent"]), int(e.get("parent_step") or 0)), []).append(e)
         elif kind == "pop":
             pops[int(e["plan_id"])] = e
-    run_start = next((e for e in events if e["event"] == "run_start"), {})
-    run_end = next((e for e in reversed(events) if e["event"] == "run_end"), {})
+    empty: dict[str, Any] = {}
+    run_start = next((e for e in events if e["event"] == "run_start"), empty)
+    run_end = next((e for e in reversed(events) if e["event"] == "run_end"), empty)
 
     plans: list[dict[str, Any]] = []
     for pid, node in sorted(nodes.items()):
