@@ -25,12 +25,10 @@ Modelling choices:
 
 from __future__ import annotations
 
-import functools
 import logging
 import re
-import sys
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -38,7 +36,8 @@ from nowplan.core.atoms import Atom, Goal, Term, Var
 from nowplan.core.domain import Domain, Predicate, Problem
 from nowplan.core.operators import Operator, Precondition
 from nowplan.core.state import State
-from nowplan.errors import ContradictoryGoalError, PDDLError, UnsupportedPDDLError
+from nowplan.errors import ContradictoryGoalError, PDDLError
+from nowplan.io.pddl_source import Source, parse_source, read_source
 
 log = logging.getLogger(__name__)
 
@@ -58,122 +57,6 @@ def equality_facts(objects: Iterable[str]) -> list[Atom]:
     return [Atom(EQUALITY, (o, o)) for o in sorted(objects)]
 
 
-# --------------------------------------------------------------------------- source text
-
-
-@dataclass(frozen=True)
-class _Source:
-    """A file's text with comments blanked, for locating constructs by line."""
-
-    path: str
-    text: str
-
-    @functools.cached_property
-    def code(self) -> str:
-        return re.sub(r";[^\n]*", lambda m: " " * len(m.group(0)), self.text.lower())
-
-    def line_of(self, pattern: str, start: int = 0) -> int | None:
-        m = re.compile(pattern).search(self.code, start)
-        return self.code.count("\n", 0, m.start()) + 1 if m else None
-
-    def offset_of(self, pattern: str) -> int:
-        m = re.compile(pattern).search(self.code)
-        return m.start() if m else 0
-
-    def line_of_token(self, token: str, start: int = 0) -> int | None:
-        return self.line_of(r"(?<![\w?-])" + re.escape(token.lower()) + r"(?![\w-])", start)
-
-    def line_of_atom(self, predicate: str, start: int = 0) -> int | None:
-        return self.line_of(r"\(\s*" + re.escape(predicate.lower()) + r"(?=[\s()])", start)
-
-    def error(self, message: str, line: int | None = None, unsupported: bool = False) -> PDDLError:
-        cls = UnsupportedPDDLError if unsupported else PDDLError
-        return cls(message, path=self.path, line=line)
-
-
-def _read(path: str | Path) -> _Source:
-    p = Path(path)
-    if not p.exists():
-        raise PDDLError("file not found (check the path)", path=str(path))
-    if not p.is_file():
-        raise PDDLError("not a regular file", path=str(path))
-    try:
-        return _Source(str(path), p.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as exc:
-        raise PDDLError(f"cannot read the file: {exc}", path=str(path)) from exc
-
-
-@functools.lru_cache(maxsize=2)
-def _parser(kind: str) -> Any:
-    if kind == "domain":
-        from pddl.parser.domain import DomainParser
-
-        return DomainParser()
-    from pddl.parser.problem import ProblemParser
-
-    return ProblemParser()
-
-
-def _parse(src: _Source, kind: str) -> Any:
-    """Run the ``pddl`` parser, turning its errors into :class:`PDDLError` with a line."""
-    from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
-    from pddl.exceptions import PDDLMissingRequirementError
-
-    old_limit = getattr(sys, "tracebacklimit", None)
-    try:
-        return _parser(kind)(src.text)
-    except UnexpectedInput as exc:
-        _parser.cache_clear()  # the transformer keeps state; start afresh
-        line = getattr(exc, "line", None)
-        line = line if isinstance(line, int) and line > 0 else None
-        if isinstance(exc, UnexpectedCharacters):
-            what = f"unexpected character {exc.char!r}"
-        elif isinstance(exc, UnexpectedToken):
-            tok = "end of file" if exc.token.type == "$END" else repr(str(exc.token))
-            what = f"unexpected {tok}"
-        elif isinstance(exc, UnexpectedEOF):
-            what = "unexpected end of file"
-        else:  # pragma: no cover - other lark input errors
-            what = str(exc).splitlines()[0]
-        if what.startswith("unexpected ':'") or "':" in what:
-            what += " (unknown requirement or section keyword?)"
-        col = getattr(exc, "column", None)
-        where = f" at column {col}" if isinstance(col, int) and col > 0 else ""
-        raise src.error(f"PDDL syntax error: {what}{where}", line) from exc
-    except PDDLMissingRequirementError as exc:
-        _parser.cache_clear()
-        req = str(exc.requirement).lstrip(":")
-        keyword = {
-            "disjunctive-preconditions": r"\(\s*(or|imply)[\s(]",
-            "equality": r"\(\s*=[\s(]",
-            "existential-preconditions": r"\(\s*exists[\s(]",
-            "universal-preconditions": r"\(\s*forall[\s(]",
-            "typing": r"\s-\s",
-        }.get(req)
-        line = src.line_of(keyword, src.offset_of(r"\(:")) if keyword else None
-        raise src.error(
-            f"the file uses a feature that needs the requirement :{req} but does not declare it "
-            "in (:requirements ...)",
-            line,
-        ) from exc
-    except Exception as exc:  # the parser's own checks (types, constants, ...)
-        _parser.cache_clear()
-        msg = " ".join(str(exc).split()) or type(exc).__name__
-        quoted = re.findall(r"'([^'\s]+)'", msg)
-        line = None
-        for tok in quoted:
-            line = src.line_of_token(tok, src.offset_of(r"\(:"))
-            if line is not None:
-                break
-        raise src.error(f"invalid PDDL {kind}: {msg}", line) from exc
-    finally:
-        if old_limit is None:
-            if hasattr(sys, "tracebacklimit"):
-                del sys.tracebacklimit  # the pddl parser leaves it at 0 after an error
-        else:
-            sys.tracebacklimit = old_limit
-
-
 # --------------------------------------------------------------------------- formulas
 
 
@@ -181,7 +64,7 @@ def _name(x: Any) -> str:
     return str(x).lower()
 
 
-def _type_of(tags: Iterable[Any], src: _Source, what: str) -> str | None:
+def _type_of(tags: Iterable[Any], src: Source, what: str) -> str | None:
     tags = sorted(_name(t) for t in tags)
     if not tags:
         return None
@@ -222,7 +105,7 @@ def _construct(f: Any) -> str:
     return f"the construct {f}"
 
 
-def _unsupported(src: _Source, f: Any, where: str, start: int) -> PDDLError:
+def _unsupported(src: Source, f: Any, where: str, start: int) -> PDDLError:
     keyword = {
         "Or": "or", "Imply": "imply", "ForallCondition": "forall", "ExistsCondition": "exists",
         "When": "when", "Forall": "forall", "OneOf": "oneof",
@@ -231,7 +114,7 @@ def _unsupported(src: _Source, f: Any, where: str, start: int) -> PDDLError:
     return src.error(f"{where} uses {_construct(f)}, which is {_FRAGMENT}", line, unsupported=True)
 
 
-def _literals(f: Any, src: _Source, where: str, start: int) -> list[Atom]:
+def _literals(f: Any, src: Source, where: str, start: int) -> list[Atom]:
     """A conjunction of literals (atoms, negated atoms, equalities) as atoms."""
     from pddl.logic.base import And, Not
     from pddl.logic.predicates import EqualTo
@@ -253,7 +136,7 @@ def _literals(f: Any, src: _Source, where: str, start: int) -> list[Atom]:
     raise _unsupported(src, f, where, start)
 
 
-def _effects(f: Any, src: _Source, where: str, start: int) -> tuple[list[Atom], float | None]:
+def _effects(f: Any, src: Source, where: str, start: int) -> tuple[list[Atom], float | None]:
     """Literal effects and the constant ``total-cost`` increase (or None)."""
     from pddl.logic.base import And
     from pddl.logic.functions import Increase, NumericFunction, NumericValue
@@ -293,7 +176,7 @@ def _effects(f: Any, src: _Source, where: str, start: int) -> tuple[list[Atom], 
 def _check_atom(
     a: Atom,
     predicates: Mapping[str, Predicate],
-    src: _Source,
+    src: Source,
     where: str,
     start: int,
     variables: Iterable[Var] | None = None,
@@ -331,7 +214,7 @@ def _show(a: Atom) -> str:
     return body if a.value is not False else f"(not {body})"
 
 
-def _check_requirements(reqs: Iterable[Any], src: _Source) -> set[str]:
+def _check_requirements(reqs: Iterable[Any], src: Source) -> set[str]:
     names = {_name(r.value if hasattr(r, "value") else r).lstrip(":") for r in reqs}
     for r in sorted(names):
         if r not in SUPPORTED_REQUIREMENTS:
@@ -343,7 +226,7 @@ def _check_requirements(reqs: Iterable[Any], src: _Source) -> set[str]:
     return names
 
 
-def _ordered(items: Iterable[Any], src: _Source, pattern: str) -> list[Any]:
+def _ordered(items: Iterable[Any], src: Source, pattern: str) -> list[Any]:
     """Items (named) in the order they appear in the file, for deterministic models."""
     def pos(x: Any) -> tuple[int, str]:
         m = re.search(pattern.format(re.escape(_name(x.name))), src.code)
@@ -354,8 +237,8 @@ def _ordered(items: Iterable[Any], src: _Source, pattern: str) -> list[Any]:
 
 def read_domain(domain_path: str | Path) -> Domain:
     """Read a PDDL domain file (flat: every precondition has criticality 1, no mutexes)."""
-    src = _read(domain_path)
-    d = _parse(src, "domain")
+    src = read_source(domain_path)
+    d = parse_source(src, "domain")
     reqs = _check_requirements(d.requirements, src)
     if d.derived_predicates:
         raise src.error(f"derived predicates are {_FRAGMENT}", src.line_of(r"\(:derived"),
@@ -451,8 +334,8 @@ def load_pddl(
     added to ``domain.conflicts``, so regression prunes impossible subgoals.
     """
     domain = load_domain(domain_path, criticality_path)
-    src = _read(problem_path)
-    p = _parse(src, "problem")
+    src = read_source(problem_path)
+    p = parse_source(src, "problem")
     _check_requirements(p.requirements or (), src)
     if _name(p.domain_name) != domain.name:
         log.warning("%s: problem is for domain '%s' but the domain file defines '%s'",
@@ -506,7 +389,7 @@ def load_pddl(
     return Problem(domain, objects, init, goal, _name(p.name))
 
 
-def _init_atoms(init: Iterable[Any], src: _Source, start: int) -> list[Atom]:
+def _init_atoms(init: Iterable[Any], src: Source, start: int) -> list[Atom]:
     from pddl.logic.functions import EqualTo as FEqualTo
     from pddl.logic.functions import NumericFunction
 
