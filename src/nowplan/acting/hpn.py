@@ -27,7 +27,7 @@ from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.operators import Action
 from nowplan.planning.context import PlanningContext
-from nowplan.planning.plan import Plan, PlanStep
+from nowplan.planning.plan import Plan, PlanStatus, PlanStep
 from nowplan.planning.regression import plan as regression_plan
 from nowplan.trace import Trace
 from nowplan.worlds.base import World
@@ -172,6 +172,7 @@ class Executive:
                 cpu_s=round(res.cpu_time_s, 6),
             )
             self._last_failure = f"{res.status.value}: {res.reason}"
+            self._last_status = res.status
             return None
         self.metrics.plans_made += 1
         self._made[id(res.plan)] = {
@@ -220,6 +221,7 @@ class Executive:
     def run(self) -> Metrics:
         self._t0 = time.perf_counter()
         self._last_failure = ""
+        self._last_status: PlanStatus | None = None
         goal = self.problem.goal
         root_plan = Plan((PlanStep(None, TRUE), PlanStep(None, goal)), self.base_levels)
         self.push(root_plan, None, root=True)
@@ -237,7 +239,7 @@ class Executive:
                 break
             f = self.stack[-1]
             if not self.applicable(f):
-                done = (not f.root and f.i >= f.n) or f.root
+                done = self.domain.satisfies(self.belief, f.plan.goal)
                 self.pop("done" if done else "not applicable")
                 continue
             step = self.next_step(f)
@@ -258,7 +260,9 @@ class Executive:
                 if new is None:
                     consecutive_failures += 1
                     if f.root:
-                        outcome, reason = Outcome.FAILED, f"no plan for the goal ({self._last_failure})"
+                        timed_out = self._last_status is PlanStatus.TIME_LIMIT
+                        outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
+                        reason = f"no plan for the goal ({self._last_failure})"
                         break
                     if consecutive_failures > 3 * self.strategy.max_depth:
                         outcome, reason = Outcome.FAILED, f"repeated planning failures ({self._last_failure})"

@@ -138,6 +138,28 @@ ConflictRule = Callable[[Atom, Atom], bool]
 
 
 @dataclass(frozen=True)
+class AtMostOne:
+    """A conflict rule: at most one true atom of ``predicates`` per value of argument ``key``.
+
+    ``AtMostOne(("at", "in"))`` says an object is at one place or in one
+    vehicle at a time.  It exposes ``group_keys`` so goals are checked in
+    linear time.
+    """
+
+    predicates: tuple[str, ...]
+    key: int = 0
+
+    def group_keys(self, a: Atom) -> list[Any]:
+        if a.value is not True or a.predicate not in self.predicates or len(a.args) <= self.key:
+            return []
+        return [(self.predicates, a.args[self.key])]
+
+    def __call__(self, a: Atom, b: Atom) -> bool:
+        ka, kb = self.group_keys(a), self.group_keys(b)
+        return bool(ka) and ka == kb and a != b
+
+
+@dataclass(frozen=True)
 class Rules:
     """Fluent-specific entailment (per predicate) and cross-fluent conflict rules."""
 
@@ -218,16 +240,61 @@ def conjoin(goal: Goal, extra: Iterable[Atom], rules: Rules = DEFAULT_RULES) -> 
             return None
         table[a.key] = Atom(a.predicate, a.args, rule.meet(old.value, a.value))
     atoms = list(table.values())
-    if rules.conflicts and contradiction(atoms, rules) is not None:
+    if rules.conflicts and contradiction(atoms, rules, new=[table[a.key] for a in extra]) is not None:
         return None
     return Goal(frozenset(atoms))
 
 
-def contradiction(atoms: list[Atom], rules: Rules = DEFAULT_RULES) -> tuple[Atom, Atom] | None:
-    """A pair of atoms that cannot hold together, or ``None``."""
-    for i, a in enumerate(atoms):
-        for b in atoms[i + 1 :]:
-            if rules.atoms_conflict(a, b):
+def _keyed(rules: Rules) -> tuple[list[Any], list[ConflictRule]]:
+    """Split conflict rules into keyed ones (with ``group_keys``) and plain pairwise ones."""
+    keyed = [c for c in rules.conflicts if hasattr(c, "group_keys")]
+    plain = [c for c in rules.conflicts if not hasattr(c, "group_keys")]
+    return keyed, plain
+
+
+def _same_fluent_clash(atoms: list[Atom], rules: Rules) -> tuple[Atom, Atom] | None:
+    table: dict[tuple[str, tuple[Term, ...]], Atom] = {}
+    for a in atoms:
+        old = table.get(a.key)
+        if old is not None and not rules.rule(a.predicate).compatible(old.value, a.value):
+            return (old, a)
+        table[a.key] = a
+    return None
+
+
+def contradiction(
+    atoms: list[Atom], rules: Rules = DEFAULT_RULES, new: Iterable[Atom] | None = None
+) -> tuple[Atom, Atom] | None:
+    """A pair of atoms that cannot hold together, or ``None``.
+
+    With ``new``, only pairs involving one of the new atoms are checked by the
+    pairwise rules, and same-fluent clashes are left to the caller (``conjoin``
+    merges atoms of one fluent itself).  Conflict rules that
+    expose ``group_keys(atom)`` (at most one true atom per key) are checked
+    over all atoms in linear time.
+    """
+    keyed, plain = _keyed(rules)
+    if keyed:
+        seen: dict[Any, Atom] = {}
+        for a in atoms:
+            for rule in keyed:
+                for k in rule.group_keys(a):
+                    other = seen.get(k)
+                    if other is not None and other != a:
+                        return (other, a)
+                    seen[k] = a
+    if not plain:
+        return _same_fluent_clash(atoms, rules) if new is None else None
+    candidates = list(new) if new is not None else atoms
+    for i, a in enumerate(candidates):
+        rest = atoms if new is not None else atoms[i + 1 :]
+        for b in rest:
+            if a == b:
+                continue
+            if a.key == b.key:
+                if not rules.rule(a.predicate).compatible(a.value, b.value):
+                    return (a, b)
+            elif any(c(a, b) or c(b, a) for c in plain):
                 return (a, b)
     return None
 

@@ -233,6 +233,12 @@ class MutexRule:
                     return a.args != b.args or a.predicate != b.predicate
         return False
 
+    def group_keys(self, a: Atom) -> list[tuple[int, object]]:
+        """Keys under which at most one true atom may hold (for linear-time checks)."""
+        if a.value is not True:
+            return []
+        return [(gi, a.args[pos] if pos is not None else None) for gi, pos in self._index.get(a.predicate, ())]
+
     def __repr__(self) -> str:
         return "MutexRule(" + ", ".join(map(str, self.groups)) + ")"
 

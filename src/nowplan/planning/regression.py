@@ -21,7 +21,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from nowplan.core.atoms import Atom, Goal, conjoin
+from nowplan.core.atoms import Atom, Goal, conjoin, contradiction
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
@@ -66,11 +66,11 @@ def preimage(
             remaining.append(a)
         elif not rules.rule(a.predicate).entails(e.value, a.value):
             return None
-    if rules.conflicts:
-        for e in effects.values():
-            for a in remaining:
-                if rules.atoms_conflict(e, a):
-                    return None
+    if rules.conflicts and remaining:
+        # after ω its effects hold: a remaining atom they exclude can never come true
+        effs = list(effects.values())
+        if contradiction(effs + remaining, rules, new=remaining) is not None:
+            return None
     pre = [p for p in action.preconditions(level) if p.predicate not in drop]
     return conjoin(Goal(frozenset(remaining)), pre, rules)
 

@@ -11,7 +11,7 @@ refinement property: every abstract plan can be refined.
 
 from __future__ import annotations
 
-from nowplan.core.atoms import Atom, Var, atom
+from nowplan.core.atoms import Atom, AtMostOne, Var, atom
 from nowplan.core.domain import Domain, Predicate
 from nowplan.core.operators import Operator, Precondition, Resource, ResourceUse
 
@@ -91,16 +91,8 @@ OPERATORS = (
 )
 
 
-def one_place(x: Atom, y: Atom) -> bool:
-    """An object is at one location or in one vehicle at a time."""
-    return (
-        x.predicate in ("at", "in")
-        and y.predicate in ("at", "in")
-        and x.args[0] == y.args[0]
-        and x.value is True
-        and y.value is True
-        and x.key != y.key
-    )
+# an object is at one location or in one vehicle at a time
+ONE_PLACE = AtMostOne(("at", "in"))
 
 
-DOMAIN = Domain("logistics", PREDICATES, OPERATORS, TYPES, conflicts=(one_place,))
+DOMAIN = Domain("logistics", PREDICATES, OPERATORS, TYPES, conflicts=(ONE_PLACE,))
