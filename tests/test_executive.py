@@ -95,3 +95,15 @@ def test_unknown_and_planned_strategies_are_refused():
         parse_strategy("hpn+bogus")
     with pytest.raises(ScenarioError, match="not implemented yet"):
         parse_strategy("hpn+reuse")
+
+
+def test_exogenous_changes_move_only_packages():
+    for seed in range(5):
+        ep = episode("small", seed, exogenous_prob=1.0)
+        vehicles = {o for o, t in ep.problem.objects.items() if t in ("truck", "airplane")}
+        before = {a for a in ep.world.state.atoms() if a.args and a.args[0] in vehicles}
+        for _ in range(10):
+            ep.world.exogenous(ep.world.state, ep.world.rng)
+            ep.world.state = ep.world.state.apply(ep.world.exogenous(ep.world.state, ep.world.rng))
+        after = {a for a in ep.world.state.atoms() if a.args and a.args[0] in vehicles}
+        assert before == after

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import random
+from functools import partial
 from dataclasses import dataclass
 
 from nowplan.belief.symbolic import SymbolicBelief
@@ -73,11 +74,9 @@ def generate(size: Size, seed: int, name: str = "logistics") -> Problem:
     return Problem(DOMAIN, objects, State(facts), Goal.of(goal, DOMAIN.rules), f"{name}-s{seed}")
 
 
-def move_a_package(state: State, rng: random.Random) -> list[Atom]:
+def move_a_package(packages: frozenset[str], state: State, rng: random.Random) -> list[Atom]:
     """Exogenous change: somebody carries a package lying at a place to another place of its city."""
-    lying = sorted(
-        (args[0], args[1]) for args in state.facts("at") if str(args[0]).startswith("p")
-    )
+    lying = sorted((args[0], args[1]) for args in state.facts("at") if args[0] in packages)
     if not lying:
         return []
     pkg, loc = rng.choice(lying)
@@ -90,9 +89,10 @@ def move_a_package(state: State, rng: random.Random) -> list[Atom]:
 
 def episode(size_name: str, seed: int, failure_prob: float = 0.0, exogenous_prob: float = 0.0) -> Episode:
     prob = generate(SIZES[size_name], seed, f"logistics-{size_name}")
+    packages = frozenset(o for o, t in prob.objects.items() if t == "package")
     world = SymbolicWorld(
         DOMAIN, prob.init, seed=seed + 1, failure_prob=failure_prob,
-        exogenous=move_a_package, exogenous_prob=exogenous_prob,
+        exogenous=partial(move_a_package, packages), exogenous_prob=exogenous_prob,
     )
     desc = f"{size_name} logistics, failure p={failure_prob:g}, exogenous p={exogenous_prob:g}"
     return Episode(prob, world, SymbolicBelief(prob.init), desc)
