@@ -1,0 +1,357 @@
+"""The NAMO agent's belief: fog grid, robot pose estimate, one Kalman filter per object.
+
+* ``observed`` — a grid of cells the robot has seen; the rest is *fog*.
+  Walls are known in advance; free space is known only once observed.
+* the robot's position is Gaussian (mean, isotropic variance); moving adds
+  variance, looking at a landmark removes it (a Kalman update).
+* every detected object has a Gaussian position estimate (2x2 covariance)
+  updated with a Kalman filter from noisy relative measurements; an object
+  that should have been seen where it was believed to be and was not is
+  dropped (negative information).
+
+Counters: ``version`` changes on every update (caches key on it);
+``percept`` changes only on perceptual events that may warrant
+reconsideration (a new object, a much better or a moved estimate, an object
+gone).  Belief fluents (``BClear``, ``Observed``…) are answered by the
+methods at the bottom, which the domain's predicate tests call.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass, field
+from functools import lru_cache
+from statistics import NormalDist
+from typing import Any
+
+import numpy as np
+
+from nowplan.core.operators import Action
+from nowplan.domains.namo.geometry import Box, Manip, MapGeometry, Pt, Region, polyline_length
+from nowplan.domains.namo.params import DEFAULT_PARAMS, DEFAULT_SENSOR, Params, Sensor
+from nowplan.worlds.base import Observation
+
+log = logging.getLogger(__name__)
+
+
+@lru_cache(maxsize=64)
+def k_of(eps: float) -> float:
+    """Standard deviations within which a Gaussian lies with probability 1 - eps (one-sided)."""
+    return NormalDist().inv_cdf(1.0 - min(max(eps, 1e-6), 0.5))
+
+
+@dataclass
+class ObjectEstimate:
+    name: str
+    mean: np.ndarray
+    cov: np.ndarray
+    size: tuple[float, float]
+    first_seen: int  # the belief's percept counter when it was first detected
+    looks: int = 1
+
+    @property
+    def sigma(self) -> float:
+        return float(math.sqrt(max(np.linalg.eigvalsh(self.cov).max(), 0.0)))
+
+    @property
+    def center(self) -> Pt:
+        return Pt.of(self.mean[0], self.mean[1])
+
+    @property
+    def box(self) -> Box:
+        return Box(float(self.mean[0]), float(self.mean[1]), self.size[0], self.size[1])
+
+
+@dataclass
+class NamoBelief:
+    geom: MapGeometry
+    robot_mean: np.ndarray
+    robot_var: float = 0.0004
+    params: Params = DEFAULT_PARAMS
+    sensor: Sensor = DEFAULT_SENSOR
+    observed: np.ndarray = field(default=None)  # type: ignore[assignment]
+    objects: dict[str, ObjectEstimate] = field(default_factory=dict)
+    held: str | None = None
+    held_manip: Manip | None = None
+    grip: tuple[np.ndarray, np.ndarray] | None = None  # held object's offset from the robot, and its covariance
+    robot_sym: Pt | None = None
+    version: int = 0
+    percept: int = 0
+    trajectory: list[Pt] = field(default_factory=list)
+    unmovable: dict[str, int] = field(default_factory=dict)  # object -> percept when no placement was found
+    route_memo: dict[Pt, set[Pt]] = field(default_factory=dict)  # target -> starts a path chose (gen_move)
+    _cache: dict[Any, Any] = field(default_factory=dict, repr=False)
+    _cache_version: int = -1
+    _cells: dict[Region, np.ndarray] = field(default_factory=dict, repr=False)
+
+    def __post_init__(self) -> None:
+        g = self.geom.grid
+        if self.observed is None:
+            self.observed = np.zeros(g.n, dtype=bool)
+        self.observed = self.observed.copy()
+        self.robot_mean = np.asarray(self.robot_mean, dtype=float)
+        if self.robot_sym is None:
+            self.robot_sym = g.snap(self.pose)
+        self.observed |= g.disk_mask(self.pose, 0.6)
+        self.trajectory.append(self.pose)
+
+    # -- caches ------------------------------------------------------------------
+    def cache(self) -> dict[Any, Any]:
+        """A dict valid for the current version only."""
+        if self._cache_version != self.version:
+            self._cache = {}
+            self._cache_version = self.version
+        return self._cache
+
+    def _bump(self, percept: bool = False) -> None:
+        self.version += 1
+        if percept:
+            self.percept += 1
+
+    # -- robot ---------------------------------------------------------------------
+    @property
+    def pose(self) -> Pt:
+        return Pt.of(self.robot_mean[0], self.robot_mean[1])
+
+    @property
+    def robot_sigma(self) -> float:
+        return math.sqrt(self.robot_var)
+
+    def at(self, p: Pt) -> bool:
+        return self.pose.dist(p) <= self.params.at_tol
+
+    def nominal(self) -> Pt:
+        """Where the robot is, as a pose the planner names (the last commanded one if still true)."""
+        if self.robot_sym is not None and self.at(self.robot_sym):
+            return self.robot_sym
+        return self.geom.grid.snap(self.pose)
+
+    # -- objects -------------------------------------------------------------------
+    def free_objects(self, exclude: frozenset[str] | set[str] = frozenset()) -> list[ObjectEstimate]:
+        """Known objects lying in the world (not held), except ``exclude``."""
+        return [o for n, o in sorted(self.objects.items()) if n != self.held and n not in exclude]
+
+    def stuck(self, name: str) -> bool:
+        """No way to move this object was found since the last perceptual event."""
+        return self.unmovable.get(name) == self.percept
+
+    def object_sigma(self, name: str) -> float | None:
+        o = self.objects.get(name)
+        return None if o is None else o.sigma
+
+    def blockers(self, region: Region, eps: float, exclude: frozenset[str] = frozenset()) -> list[str]:
+        """Objects (not in ``exclude``) whose epsilon-shadow meets the region."""
+        key = ("blockers", region, round(eps, 6), exclude)
+        c = self.cache()
+        if key in c:
+            return c[key]  # type: ignore[no-any-return]
+        k = k_of(eps)
+        out = [o.name for o in self.free_objects(exclude) if region.hits_box(o.box, k * o.sigma)]
+        c[key] = out
+        return out
+
+    def clear(self, region: Region, exclude: frozenset[str], eps: float) -> bool:
+        return not self.blockers(region, eps, exclude)
+
+    # -- fog -----------------------------------------------------------------------
+    def region_cells(self, region: Region) -> np.ndarray:
+        c = self._cells.get(region)
+        if c is None:
+            g = self.geom.grid
+            c = np.nonzero(g.capsule_mask(region.start, region.end, region.radius))[0]
+            if len(self._cells) > 4096:
+                self._cells.clear()
+            self._cells[region] = c
+        return c
+
+    def opaque(self) -> np.ndarray:
+        """What blocks the view as far as the robot knows: walls and objects (with their shadows)."""
+        c = self.cache()
+        if "opaque" not in c:
+            g = self.geom.grid
+            m = self.geom.wall_mask.copy()
+            k = k_of(self.params.eps_clear)
+            for o in self.free_objects():
+                m |= g.box_mask(o.box, k * o.sigma)
+            c["opaque"] = m
+        return c["opaque"]  # type: ignore[no-any-return]
+
+    def visible_fog(self, region: Region) -> np.ndarray:
+        """Fog cells of the region that a look from its view point could reveal."""
+        key = ("vfog", region)
+        c = self.cache()
+        if key not in c:
+            cells = self.region_cells(region)
+            fog = cells[~self.observed[cells]]
+            if fog.size == 0:
+                c[key] = fog
+            else:
+                g = self.geom.grid
+                heading = heading_to(region.view, region.centroid)
+                seen = g.visible(region.view, fog, self.opaque(), self.sensor.range, heading, self.sensor.fov)
+                c[key] = fog[seen]
+        return c[key]  # type: ignore[no-any-return]
+
+    def is_observed(self, region: Region) -> bool:
+        return int(self.visible_fog(region).size) <= self.params.fog_observed_slack
+
+    # -- updates -----------------------------------------------------------------------
+    def update(self, action: Action, obs: Observation) -> None:
+        data: dict[str, Any] = obs.data if isinstance(obs.data, dict) else {}
+        name = action.name
+        if name == "Move":
+            region: Region = action.args[2]
+            self._drive((region.start, region.end), float(data.get("traveled", 0.0)))
+            if data.get("completed", obs.success):
+                self.robot_sym = region.end
+            else:
+                self.robot_sym = self.geom.grid.snap(self.pose)
+        elif name == "Pick":
+            self._update_pick(action, data)
+        elif name == "Place":
+            self._update_place(action, data)
+        self._sense(data)
+        self._bump()
+
+    def _drive(self, path: tuple[Pt, ...], traveled: float) -> None:
+        p = along(path, traveled)
+        self.robot_mean = np.array([p.x, p.y])
+        self.robot_var += (self.params.motion_model * traveled) ** 2
+        self.trajectory.append(p)
+
+    def _update_pick(self, action: Action, data: dict[str, Any]) -> None:
+        o, m = action.args[0], action.args[1]
+        assert isinstance(m, Manip)
+        self._drive(m.pick_path, float(data.get("traveled", 0.0)))
+        if data.get("grasped"):
+            self.held, self.held_manip = o, m
+            self.robot_sym = m.pick_conf
+            est = self.objects.get(o)
+            if est is not None:
+                self.grip = (est.mean - self.robot_mean, est.cov.copy())
+        else:
+            est = self.objects.get(o)
+            if data.get("missed") and est is not None:  # it is not where we thought: look again
+                est.cov = np.eye(2) * max(est.sigma, 0.15) ** 2
+                self.percept += 1
+            if data.get("returned"):
+                self._drive(tuple(reversed(m.pick_path)), polyline_length(m.pick_path))
+            self.robot_sym = m.home if self.at(m.home) else self.geom.grid.snap(self.pose)
+
+    def _update_place(self, action: Action, data: dict[str, Any]) -> None:
+        o = action.args[0]
+        m = self.held_manip
+        if m is None or self.held != o:
+            return
+        self._drive(m.carry_path, float(data.get("carried", 0.0)))
+        est = self.objects.get(o)
+        if est is not None:
+            offset, cov = self.grip if self.grip is not None else (np.array(m.offset), np.eye(2) * 0.0004)
+            est.mean = self.robot_mean + offset
+            est.cov = cov + np.eye(2) * (self.robot_var + 0.0001)
+        self.grip = None
+        self.held, self.held_manip = None, None
+        self._drive(m.return_path, float(data.get("returned", 0.0)))
+        self.robot_sym = m.home if data.get("home") and self.at(m.home) else self.geom.grid.snap(self.pose)
+        self.percept += 1  # the map changed where the object was and where it went
+
+    def _sense(self, data: dict[str, Any]) -> None:
+        g = self.geom.grid
+        rc = g.cell(self.pose)
+        ri, rj = g.ij(rc)
+        visible = data.get("visible")
+        seen_cells = np.zeros(0, dtype=int)
+        if visible is not None and len(visible):
+            rel = np.asarray(visible, dtype=int).reshape(-1, 2)
+            ii, jj = rel[:, 0] + ri, rel[:, 1] + rj
+            ok = (ii >= 0) & (ii < g.nx) & (jj >= 0) & (jj < g.ny)
+            seen_cells = jj[ok] * g.nx + ii[ok]
+            self.observed[seen_cells] = True
+        self.observed |= g.disk_mask(self.pose, 0.5)
+        for lm, rx, ry, s in data.get("landmarks", ()):
+            self._localise(self.geom.landmark(lm), float(rx), float(ry), float(s))
+        detected = set()
+        for name, rx, ry, s, w, h in [*data.get("detections", ()), *data.get("contacts", ())]:
+            detected.add(name)
+            self._detect(name, float(rx), float(ry), float(s), (float(w), float(h)))
+        if seen_cells.size:
+            seen = set(seen_cells.tolist())
+            for o in self.free_objects():
+                if o.name not in detected and g.cell(o.center) in seen and o.sigma < 0.5:
+                    log.info("object %s not seen where believed: dropped", o.name)
+                    del self.objects[o.name]
+                    self.percept += 1
+
+    def _localise(self, lm: Pt, rx: float, ry: float, s: float) -> None:
+        z = np.array([lm.x - rx, lm.y - ry])
+        r = s * s
+        k = self.robot_var / (self.robot_var + r)
+        self.robot_mean = self.robot_mean + k * (z - self.robot_mean)
+        self.robot_var = (1 - k) * self.robot_var
+
+    def _detect(self, name: str, rx: float, ry: float, s: float, size: tuple[float, float]) -> None:
+        z = self.robot_mean + np.array([rx, ry])
+        R = np.eye(2) * (s * s + self.robot_var)
+        est = self.objects.get(name)
+        if name == self.held:
+            return
+        if est is None:
+            self.percept += 1
+            self.objects[name] = est = ObjectEstimate(name, z, R, size, self.percept)
+            self._off_walls(est)
+            log.info("new object %s at %s", name, est.center)
+            return
+        before_sigma, before_mean = est.sigma, est.mean.copy()
+        S = est.cov + R
+        K = est.cov @ np.linalg.inv(S)
+        est.mean = est.mean + K @ (z - est.mean)
+        est.cov = (np.eye(2) - K) @ est.cov
+        est.looks += 1
+        self._off_walls(est)
+        if est.sigma < 0.7 * before_sigma or float(np.hypot(*(est.mean - before_mean))) > 0.2:
+            self.percept += 1
+
+
+    def _off_walls(self, est: ObjectEstimate) -> None:
+        """Objects cannot be inside walls: move the estimate to the nearest position clear of them."""
+        w = np.array(self.geom.walls, dtype=float).reshape(-1, 4)
+        if not len(w):
+            return
+        hw, hh = est.size[0] / 2 - 0.01, est.size[1] / 2 - 0.01
+
+        def clear(x: float, y: float) -> bool:
+            return not bool(np.any((x - hw < w[:, 2]) & (x + hw > w[:, 0]) & (y - hh < w[:, 3]) & (y + hh > w[:, 1])))
+
+        x, y = float(est.mean[0]), float(est.mean[1])
+        if clear(x, y):
+            return
+        for r in np.arange(0.02, 0.6, 0.02):
+            best = None
+            for a in np.linspace(0, 2 * math.pi, 24, endpoint=False):
+                cx, cy = x + r * math.cos(a), y + r * math.sin(a)
+                if clear(cx, cy):
+                    best = (cx, cy)
+                    break
+            if best is not None:
+                est.mean = np.array(best)
+                return
+
+
+def heading_to(a: Pt, b: Pt) -> float:
+    return math.atan2(b.y - a.y, b.x - a.x)
+
+
+def along(path: tuple[Pt, ...] | list[Pt], dist: float) -> Pt:
+    """The point ``dist`` metres along a polyline (its end if the polyline is shorter)."""
+    if not path:
+        raise ValueError("empty path")
+    left = dist
+    for i in range(len(path) - 1):
+        a, b = path[i], path[i + 1]
+        L = a.dist(b)
+        if left <= L + 1e-9:
+            t = 0.0 if L == 0 else left / L
+            return Pt.of(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t)
+        left -= L
+    return path[-1]

@@ -1,0 +1,165 @@
+"""Generators for moves and looks: they bind the geometric choices of the plan.
+
+Each is ``fn(bindings, goal, belief, context)`` and yields bindings, best
+first.  Moves come from the grid planner (:mod:`.paths`): a path from where
+the robot is to the target, string-pulled and cut into straight moves of at
+most ``segment`` metres, produced backwards from the target as regression
+asks for them.  With foresight on (``context.foresight``) the path planner
+treats the epsilon-shadows of uncertain objects as soft costs.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+from nowplan.core.atoms import Goal, Var
+from nowplan.domains.namo.belief import NamoBelief
+from nowplan.domains.namo.geometry import Pt, Region, point_back
+from nowplan.domains.namo.paths import PathPlanner
+
+A, B, SW = Var("a"), Var("b"), Var("sw")
+V, R, O, AT, LM, E = Var("v"), Var("r"), Var("o"), Var("at"), Var("lm"), Var("e")
+
+Bindings = Mapping[Var, Any]
+Out = Iterator[dict[Var, Any]]
+
+
+def foresight(context: Any) -> bool:
+    return bool(context is not None and getattr(context, "foresight", False))
+
+
+def robot_at_in(goal: Goal) -> Pt | None:
+    """The pose a goal asks the robot to be at, if any."""
+    for a in goal.atoms:
+        if a.predicate == "RobotAt" and a.value is True:
+            return a.args[0]  # type: ignore[no-any-return]
+    return None
+
+
+def region(belief: NamoBelief, a: Pt, b: Pt, fs: bool) -> Region:
+    return Region(a, b, belief.geom.robot_radius + 0.05, stamp=belief.percept, foresight=fs)
+
+
+def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:
+    """Where to move from to reach ``?b``: straight from the robot, or the previous waypoint of a path.
+
+    A straight move that an earlier path already chose (a *committed* move,
+    e.g. the step being refined) is offered alone while its obstacles can
+    be moved: refining a move keeps its swept volume, as BHPN does, instead
+    of re-routing locally.  Only replanning the route (after a failure, a
+    trigger, or always for aggressive replanning) computes a new path.
+    """
+    b = bindings.get(B)
+    if not isinstance(b, Pt):
+        return
+    fs = foresight(context)
+    seg = belief.params.segment
+    for a in sorted(belief.route_memo.get(b, ())):
+        if belief.at(a) and a.dist(b) <= seg + 1e-9 and belief.geom.segment_free(a, b):
+            r = region(belief, a, b, fs)
+            if _clearable(belief, r):
+                yield {A: a, SW: r}
+                return
+    start = belief.nominal()
+    if belief.held_manip is not None:  # moves start once what is held has been put down
+        start = belief.held_manip.home
+    if start.dist(b) < 1e-6:
+        return
+    straight = start.dist(b) <= seg + 1e-9 and belief.geom.segment_free(start, b)
+    opts: list[Pt] = [start] if straight else []
+    path = PathPlanner.of(belief, fs).path(start, b)
+    if path is not None and len(path) >= 2:
+        prev = point_back(path, seg)
+        if prev.dist(b) > 1e-6:
+            belief.route_memo.setdefault(b, set()).add(prev)
+            if prev not in opts:
+                opts.append(prev)
+    for a in opts:
+        yield {A: a, SW: region(belief, a, b, fs)}
+
+
+def _clearable(belief: NamoBelief, r: Region) -> bool:
+    """Can every object in the way be moved somewhere (so committing to ``r`` cannot deadlock)?"""
+    from nowplan.domains.namo.placement import manip_options
+
+    for name in belief.blockers(r, belief.params.eps_clear):
+        if not manip_options(belief, name, r.start, (r,), (), n=1):
+            return False
+    return True
+
+
+def gen_look(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:
+    r = bindings.get(R)
+    if isinstance(r, Region):
+        yield {V: r.view}
+
+
+def _posterior(prior: float, meas: float) -> float:
+    if prior <= 0:
+        return 0.0
+    return 1.0 / math.sqrt(1.0 / (prior * prior) + 1.0 / (meas * meas))
+
+
+def gen_look_obj(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:
+    """Look at an object from where the robot will be, if the look can localise it well enough."""
+    name = bindings.get(O)
+    est = belief.objects.get(name) if isinstance(name, str) else None
+    if est is None or name == belief.held:
+        return
+    want = float(bindings.get(E, belief.params.eps_pick))
+    v = robot_at_in(goal) or belief.nominal()
+    d = v.dist(est.center)
+    if d > belief.sensor.range - 0.2:
+        return
+    meas = math.hypot(belief.sensor.sigma_at(d), belief.robot_sigma)
+    if _posterior(est.sigma, meas) > want:
+        return
+    yield {V: v, AT: est.center}
+
+
+def gen_look_landmark(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:
+    """Look at the nearest landmark in sight of where the robot will be."""
+    want = float(bindings.get(E, belief.params.eps_loc))
+    v = robot_at_in(goal) or belief.nominal()
+    geom = belief.geom
+    options = []
+    for name, p in geom.landmarks:
+        d = v.dist(p)
+        if d > belief.sensor.landmark_range:
+            continue
+        ks = geom.grid.line_cells(v, p)
+        own, tgt = geom.grid.cell(v), geom.grid.cell(p)
+        if any(geom.wall_mask[k] for k in ks.tolist() if k not in (own, tgt)):
+            continue
+        if _posterior(belief.robot_sigma, belief.sensor.landmark_sigma) <= want:
+            options.append((d, name))
+    for _, name in sorted(options)[:2]:
+        yield {V: v, LM: name}
+
+
+def gen_look_clear(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:
+    """Look again at an object whose shadow, not its body, meets a region that must be clear.
+
+    The look is expected (most likely observation) to shrink the shadow out
+    of the region; it is offered only when the predicted shadow would clear it.
+    """
+    from nowplan.domains.namo.belief import k_of
+
+    r, ex = bindings.get(R), bindings.get(Var("ex"))
+    if not isinstance(r, Region) or not isinstance(ex, frozenset):
+        return
+    v = robot_at_in(goal) or belief.nominal()
+    k = k_of(belief.params.eps_clear)
+    for name in belief.blockers(r, belief.params.eps_clear, ex):
+        est = belief.objects[name]
+        if r.hits_box(est.box, 0.05):
+            continue
+        d = v.dist(est.center)
+        if d > belief.sensor.range - 0.2:
+            continue
+        post = _posterior(est.sigma, math.hypot(belief.sensor.sigma_at(d), belief.robot_sigma))
+        if r.hits_box(est.box, k * post):
+            continue
+        yield {O: name, V: v, AT: est.center, Var("exo"): ex | {name}}

@@ -1,0 +1,260 @@
+"""Grid motion planning in the belief: Dijkstra trees, string-pulled paths, soft costs.
+
+The robot is a disc; walls (grown by its radius) are impassable.  Known
+movable objects are passable at a cost (``clear_cost``, paid once on
+entering the object's grown footprint: moving it out of the way); fog is
+assumed free.  Around each object lies its *epsilon-shadow* (the footprint
+grown by ``k·σ``, where ``BClear`` fails): without foresight entering it
+costs a look (``look_cost``: one more look will probably show the way is
+clear); with foresight it costs the expected price of finding the object
+in the way once it is seen better, a penalty that grows with the shadow's
+width (seed 000, footnote 2), so paths keep away from uncertain objects.
+
+Penalties are paid per region *entered*, so each cell carries a bit mask
+of the regions covering it and an edge pays for the bits it gains.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from nowplan.domains.namo.belief import NamoBelief, k_of
+from nowplan.domains.namo.geometry import Grid, Pt
+
+SQRT2 = math.sqrt(2.0)
+INF = float("inf")
+
+
+def dijkstra(
+    grid: Grid,
+    passable: Sequence[bool] | np.ndarray,
+    source: int,
+    masks: Sequence[int] | None = None,
+    penalties: Sequence[float] | None = None,
+    target: int | None = None,
+) -> tuple[list[float], list[int]]:
+    """Single-source shortest paths over 8-connected free cells (no corner cutting)."""
+    nx, ny, res = grid.nx, grid.ny, grid.res
+    free = passable.tolist() if isinstance(passable, np.ndarray) else list(passable)
+    n = nx * ny
+    dist = [INF] * n
+    parent = [-1] * n
+    if not free[source]:
+        return dist, parent
+    dist[source] = 0.0
+    heap = [(0.0, source)]
+    diag = res * SQRT2
+    pen_cache: dict[int, float] = {0: 0.0}
+
+    def penalty(bits: int) -> float:
+        p = pen_cache.get(bits)
+        if p is None:
+            p, b, i = 0.0, bits, 0
+            while b:
+                if b & 1 and penalties is not None:
+                    p += penalties[i]
+                b >>= 1
+                i += 1
+            pen_cache[bits] = p
+        return p
+
+    while heap:
+        d, u = heapq.heappop(heap)
+        if d > dist[u]:
+            continue
+        if u == target:
+            break
+        ui, uj = u % nx, u // nx
+        mu = masks[u] if masks is not None else 0
+        for di, dj in ((1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1)):
+            vi, vj = ui + di, uj + dj
+            if vi < 0 or vj < 0 or vi >= nx or vj >= ny:
+                continue
+            v = vj * nx + vi
+            if not free[v]:
+                continue
+            if di and dj:
+                if not free[uj * nx + vi] or not free[vj * nx + ui]:
+                    continue
+                step = diag
+            else:
+                step = res
+            nd = d + step
+            if masks is not None:
+                mv = masks[v]
+                gain = mv & ~mu
+                if gain:
+                    nd += penalty(gain)
+            if nd < dist[v]:
+                dist[v] = nd
+                parent[v] = u
+                heapq.heappush(heap, (nd, v))
+    return dist, parent
+
+
+def trace_back(parent: Sequence[int], source: int, target: int) -> list[int] | None:
+    if source == target:
+        return [source]
+    if parent[target] < 0:
+        return None
+    out = [target]
+    k = target
+    while k != source:
+        k = parent[k]
+        if k < 0:
+            return None
+        out.append(k)
+    out.reverse()
+    return out
+
+
+@dataclass
+class CostMap:
+    grid: Grid
+    passable: np.ndarray
+    masks: list[int]
+    penalties: list[float]
+    labels: list[str]  # what each bit stands for, e.g. "box1" or "box1~shadow"
+
+
+def build_costmap(belief: NamoBelief, foresight: bool) -> CostMap:
+    geom, p = belief.geom, belief.params
+    g = geom.grid
+    passable = ~geom.robot_blocked
+    masks = [0] * g.n
+    penalties: list[float] = []
+    labels: list[str] = []
+    r = geom.robot_radius
+    k = k_of(p.eps_clear)
+    for o in belief.free_objects():
+        core = g.box_mask(o.box, r)
+        if belief.stuck(o.name):  # nowhere to put it: impassable for now
+            passable = passable & ~core
+            continue
+        bit = 1 << len(penalties)
+        penalties.append(p.clear_cost)
+        labels.append(o.name)
+        for c in np.nonzero(core)[0].tolist():
+            masks[c] |= bit
+        width = k * o.sigma
+        ring = g.box_mask(o.box, r + width) & ~core
+        if ring.any():
+            bit = 1 << len(penalties)
+            # without foresight a shadow costs a look; with it, the expected cost of finding the
+            # object in the way once it is seen better (seed 000 footnote 2)
+            penalties.append(p.shadow_cost * min(1.0, width / r) if foresight else p.look_cost)
+            labels.append(o.name + "~shadow")
+            for c in np.nonzero(ring)[0].tolist():
+                masks[c] |= bit
+    return CostMap(g, passable, masks, penalties, labels)
+
+
+class PathPlanner:
+    """Paths for one belief version (cached on the belief) with or without shadows."""
+
+    def __init__(self, belief: NamoBelief, foresight: bool) -> None:
+        self.belief = belief
+        self.foresight = foresight
+        self.cm = build_costmap(belief, foresight)
+        self._trees: dict[int, tuple[list[float], list[int]]] = {}
+
+    @staticmethod
+    def of(belief: NamoBelief, foresight: bool) -> PathPlanner:
+        c = belief.cache()
+        key = ("planner", foresight)
+        pp = c.get(key)
+        if pp is None:
+            pp = PathPlanner(belief, foresight)
+            c[key] = pp
+        return pp  # type: ignore[no-any-return]
+
+    def _source(self, p: Pt) -> int:
+        g = self.cm.grid
+        k = g.cell(p)
+        if self.cm.passable[k]:
+            return k
+        # the nearest passable cell (the robot's pose estimate may sit on a grown wall)
+        d = np.hypot(g.xs - p.x, g.ys - p.y)
+        d[~self.cm.passable] = np.inf
+        return int(np.argmin(d))
+
+    def tree(self, source: Pt) -> tuple[list[float], list[int]]:
+        s = self._source(source)
+        t = self._trees.get(s)
+        if t is None:
+            t = dijkstra(self.cm.grid, self.cm.passable, s, self.cm.masks, self.cm.penalties)
+            self._trees[s] = t
+        return t
+
+    def cost(self, source: Pt, target: Pt) -> float:
+        dist, _ = self.tree(source)
+        return dist[self.cm.grid.cell(target)]
+
+    def path(self, source: Pt, target: Pt) -> list[Pt] | None:
+        """A string-pulled polyline from ``source`` to ``target`` (both included), or None."""
+        g = self.cm.grid
+        s = self._source(source)
+        t = g.cell(target)
+        _, parent = self.tree(source)
+        cells = trace_back(parent, s, t)
+        if cells is None:
+            return None
+        pts = self.smooth(cells)
+        pts[0] = source
+        if pts[-1] != target:
+            if len(pts) > 1 and g.cell(pts[-1]) == t:
+                pts[-1] = target
+            else:
+                pts.append(target)
+        return pts
+
+    def smooth(self, cells: list[int]) -> list[Pt]:
+        g = self.cm.grid
+        pts = [g.center(k) for k in cells]
+        if len(cells) <= 2:
+            return pts
+        masks = self.cm.masks
+        out = [pts[0]]
+        i = 0
+        while i < len(cells) - 1:
+            j = i + 1
+            allowed = masks[cells[i]] | masks[cells[j]]
+            while j + 1 < len(cells):
+                allowed_next = allowed | masks[cells[j + 1]]
+                if not self.line_ok(pts[i], pts[j + 1], allowed_next):
+                    break
+                allowed = allowed_next
+                j += 1
+            out.append(pts[j])
+            i = j
+        return out
+
+    def line_ok(self, a: Pt, b: Pt, allowed: int) -> bool:
+        ks = self.cm.grid.line_cells(a, b)
+        if not self.cm.passable[ks].all():
+            return False
+        m = 0
+        for k in ks.tolist():
+            m |= self.cm.masks[k]
+        return (m & ~allowed) == 0
+
+    def segment_cost(self, a: Pt, b: Pt) -> float:
+        """Length plus the penalties of the regions a straight move from a to b enters."""
+        ks = self.cm.grid.line_cells(a, b)
+        if not self.cm.passable[ks].all():
+            return INF
+        start = self.cm.masks[self.cm.grid.cell(a)]
+        m = 0
+        for k in ks.tolist():
+            m |= self.cm.masks[k]
+        gain = m & ~start
+        pen = sum(self.cm.penalties[i] for i in range(len(self.cm.penalties)) if gain >> i & 1)
+        return a.dist(b) + pen
+
+    def polyline_cost(self, pts: Sequence[Pt]) -> float:
+        return sum(self.segment_cost(pts[i], pts[i + 1]) for i in range(len(pts) - 1))

@@ -1,0 +1,347 @@
+"""The simulated NAMO world: true robot and object poses, noisy motion and sensing.
+
+The world never reads the agent's belief.  Actions carry the geometric
+plan the agent made (paths, the pose it expects an object at); the world
+executes them against the truth: a move stops at the first contact with an
+object the agent did not know about (and reports the contact), a grasp
+misses when the object is not where the agent expected it or by chance,
+dragging stops when the object or robot would hit something.  Sensing is
+relative to the robot's true pose: visible cells (a cone of given range and
+field of view, occluded by walls and objects), noisy object positions and
+landmark bearings.  Every random draw comes from the world's seeded RNG.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import random
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from nowplan.core.operators import Action
+from nowplan.domains.namo.geometry import Box, Manip, MapGeometry, Pt, Region, shapely
+from nowplan.domains.namo.params import DEFAULT_NOISE, DEFAULT_SENSOR, Noise, Sensor
+from nowplan.worlds.base import Observation
+
+log = logging.getLogger(__name__)
+
+STEP = 0.05  # collision checking resolution along paths (m)
+GRAZE = 0.03  # contacts shallower than this are tolerated (m)
+
+
+@dataclass
+class TrueObject:
+    name: str
+    box: Box
+    appear_after: int | None = None  # appears (exogenously) before this many actions have run
+
+
+class NamoWorld:
+    def __init__(
+        self,
+        geom: MapGeometry,
+        robot: Pt,
+        objects: Sequence[TrueObject],
+        *,
+        sensor: Sensor = DEFAULT_SENSOR,
+        noise: Noise = DEFAULT_NOISE,
+        seed: int = 0,
+    ) -> None:
+        self.geom = geom
+        self.sensor = sensor
+        self.noise = noise
+        self.rng = random.Random(seed)
+        self.robot = np.array([robot.x, robot.y], dtype=float)
+        self.objects: dict[str, Box] = {o.name: o.box for o in objects if o.appear_after is None}
+        self.pending = sorted(
+            ((o.appear_after, o.name, o.box) for o in objects if o.appear_after is not None),
+            key=lambda x: (x[0], x[1]),
+        )
+        self.held: str | None = None
+        self.grip: np.ndarray = np.zeros(2)
+        self.actions = 0
+        self.failures = 0
+        self.contacts = 0
+        self._wall_geom = geom.wall_shape
+        # the robot's grasp controller aims at the agent's latest estimate of the object
+        # (set by the episode; without it the grasp aims where the plan expected the object)
+        self.grasp_estimate: Callable[[str], Pt | None] | None = None
+
+    # -- truth ------------------------------------------------------------------
+    @property
+    def pose(self) -> Pt:
+        return Pt.of(self.robot[0], self.robot[1])
+
+    def _obstacles(self, ignore: str | None) -> list[tuple[str, Any]]:
+        sh = shapely()
+        out: list[tuple[str, Any]] = [("wall", self._wall_geom)]
+        for name, box in sorted(self.objects.items()):
+            if name != ignore and name != self.held:
+                out.append((name, sh.box(*box.bounds)))
+        return out
+
+    def first_hit(self, xs: np.ndarray, ys: np.ndarray, carrying: str | None = None) -> tuple[int, str | None]:
+        """Index of the first sample where the robot (or the object it drags) touches something."""
+        sh = shapely()
+        first, what = len(xs), None
+        if not len(xs):
+            return first, what
+        pts = sh.points(np.stack([xs, ys], axis=1))
+        reach = self.geom.robot_radius - GRAZE
+        obstacles = self._obstacles(carrying)
+        for name, geom in obstacles:
+            hit = np.nonzero(sh.distance(geom, pts) < reach)[0]
+            if hit.size and hit[0] < first:
+                first, what = int(hit[0]), name
+        if carrying is not None:
+            b = self.objects[carrying]
+            hw, hh = b.w / 2 - GRAZE, b.h / 2 - GRAZE
+            cx, cy = xs + self.grip[0], ys + self.grip[1]
+            boxes = sh.box(cx - hw, cy - hh, cx + hw, cy + hh)
+            for name, geom in obstacles:
+                hit = np.nonzero(sh.intersects(geom, boxes))[0]
+                if hit.size and hit[0] < first:
+                    first, what = int(hit[0]), name
+        return first, what
+
+    def robot_hits(self, x: float, y: float) -> str | None:
+        """What the robot's disc at (x, y) would touch: 'wall', an object's name, or None."""
+        i, what = self.first_hit(np.array([x]), np.array([y]))
+        return what if i == 0 else None
+
+    def box_hits(self, box: Box, ignore: str) -> str | None:
+        sh = shapely()
+        g = sh.box(box.cx - box.w / 2 + GRAZE, box.cy - box.h / 2 + GRAZE,
+                   box.cx + box.w / 2 - GRAZE, box.cy + box.h / 2 - GRAZE)
+        for name, geom in self._obstacles(ignore):
+            if geom.intersects(g):
+                return name
+        return None
+
+    # -- motion ---------------------------------------------------------------------
+    def _follow(self, path: Sequence[Pt], carrying: str | None = None) -> tuple[float, str | None, bool]:
+        """Drive along ``path``; returns (distance along the plan, what was hit, completed).
+
+        The controller drives from the true pose through the commanded
+        waypoints (map frame); it stops before the first contact, or early
+        with probability ``move_fail``.
+        """
+        if len(path) < 2:
+            return 0.0, None, True
+        pts = [Pt(float(self.robot[0]), float(self.robot[1])), *path[1:]]
+        xs: list[float] = []
+        ys: list[float] = []
+        ds: list[float] = []
+        done = 0.0
+        for i in range(len(pts) - 1):
+            a, b = pts[i], pts[i + 1]
+            L = a.dist(b)
+            n = max(1, int(math.ceil(L / STEP)))
+            for s in range(1, n + 1):
+                t = s / n
+                xs.append(a.x + (b.x - a.x) * t)
+                ys.append(a.y + (b.y - a.y) * t)
+                ds.append(done + L * t)
+            done += L
+        planned = sum(path[i].dist(path[i + 1]) for i in range(len(path) - 1))
+        scale = planned / done if done > 0 else 1.0  # odometry is reported along the commanded path
+        limit = len(xs)
+        if self.noise.move_fail and self.rng.random() < self.noise.move_fail:
+            stop = done * self.rng.uniform(0.3, 0.8)
+            limit = next((i for i, d in enumerate(ds) if d > stop), len(xs))
+        first, hit = self.first_hit(np.array(xs[:limit]), np.array(ys[:limit]), carrying)
+        last = min(first, limit) - 1
+        if last >= 0:
+            self.robot = np.array([xs[last], ys[last]])
+            if carrying is not None:
+                self.objects[carrying] = self.objects[carrying].moved(
+                    Pt(xs[last] + self.grip[0], ys[last] + self.grip[1]))
+        traveled = (ds[last] if last >= 0 else 0.0) * scale
+        if first < limit:
+            return traveled, hit, False
+        return traveled, None, limit == len(xs)
+
+    def _jitter_end(self, length: float) -> None:
+        s = self.noise.motion_per_m * length
+        if s <= 0:
+            return
+        x = self.robot[0] + self.rng.gauss(0.0, s)
+        y = self.robot[1] + self.rng.gauss(0.0, s)
+        if self.robot_hits(x, y) is None:
+            self.robot = np.array([x, y])
+
+    # -- sensing ----------------------------------------------------------------------
+    def sense(self, heading: float | None, fov: float, rng: float) -> dict[str, Any]:
+        g = self.geom.grid
+        origin = self.pose
+        reach = max(rng, self.sensor.landmark_range if heading is not None else rng)
+        near = np.nonzero(np.hypot(g.xs - origin.x, g.ys - origin.y) <= reach)[0]
+        opaque = self.geom.wall_mask.copy()
+        for name, box in self.objects.items():
+            if name != self.held:
+                opaque |= g.box_mask(box)
+        seen = g.visible(origin, near, opaque, reach, heading, fov)
+        cells = near[seen]
+        d = np.hypot(g.xs[cells] - origin.x, g.ys[cells] - origin.y)
+        fog_cells = cells[d <= rng]
+        oc = g.cell(origin)
+        oi, oj = g.ij(oc)
+        rel = np.stack([fog_cells % g.nx - oi, fog_cells // g.nx - oj], axis=1) if fog_cells.size else np.zeros((0, 2), int)
+        cell_set = set(fog_cells.tolist())
+        detections = []
+        for name, box in sorted(self.objects.items()):
+            if name == self.held:
+                continue
+            bc = np.nonzero(g.box_mask(box))[0].tolist()
+            if not any(c in cell_set for c in bc):
+                continue
+            if self.sensor.miss_prob and self.rng.random() < self.sensor.miss_prob:
+                continue
+            dist = box.center.dist(origin)
+            s = self.sensor.sigma_at(dist)
+            rx = box.cx - self.robot[0] + self.rng.gauss(0.0, s)
+            ry = box.cy - self.robot[1] + self.rng.gauss(0.0, s)
+            detections.append((name, rx, ry, s, box.w, box.h))
+        landmarks = []
+        if heading is not None:
+            all_cells = set(cells.tolist())
+            for name, p in self.geom.landmarks:
+                if g.cell(p) in all_cells and p.dist(origin) <= self.sensor.landmark_range:
+                    s = self.sensor.landmark_sigma
+                    landmarks.append((name, p.x - self.robot[0] + self.rng.gauss(0, s),
+                                      p.y - self.robot[1] + self.rng.gauss(0, s), s))
+        return {"visible": rel.tolist(), "detections": detections, "landmarks": landmarks}
+
+    def _contact(self, name: str) -> list[tuple[str, float, float, float, float, float]]:
+        if name == "wall" or name not in self.objects:
+            return []
+        self.contacts += 1
+        box = self.objects[name]
+        s = 0.05
+        return [(name, box.cx - self.robot[0] + self.rng.gauss(0, s), box.cy - self.robot[1] + self.rng.gauss(0, s),
+                 s, box.w, box.h)]
+
+    # -- actions ----------------------------------------------------------------------
+    def execute(self, action: Action) -> Observation:
+        exo: list[str] = []
+        while self.pending and self.pending[0][0] <= self.actions:
+            _, name, box = self.pending.pop(0)
+            if box.distance_to_segment(self.pose, self.pose) > self.geom.robot_radius + 0.1:
+                self.objects[name] = box
+                exo.append(f"obstacle {name} appeared at {box.center}")
+        self.actions += 1
+        handler = getattr(self, "_do_" + action.name, None)
+        if handler is None:
+            from nowplan.errors import ExecutionError
+
+            raise ExecutionError(f"the NAMO world cannot execute {action}")
+        ok, data, reason = handler(*action.args)
+        near = self.sense(None, 2 * math.pi, 0.6)
+        for k in ("visible", "detections"):
+            data[k] = list(data.get(k, [])) + near[k]
+        if not ok:
+            self.failures += 1
+        info: dict[str, Any] = {}
+        if reason:
+            info["reason"] = reason
+        seen = sorted({d[0] for d in data.get("detections", ())} | {c[0] for c in data.get("contacts", ())})
+        if seen:
+            info["seen"] = seen
+        log.debug("world %s: ok=%s %s", action, ok, reason)
+        return Observation(ok, data, tuple(exo), info)
+
+    def _do_Move(self, a: Pt, b: Pt, region: Region) -> tuple[bool, dict[str, Any], str]:
+        traveled, hit, done = self._follow((a, b))
+        data: dict[str, Any] = {"traveled": traveled, "completed": done}
+        if hit is not None:
+            data["contacts"] = self._contact(hit)
+            return False, data, f"move blocked by {hit}"
+        if not done:
+            return False, data, "move stopped early"
+        self._jitter_end(traveled)
+        return True, data, ""
+
+    def _look(self, heading: float) -> tuple[bool, dict[str, Any], str]:
+        return True, self.sense(heading, self.sensor.fov, self.sensor.range), ""
+
+    def _do_Look(self, v: Pt, region: Region) -> tuple[bool, dict[str, Any], str]:
+        c = region.centroid
+        return self._look(math.atan2(c.y - self.robot[1], c.x - self.robot[0]))
+
+    def _do_LookObj(self, v: Pt, obj: str, at: Pt, eps: float) -> tuple[bool, dict[str, Any], str]:
+        return self._look(math.atan2(at.y - self.robot[1], at.x - self.robot[0]))
+
+    def _do_LookClear(self, v: Pt, obj: str, at: Pt, region: Region, ex: Any, exo: Any) -> tuple[bool, dict[str, Any], str]:
+        return self._look(math.atan2(at.y - self.robot[1], at.x - self.robot[0]))
+
+    def _do_LookLandmark(self, v: Pt, lm: str, eps: float) -> tuple[bool, dict[str, Any], str]:
+        p = self.geom.landmark(lm)
+        return self._look(math.atan2(p.y - self.robot[1], p.x - self.robot[0]))
+
+    def _do_Pick(self, obj: str, m: Manip, home: Pt, pc: Pt) -> tuple[bool, dict[str, Any], str]:
+        traveled, hit, done = self._follow(m.pick_path)
+        data: dict[str, Any] = {"traveled": traveled, "grasped": False, "returned": False}
+        if hit is not None:
+            data["contacts"] = self._contact(hit)
+            return False, data, f"pick path blocked by {hit}"
+        if not done:
+            return False, data, "stopped before the pick configuration"
+        box = self.objects.get(obj)
+        reason = ""
+        if box is None:
+            reason = f"{obj} is not there"
+        elif box.center.dist(self._aim(obj, m)) > self.noise.grasp_tol:
+            reason = f"{obj} is not where it was expected"
+            data["missed"] = True
+        elif self.noise.grasp_fail and self.rng.random() < self.noise.grasp_fail:
+            reason = "the grasp slipped"
+        if reason:
+            back, hit2, done2 = self._follow(tuple(reversed(m.pick_path)))
+            data["returned"] = done2
+            return False, data, reason
+        assert box is not None
+        self.held = obj
+        self.grip = np.array([box.cx - self.robot[0], box.cy - self.robot[1]])
+        data["grasped"] = True
+        return True, data, ""
+
+    def _aim(self, obj: str, m: Manip) -> Pt:
+        if self.grasp_estimate is not None:
+            est = self.grasp_estimate(obj)
+            if est is not None:
+                return est
+        return m.obj_at
+
+    def _do_Place(self, obj: str, region: Region, ex: Any, exo: Any, m: Manip, home: Pt, pc: Pt,
+                  place: Box) -> tuple[bool, dict[str, Any], str]:
+        data: dict[str, Any] = {"carried": 0.0, "returned": 0.0, "home": False}
+        if self.held != obj:
+            return False, data, f"not holding {obj}"
+        carried, hit, done = self._follow(m.carry_path, carrying=obj)
+        data["carried"] = carried
+        box = self.objects[obj]
+        if done:
+            s = self.noise.place_sigma
+            box = box.moved(Pt(box.cx + self.rng.gauss(0, s), box.cy + self.rng.gauss(0, s)))
+            if self.box_hits(box, obj) is None:
+                self.objects[obj] = box
+        self.held = None
+        if hit is not None:
+            data["contacts"] = self._contact(hit)
+            return False, data, f"dragging {obj} blocked by {hit}"
+        if not done:
+            return False, data, "dragging stopped early"
+        back, hit, home_ok = self._follow(m.return_path)
+        data["returned"] = back
+        data["home"] = home_ok
+        if hit is not None:
+            data["contacts"] = self._contact(hit)
+            return False, data, f"return path blocked by {hit}"
+        if not home_ok:
+            return False, data, "return stopped early"
+        self._jitter_end(back)
+        return True, data, ""
