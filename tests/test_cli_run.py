@@ -59,3 +59,20 @@ def test_bad_options_exit_2(capsys, argv, message):
     assert exc.value.code == 2
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err
+
+
+def test_run_pddl_logistics_with_criticalities_and_failures(capsys, tmp_path):
+    from importlib import resources
+
+    data = resources.files("nowplan") / "data" / "pddl" / "logistics"
+    trace = tmp_path / "t.jsonl"
+    argv = ["run", str(data / "domain.pddl"), str(data / "p03.pddl"), "--criticality", str(data / "logistics.crit"),
+            "--failure-prob", "0.2", "--seed", "4", "--json", "--trace", str(trace)]
+    assert main(argv) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["outcome"] == "reached" and out["plans_made"] > 1
+    events = [json.loads(x) for x in trace.read_text().splitlines()]
+    # hierarchical: the first plan is abstract (no vehicle moves), later plans refine it
+    first = next(e for e in events if e["event"] == "plan")
+    assert not any(s["action"] and s["action"].startswith(("(drive", "(fly")) for s in first["steps"])
+    assert any(not s["primitive"] for s in first["steps"][1:])
