@@ -21,11 +21,11 @@ class LevelMap:
     top: int
     overrides: frozenset[tuple[ActionKey, int]] = frozenset()
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_table", dict(self.overrides))
+
     def level(self, action: Action) -> int:
-        for key, lvl in self.overrides:
-            if key == action.key:
-                return lvl
-        return self.top
+        return self._table.get(action.key, self.top)  # type: ignore[attr-defined, no-any-return]
 
     def is_primitive(self, action: Action) -> bool:
         return action.is_primitive(self.level(action))
