@@ -91,10 +91,15 @@ def test_same_seed_same_run():
 
 
 def test_unknown_and_planned_strategies_are_refused():
-    with pytest.raises(ScenarioError, match="valid strategies: aggressive, flat, flexible, foresight, hpn"):
+    with pytest.raises(ScenarioError, match="valid strategies: aggressive, deferred, flat, flexible, foresight, hpn"):
         parse_strategy("hpn+bogus")
-    with pytest.raises(ScenarioError, match="not implemented yet"):
-        parse_strategy("hpn+reuse")
+    # seed 004's switches select the online policy; the plan-stack executive refuses them
+    from nowplan.acting.hpn import Executive
+
+    ep = episode("tiny", 0)
+    ex = Executive(ep.problem, ep.world, ep.belief, parse_strategy("hpn+reuse"))
+    with pytest.raises(ScenarioError, match="online replanning policy"):
+        ex.run()
 
 
 def test_exogenous_changes_move_only_packages():

@@ -20,7 +20,11 @@ def run_episode(
         "run_start", domain=p.domain.name, problem=p.name, strategy=strategy.to_dict(), seed=seed,
         goal=[str(a) for a in p.goal], version=__version__, description=episode.description,
     )
-    ex = Executive(p, episode.world, episode.belief, strategy, seed=seed, trace=trace)
-    metrics = ex.run()
+    from nowplan.acting.online import OnlinePolicy, is_online
+
+    if is_online(strategy):  # seed 004's online policy (switches online / reuse / deferred)
+        metrics = OnlinePolicy(p, episode.world, episode.belief, strategy, seed=seed, trace=trace).run()
+    else:
+        metrics = Executive(p, episode.world, episode.belief, strategy, seed=seed, trace=trace).run()
     trace.emit("run_end", outcome=metrics.outcome.value, reason=metrics.reason, metrics=metrics.to_dict())
     return metrics

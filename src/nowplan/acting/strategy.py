@@ -23,6 +23,7 @@ MECHANISM_MODULES = (
     "nowplan.acting.serendipity",
     "nowplan.acting.selective",
     "nowplan.acting.peephole",
+    "nowplan.acting.online",
 )
 
 
@@ -74,8 +75,6 @@ register_switch(
 # switches whose mechanisms arrive with later work; named so users are told plainly
 PLANNED = {
     "monitor": "expected-vs-observed monitor with a plan library (seed 003)",
-    "reuse": "reuse-enforced replanning (seed 004)",
-    "deferred": "deferred sampling (seed 004)",
 }
 
 

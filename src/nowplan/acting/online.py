@@ -1,0 +1,220 @@
+"""The online replanning policy of seed 004 (SS-Replan, Alg. 1), selectable by switch.
+
+Each iteration *determinizes* the belief problem (the domain's cost
+functions read the current belief: self-loop costs of detections and other
+stochastic actions), plans, executes only the first action, and updates the
+belief.  Two switches make Table I's four variants:
+
+* ``reuse`` — if a previous tail exists, first plan under its constraints
+  (Alg. 2, :mod:`nowplan.acting.reuse`) within ``reuse_budget`` seconds, then
+  fall back to unconstrained planning;
+* ``deferred`` — bind only the hypothetical stream values the first action
+  needs (:mod:`nowplan.acting.deferred`); otherwise bind them all.
+
+The policy stops when the goal belief holds (``reached``), when no plan
+with expected cost below ``c*`` exists (``failed``, with the planner's
+reason), or when a budget runs out (``limit``).  ``online`` alone is the
+Neither variant.  The agent's streams come from ``belief.streams`` (a
+:class:`~nowplan.planning.streams.StreamSet`), if the belief has any.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import random
+import time
+from dataclasses import replace
+from typing import Any
+
+from nowplan.acting.deferred import resolve
+from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
+from nowplan.acting.metrics import Metrics, Outcome
+from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
+from nowplan.acting.strategy import Strategy
+from nowplan.core.domain import Problem
+from nowplan.core.levels import flat_levels
+from nowplan.errors import ScenarioError
+from nowplan.planning.context import PlanningContext
+from nowplan.planning.plan import PlanResult, PlanStatus
+from nowplan.planning.regression import plan as regression_plan
+from nowplan.trace import Trace
+
+log = logging.getLogger(__name__)
+
+ONLINE_SWITCHES = frozenset({"online", "reuse", "deferred"})
+
+
+def is_online(strategy: Strategy) -> bool:
+    return bool(ONLINE_SWITCHES & set(strategy.switches))
+
+
+class _OnlineOnly(Mechanism):
+    """Refuses to run under the plan-stack executive: these switches need the online policy."""
+
+    def __init__(self, strategy: Any) -> None:
+        self.name = "online"
+
+    def after_push(self, ex: Any, frame: Any) -> None:
+        raise ScenarioError(
+            "the switches 'online', 'reuse' and 'deferred' select the online replanning policy; "
+            "run them through nowplan.acting.run.run_episode (e.g. strategy 'online+reuse+deferred')"
+        )
+
+
+register_switch(Switch("online", "SS-Replan's online policy: replan after every action (seed 004 Alg. 1)",
+                       mechanism=_OnlineOnly))
+register_switch(Switch("reuse", "reuse-enforced replanning under the previous plan's skeleton (seed 004 Alg. 2)",
+                       mechanism=_OnlineOnly))
+register_switch(Switch("deferred", "deferred evaluation of expensive, likely streams (seed 004 VII)",
+                       mechanism=_OnlineOnly))
+
+
+class OnlinePolicy:
+    """Runs one problem under Alg. 1; ``reuse_budget`` caps each constrained planning attempt."""
+
+    def __init__(
+        self,
+        problem: Problem,
+        world: Any,
+        belief: Any,
+        strategy: Strategy,
+        *,
+        seed: int = 0,
+        trace: Trace | None = None,
+        c_star: float = math.inf,
+        reuse_budget: float = 2.0,
+        max_resolve_retries: int = 4,
+    ) -> None:
+        self.problem = problem
+        self.domain = problem.domain
+        self.world = world
+        self.belief = belief
+        self.strategy = strategy
+        self.reuse = "reuse" in strategy.switches
+        self.deferred = "deferred" in strategy.switches
+        self.c_star = c_star
+        self.reuse_budget = reuse_budget
+        self.max_resolve_retries = max_resolve_retries
+        self.rng = random.Random(seed)
+        self.trace = trace or Trace()
+        self.metrics = Metrics()
+        self.streams = getattr(belief, "streams", None)
+        self.levels = flat_levels()
+        self.planning_s = 0.0  # wall time spent planning and binding streams
+        self.constrained_ok = 0
+        self.constrained_tried = 0
+        self._plan_id = 0
+
+    # -- one planning call -------------------------------------------------------
+    def _plan(self, prev: tuple[SkeletonStep, ...] | None, deadline: float) -> PlanResult:
+        goal = self.problem.goal
+        ctx = PlanningContext((), {"online": True})
+        if self.reuse and prev:
+            self.constrained_tried += 1
+            budget = max(min(self.reuse_budget, deadline - time.perf_counter()), 0.01)
+            res = constrained_plan(
+                self.domain, self.problem.objects, self.belief, goal, prev, budget, ctx,
+                self.strategy.planner.max_generator_values,
+            )
+            if res.solved:
+                self.constrained_ok += 1
+                return res
+            self.trace.emit("note", text=f"constrained replanning failed ({res.reason}); unconstrained")
+        cfg = self.strategy.planner
+        remaining = deadline - time.perf_counter()
+        if remaining < cfg.time_limit:
+            cfg = replace(cfg, time_limit=max(remaining, 0.01))
+        return regression_plan(
+            self.domain, self.problem.objects, self.belief, goal, self.levels, cfg, ctx, self.rng
+        )
+
+    def _budget_left(self, t0: float) -> tuple[Outcome, str] | None:
+        if self.metrics.actions >= self.strategy.max_actions:
+            return Outcome.LIMIT, f"action budget of {self.strategy.max_actions} spent"
+        if self.metrics.plans_made + self.metrics.plan_failures >= self.strategy.max_plans:
+            return Outcome.LIMIT, f"planning budget of {self.strategy.max_plans} calls spent"
+        if time.perf_counter() - t0 > self.strategy.time_limit:
+            return Outcome.LIMIT, f"time limit of {self.strategy.time_limit:g} s reached"
+        return None
+
+    # -- Alg. 1 -----------------------------------------------------------------------
+    def run(self) -> Metrics:
+        t0 = time.perf_counter()
+        deadline = t0 + self.strategy.time_limit
+        prev: tuple[SkeletonStep, ...] | None = None
+        outcome, reason = Outcome.FAILED, ""
+        retries = 0
+        while True:
+            if self.domain.satisfies(self.belief, self.problem.goal):
+                outcome, reason = Outcome.REACHED, ""
+                break
+            over = self._budget_left(t0)
+            if over is not None:
+                outcome, reason = over
+                break
+            tp = time.perf_counter()
+            res = self._plan(prev, deadline)
+            self.metrics.planning_cpu_s += res.cpu_time_s
+            if not res.solved or res.plan is None:
+                self.planning_s += time.perf_counter() - tp
+                self.metrics.plan_failures += 1
+                self.trace.emit("plan_failed", parent=None, parent_step=None,
+                                goal=[str(a) for a in self.problem.goal], status=res.status.value,
+                                reason=res.reason, cpu_s=round(res.cpu_time_s, 6))
+                timed = res.status is PlanStatus.TIME_LIMIT
+                outcome = Outcome.LIMIT if timed else Outcome.FAILED
+                reason = f"no plan for the goal ({res.status.value}: {res.reason})"
+                break
+            cost = res.plan.cost(self.belief)
+            if not cost <= self.c_star:
+                self.planning_s += time.perf_counter() - tp
+                outcome, reason = Outcome.FAILED, f"no plan with expected cost below c*={self.c_star:g} (best {cost:g})"
+                break
+            actions = res.plan.actions
+            if self.streams is not None:
+                rs = resolve(actions, self.streams, self.belief, self.deferred)
+                self.planning_s += time.perf_counter() - tp
+                if not rs.ok:
+                    retries += 1
+                    self.metrics.plan_failures += 1
+                    self.trace.emit("note", text=f"stream {rs.failed} failed; replanning")
+                    prev = None
+                    if retries > self.max_resolve_retries:
+                        outcome, reason = Outcome.FAILED, f"streams kept failing ({rs.failed})"
+                        break
+                    continue
+                actions = rs.actions
+            else:
+                self.planning_s += time.perf_counter() - tp
+            retries = 0
+            self.metrics.plans_made += 1
+            if prev is not None:
+                self.metrics.replans += 1
+            self.trace.emit(
+                "plan", plan_id=self._plan_id, parent=None, parent_step=None,
+                goal=[str(a) for a in self.problem.goal], levels=0, cost=cost,
+                steps=[{"index": i + 1, "action": a.pddl()} for i, a in enumerate(actions)],
+                method=res.method, cpu_s=round(res.cpu_time_s, 6), expanded=res.expanded,
+            )
+            self._plan_id += 1
+            first = actions[0]
+            self.trace.emit("action", plan_id=self._plan_id - 1, index=1, action=first.pddl(),
+                            cost=first.cost(self.belief), n=self.metrics.actions)
+            obs = self.world.execute(first)
+            self.metrics.actions += 1
+            self.metrics.action_counts[first.name] += 1
+            self.metrics.execution_cost += first.cost(self.belief)
+            self.belief.update(first, obs)
+            self.trace.emit("observation", n=self.metrics.actions - 1, action=first.pddl(),
+                            success=obs.success, observation=obs.info or None)
+            hook = getattr(self.belief, "after_action", None)
+            if callable(hook):
+                hook(self.trace, first, obs)
+            # Alg. 1 line 17: the unexecuted tail constrains the next plan (if it went as planned)
+            prev = skeleton(actions[1:]) if obs.success else None
+        self.metrics.outcome = outcome
+        self.metrics.reason = reason
+        self.metrics.wall_s = time.perf_counter() - t0
+        log.info("online policy: %s %s", outcome.value, reason)
+        return self.metrics
