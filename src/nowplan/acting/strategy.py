@@ -23,6 +23,7 @@ MECHANISM_MODULES = (
     "nowplan.acting.serendipity",
     "nowplan.acting.selective",
     "nowplan.acting.peephole",
+    "nowplan.acting.monitor",
     "nowplan.acting.online",
 )
 
@@ -73,9 +74,7 @@ register_switch(
 )
 
 # switches whose mechanisms arrive with later work; named so users are told plainly
-PLANNED = {
-    "monitor": "expected-vs-observed monitor with a plan library (seed 003)",
-}
+PLANNED: dict[str, str] = {}
 
 
 def _load() -> None:

@@ -1,0 +1,338 @@
+"""The expected-vs-observed monitor with a plan library (seed 003), as strategy switches.
+
+Seed 003's task scheduler executes a step, updates the *expected* world
+model, observes, and hands both models to ``Replanner()``, which picks one
+of three alternatives (:mod:`nowplan.acting.monitor_repair`).  Here that
+loop is a :class:`~nowplan.acting.mechanisms.Mechanism` of the plan-stack
+executive: ``next_step`` remembers the model before a step, ``after_action``
+compares expected and observed models with the domain's distance
+(:mod:`nowplan.acting.monitor_support`) and rewrites the plan stack, and
+``after_push`` stores every primitive plan toward the task's goal in the
+plan library (:mod:`nowplan.acting.plan_library`) with its intermediate
+states.  When the domain registers its own planner (the seed's means-ends
+planner for shuffled pieces) the monitor makes every plan with it;
+otherwise it uses the regression planner, flat.
+
+Switches: ``monitor`` (the seed's rule), ``monitor-goal`` (always replan to
+the goal), ``monitor-restore`` (always restore), ``monitor-cost`` (cheapest
+alternative).  Thresholds, library and accounting come from
+:func:`monitor_settings` (default: :class:`MonitorConfig` with the library
+file named by ``NOWPLAN_PLAN_LIBRARY``, if set).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+from collections.abc import Iterator
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any
+
+from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
+from nowplan.acting.monitor_repair import (
+    Alternative, Candidate, MonitorConfig, MonitorStats, Repair, order_to_try,
+)
+from nowplan.acting.monitor_support import (
+    MonitorSupport, plan_from_actions, simulate, state_of, support_for, target_goal,
+)
+from nowplan.acting.plan_library import PlanLibrary, StoredPlan, goal_key, state_key
+from nowplan.core.atoms import Goal, entails
+from nowplan.core.levels import flat_levels
+from nowplan.core.state import State
+from nowplan.planning.plan import Plan, PlanResult, PlanStatus
+from nowplan.planning.regression import plan as regression_plan
+
+if TYPE_CHECKING:
+    from nowplan.acting.hpn import Executive, Frame
+    from nowplan.planning.plan import PlanStep
+
+log = logging.getLogger(__name__)
+
+_ACTIVE: MonitorConfig | None = None
+
+
+def default_config() -> MonitorConfig:
+    if _ACTIVE is not None:
+        return _ACTIVE
+    return MonitorConfig(library_path=os.environ.get("NOWPLAN_PLAN_LIBRARY") or None)
+
+
+@contextlib.contextmanager
+def monitor_settings(config: MonitorConfig) -> Iterator[MonitorConfig]:
+    """Use ``config`` for monitors created inside the block (strategies are parsed by name)."""
+    global _ACTIVE
+    old, _ACTIVE = _ACTIVE, config
+    try:
+        yield config
+    finally:
+        _ACTIVE = old
+
+
+class Monitor(Mechanism):
+    name = "monitor"
+
+    def __init__(self, config: MonitorConfig) -> None:
+        self.config = config
+        self.stats = MonitorStats()
+        self.support = MonitorSupport()
+        self.library: PlanLibrary | None = None
+        self.plans: list[StoredPlan] = []  # every plan toward this run's goal, stored or found
+        self.current: StoredPlan | None = None  # the plan being executed (the seed's current path)
+        self._prev: State | None = None
+        self._goal_key = ""
+        self._next_mem_id = -1
+
+    # -- hooks ---------------------------------------------------------------------
+    def after_push(self, ex: Executive, frame: Frame) -> None:
+        if frame.root:
+            self._setup(ex)
+            if self._own_planner() is not None:
+                self._initial_plan(ex, frame)
+            return
+        self._store(ex, frame.plan)
+
+    def next_step(self, ex: Executive, frame: Frame) -> PlanStep | None:
+        self._prev = state_of(ex.belief)
+        return None
+
+    def after_action(self, ex: Executive) -> None:
+        prev, self._prev = self._prev, None
+        if prev is None or len(ex.stack) < 2:
+            return
+        f = ex.stack[-1]
+        action = f.plan.steps[f.i].action if 0 < f.i <= f.n else None
+        if f.root or action is None:
+            return
+        expected = prev.apply(action.effects())
+        observed = state_of(ex.belief)
+        dm = float(self.support.distance(expected, observed))
+        if dm == 0:
+            return
+        self.stats.surprises += 1
+        self.stats.distances.append(dm)
+        if ex.goal_holds():
+            ex.trace.emit("note", text=f"monitor: surprise (dm={dm:g}) but the goal holds")
+            return
+        cand = self._closest(observed) if self.config.decision in ("rule", "cost") else None
+        dm1 = cand.distance if cand is not None else None
+        order = order_to_try(self.config, dm, dm1)
+        repairs: list[Repair] = []
+        for alt in order:
+            rep = self._make(alt, ex, f, expected, observed, cand)
+            if rep is not None:
+                repairs.append(rep)
+                if self.config.decision != "cost":
+                    break
+        if not repairs:
+            self.stats.unresolved += 1
+            ex.trace.emit("note", text=f"monitor: no alternative could be planned (dm={dm:g}); "
+                          "the executive replans")
+            return
+        chosen = min(repairs, key=lambda r: r.total(self.config)) if self.config.decision == "cost" \
+            else repairs[0]
+        if chosen.alternative is not order[0] and self.config.decision != "cost":
+            self.stats.fallbacks += 1
+        self._apply(ex, f, chosen, dm, dm1)
+
+    # -- set-up and the library ----------------------------------------------------------
+    def _setup(self, ex: Executive) -> None:
+        self.support = support_for(ex.domain.name)
+        self._goal_key = goal_key(ex.problem.goal)
+        if self.config.library_path is not None:
+            self.library = PlanLibrary(self.config.library_path)
+            self.plans = self.library.toward(ex.domain.name, ex.problem.goal)
+        else:
+            self.library = None
+            self.plans = []
+        log.info("monitor: %d stored plan(s) toward this goal", len(self.plans))
+
+    def _own_planner(self) -> Any:
+        if self.config.planner == "domain" and self.support.planner is not None:
+            return self.support.planner
+        return None
+
+    def _store(self, ex: Executive, plan: Plan) -> None:
+        goal = ex.problem.goal
+        if not entails(plan.goal, goal, ex.domain.rules):
+            return  # a repair toward an intermediate target, not toward the task's goal
+        if not all(plan.is_primitive(i) for i in range(1, len(plan) + 1)):
+            return  # only primitive plans have intermediate states to store
+        init = state_of(ex.belief)
+        actions = list(plan.actions)
+        states = simulate(ex.domain, init, actions)
+        if states is None:
+            return
+        if self.library is not None and self.config.library_write:
+            pid = self.library.add(ex.domain.name, init, goal, actions, states)
+        else:
+            pid, self._next_mem_id = self._next_mem_id, self._next_mem_id - 1
+        found = next((p for p in self.plans if p.id == pid), None)
+        if found is None:
+            found = StoredPlan(pid, ex.domain.name, state_key(init), self._goal_key,
+                               tuple((a.name, a.args) for a in actions), tuple(states),
+                               sum(a.cost() for a in actions))
+            self.plans.append(found)
+            self.stats.stored += 1
+        self.current = found
+
+    def _closest(self, observed: State) -> Candidate | None:
+        if self.config.library_scope == "path":
+            pool = [self.current] if self.current is not None else []
+        else:
+            pool = self.plans
+        best: tuple[float, float, int] | None = None
+        out: Candidate | None = None
+        for sp in pool:
+            for j, s in enumerate(sp.states):
+                d = float(self.support.distance(s, observed))
+                key = (d, -j / max(len(sp.states), 1), sp.id)
+                if best is None or key < best:
+                    best, out = key, Candidate(sp, j, d)
+        return out
+
+    # -- planning ----------------------------------------------------------------------
+    def _plan(self, ex: Executive, state: State, goal: Goal) -> PlanResult:
+        if self.config.reuse and entails(goal, ex.problem.goal, ex.domain.rules) \
+                and entails(ex.problem.goal, goal, ex.domain.rules):
+            reused = self._reuse(ex, state, goal)
+            if reused is not None:
+                return reused
+        own = self._own_planner()
+        if own is not None:
+            res: PlanResult = own(ex.domain, ex.problem.objects, state, goal, ex.rng)
+        else:
+            res = regression_plan(ex.domain, ex.problem.objects, state, goal, flat_levels(),
+                                  ex.strategy.planner, ex.context(), ex.rng)
+        ex.metrics.planning_cpu_s += res.cpu_time_s
+        self.stats.planning_s += res.cpu_time_s
+        if res.solved:
+            ex.metrics.plans_made += 1
+        else:
+            ex.metrics.plan_failures += 1
+        return res
+
+    def _reuse(self, ex: Executive, state: State, goal: Goal) -> PlanResult | None:
+        key = state_key(state)
+        for sp in sorted((p for p in self.plans if p.init_key == key), key=lambda p: p.cost):
+            plan = plan_from_actions(ex.domain, sp.rebuild(ex.domain), goal)
+            if plan is not None and simulate(ex.domain, state, plan.actions) is not None:
+                self.stats.reuses += 1
+                return PlanResult(PlanStatus.SOLVED, plan, "", method="library")
+        return None
+
+    def _initial_plan(self, ex: Executive, root: Frame) -> None:
+        state = state_of(ex.belief)
+        if ex.domain.satisfies(state, ex.problem.goal):
+            return
+        res = self._plan(ex, state, ex.problem.goal)
+        if res.solved and res.plan is not None:
+            self._push(ex, root, res.plan, res.method, res.cpu_time_s)
+
+    def _make(
+        self, alt: Alternative, ex: Executive, f: Frame, expected: State, observed: State,
+        cand: Candidate | None,
+    ) -> Repair | None:
+        dom, goal = ex.domain, ex.problem.goal
+        if alt is Alternative.GOAL:
+            res = self._plan(ex, observed, goal)
+            if not res.solved or res.plan is None:
+                return None
+            return Repair(alt, res.plan, "replace_all", res.plan.cost(), 0.0, res.cpu_time_s,
+                          f"plan from the observed model to the goal ({res.method})")
+        if alt is Alternative.INTERMEDIATE:
+            if cand is None:
+                return None
+            suffix = cand.plan.rebuild(dom)[cand.index:]
+            tail = plan_from_actions(dom, suffix, goal)
+            if tail is None:
+                return None
+            return self._compose(ex, alt, observed, tail.preimage(0).atoms, suffix, goal, "replace_all",
+                                 f"go to state {cand.index} of stored plan {cand.plan.id}, then its plan")
+        # RESTORE
+        primitive = all(f.plan.is_primitive(i) for i in range(f.i + 1, f.n + 1))
+        atoms = f.plan.preimage(f.i).atoms if self.config.restore_target == "preimage" \
+            else frozenset(expected.atoms())
+        if primitive:
+            rep = self._compose(ex, alt, observed, atoms, list(f.plan.actions[f.i:]), f.plan.goal,
+                                "replace_frame", "plan back to the expected model, then continue")
+            if rep is not None:
+                return rep
+        target = target_goal(list(atoms), frozenset(), dom)
+        if target is None:
+            return None
+        res = self._plan(ex, observed, target)
+        if not res.solved or res.plan is None:
+            return None
+        rest = sum(a.cost() for a in f.plan.actions[f.i:])
+        return Repair(alt, res.plan, "on_top", res.plan.cost(), rest, res.cpu_time_s,
+                      "plan back to the expected model, then continue")
+
+    def _compose(
+        self, ex: Executive, alt: Alternative, observed: State, target_atoms: Any, tail: list[Any],
+        goal: Goal, mode: str, detail: str,
+    ) -> Repair | None:
+        """Repair to ``target_atoms`` (minus the agent's own body), then ``tail``, as one plan."""
+        dom = ex.domain
+        ignore = self.support.ignore if self.support.adapt is not None else frozenset()
+        target = target_goal(list(target_atoms), ignore, dom)
+        if target is None:
+            return None
+        res = self._plan(ex, observed, target)
+        if not res.solved or res.plan is None:
+            return None
+        actions = list(res.plan.actions) + list(tail)
+        if self.support.adapt is not None:
+            actions = self.support.adapt(actions, observed)
+        plan = plan_from_actions(dom, actions, goal)
+        if plan is None or simulate(dom, observed, actions) is None:
+            return None
+        repair_cost = plan.cost() - sum(a.cost() for a in tail)
+        return Repair(alt, plan, mode, max(repair_cost, 0.0), sum(a.cost() for a in tail),
+                      res.cpu_time_s, detail)
+
+    # -- the plan stack ------------------------------------------------------------------
+    def _apply(self, ex: Executive, f: Frame, rep: Repair, dm: float, dm1: float | None) -> None:
+        alt = rep.alternative.value
+        self.stats.decisions[alt] += 1
+        self.stats.estimated_cost += rep.total(self.config)
+        ex.metrics.replans += 1
+        why = (f"{alt}: {rep.detail}; dm={dm:g}" + (f", dm1={dm1:g}" if dm1 is not None else "")
+               + f", thr={self.config.thr:g}")
+        ex.trace.emit("replan", plan_id=f.plan_id, trigger="monitor", reason=why)
+        ex.trace.emit(
+            "note", text=f"monitor chose {alt}", alternative=alt, dm=dm, dm1=dm1,
+            repair_cost=round(rep.repair_cost, 6), continuation_cost=round(rep.continuation_cost, 6),
+            planning_s=round(rep.planning_s, 6), decision=self.config.decision,
+        )
+        if rep.mode == "replace_all":
+            while len(ex.stack) > 1:
+                ex.pop("replaced")
+        elif rep.mode == "replace_frame":
+            ex.pop("replaced")
+        self._push(ex, ex.stack[-1], rep.plan, alt, rep.planning_s)
+
+    def _push(self, ex: Executive, parent: Frame, plan: Plan, method: str, cpu_s: float) -> None:
+        """Push a plan the monitor made; the executive traces it like its own (a ``plan`` event)."""
+        made = getattr(ex, "_made", None)
+        if isinstance(made, dict):
+            made[id(plan)] = {"method": method, "cpu_s": round(cpu_s, 6), "expanded": 0}
+        ex.push(plan, parent)
+
+
+def _factory(decision: str | None) -> Any:
+    def make(strategy: Any) -> Monitor:
+        cfg = default_config()
+        return Monitor(cfg if decision is None else replace(cfg, decision=decision))
+
+    return make
+
+
+register_switch(Switch("monitor", "expected-vs-observed monitor with a plan library, the seed's "
+                       "decision rule (seed 003)", mechanism=_factory(None)))
+register_switch(Switch("monitor-goal", "monitor that always replans to the goal after a surprise",
+                       mechanism=_factory("goal")))
+register_switch(Switch("monitor-restore", "monitor that always plans back to the expected model",
+                       mechanism=_factory("restore")))
+register_switch(Switch("monitor-cost", "monitor that plans every alternative and takes the cheapest",
+                       mechanism=_factory("cost")))

@@ -1,0 +1,115 @@
+"""What the expected-vs-observed monitor needs from a domain (seed 003).
+
+A domain registers a :class:`MonitorSupport` under its name: a distance
+between world models (states), optionally its own planner (the seed uses
+a means-ends planner; without one the monitor uses the regression
+planner), an ``adapt`` function that fits a stored or continued action
+sequence to the current state (the seed's low-level behaviours, e.g. the
+arm starts from wherever it is), and the predicates that describe the
+agent's own body and so never enter a restore target.  A domain that
+registers nothing gets :func:`fluent_distance`, the number of fluents whose
+values differ.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from nowplan.core.atoms import Atom, Goal
+from nowplan.core.domain import Domain
+from nowplan.core.levels import LevelMap, flat_levels
+from nowplan.core.operators import Action
+from nowplan.core.state import State
+from nowplan.errors import ModelError
+from nowplan.planning.plan import Plan, PlanResult, PlanStep
+from nowplan.planning.regression import preimage
+
+Distance = Callable[[State, State], float]
+StatePlanner = Callable[[Domain, Mapping[str, str | None], State, Goal, random.Random], PlanResult]
+Adapt = Callable[[Sequence[Action], State], list[Action]]
+
+
+def fluent_distance(a: State, b: State) -> float:
+    """How many fluents have different values in ``a`` and ``b`` (absent = False)."""
+    keys = {x.key for x in a.atoms()} | {x.key for x in b.atoms()}
+    return float(sum(1 for k in keys if a.value(k) != b.value(k)))
+
+
+@dataclass(frozen=True)
+class MonitorSupport:
+    distance: Distance = fluent_distance
+    planner: StatePlanner | None = field(default=None, compare=False)
+    adapt: Adapt | None = field(default=None, compare=False)
+    ignore: frozenset[str] = frozenset()  # predicates of the agent's own body
+
+
+_SUPPORT: dict[str, MonitorSupport] = {}
+
+
+def register_support(domain_name: str, support: MonitorSupport) -> MonitorSupport:
+    _SUPPORT[domain_name] = support
+    return support
+
+
+def support_for(domain_name: str) -> MonitorSupport:
+    return _SUPPORT.get(domain_name, MonitorSupport())
+
+
+def state_of(belief: Any) -> State:
+    """The belief's point state (the observed world model)."""
+    st = getattr(belief, "state", None)
+    if isinstance(st, State):
+        return st
+    if isinstance(belief, State):
+        return belief
+    if hasattr(belief, "atoms"):
+        return State(belief.atoms())
+    raise ModelError(
+        f"the monitor needs a point belief with a State (got {type(belief).__name__}); "
+        "use a symbolic belief"
+    )
+
+
+def simulate(domain: Domain, state: State, actions: Sequence[Action]) -> list[State] | None:
+    """``[s0, s1, …, sn]`` applying each action's effects; ``None`` if a precondition fails."""
+    states = [state]
+    for act in actions:
+        if not all(domain.holds(p, state) for p in act.preconditions(None)):
+            return None
+        state = state.apply(act.effects())
+        states.append(state)
+    return states
+
+
+def plan_from_actions(
+    domain: Domain, actions: Sequence[Action], goal: Goal, levels: LevelMap | None = None
+) -> Plan | None:
+    """A plan with pre-images for an action sequence: regress ``goal`` back through it.
+
+    ``None`` when an action destroys what a later step or the goal needs.
+    """
+    levels = levels or flat_levels()
+    goals = [goal]
+    g = goal
+    for act in reversed(actions):
+        pre = preimage(g, act, levels.level(act), domain)
+        if pre is None:
+            return None
+        goals.append(pre)
+        g = pre
+    goals.reverse()
+    steps = [PlanStep(None, goals[0])]
+    steps += [PlanStep(act, gi) for act, gi in zip(actions, goals[1:], strict=True)]
+    return Plan(tuple(steps), levels)
+
+
+def target_goal(atoms: Sequence[Atom] | Goal, ignore: frozenset[str], domain: Domain) -> Goal | None:
+    """A goal from a model's atoms, without the agent's own-body predicates."""
+    kept = [a for a in atoms if a.predicate not in ignore]
+    try:
+        return Goal.of(kept, domain.rules)
+    except ModelError:
+        return None
