@@ -79,6 +79,7 @@ class NamoBelief:
     version: int = 0
     percept: int = 0
     trajectory: list[Pt] = field(default_factory=list)
+    bumps: set[int] = field(default_factory=set)  # cells where the robot bumped into a wall
     unmovable: dict[str, int] = field(default_factory=dict)  # object -> percept when no placement was found
     route_memo: dict[Pt, set[Pt]] = field(default_factory=dict)  # target -> starts a path chose (gen_move)
     _cache: dict[Any, Any] = field(default_factory=dict, repr=False)
@@ -269,6 +270,9 @@ class NamoBelief:
             seen_cells = jj[ok] * g.nx + ii[ok]
             self.observed[seen_cells] = True
         self.observed |= g.disk_mask(self.pose, 0.5)
+        bump = data.get("bump")
+        if bump is not None:  # the robot cannot stand there: keep paths off that spot
+            self.bumps.add(g.cell(Pt.of(self.robot_mean[0] + bump[0], self.robot_mean[1] + bump[1])))
         for lm, rx, ry, s in data.get("landmarks", ()):
             self._localise(self.geom.landmark(lm), float(rx), float(ry), float(s))
         detected = set()

@@ -19,6 +19,9 @@ import numpy as np
 from nowplan.errors import require
 
 
+CLEARANCE = 0.03  # the planner keeps the robot this much further from walls than its radius (m)
+
+
 def shapely() -> Any:
     """The lazily imported shapely module (the ``namo`` extra)."""
     return require("shapely", "namo")
@@ -42,7 +45,7 @@ class Pt:
         return f"({self.x:g},{self.y:g})"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, order=True)
 class Box:
     """An axis-aligned rectangle: centre and size (objects never rotate here)."""
 
@@ -104,7 +107,7 @@ def _segment_hits_rect(a: Pt, b: Pt, x0: float, y0: float, x1: float, y1: float)
     return True
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, order=True)
 class Region:
     """The volume the robot sweeps moving straight from ``start`` to ``end``: a capsule.
 
@@ -320,23 +323,25 @@ class MapGeometry:
 
     @cached_property
     def robot_blocked(self) -> np.ndarray:
-        """Cells where the robot's centre would touch a wall or leave the map."""
+        """Cells whose centre is closer than the robot's radius (plus a margin) to a wall or the border."""
+        sh = shapely()
         g = self.grid
-        m = g.dilate(self.wall_mask, self.robot_radius)
-        r = self.robot_radius
-        m |= (g.xs < r) | (g.ys < r) | (g.xs > self.width - r) | (g.ys > self.height - r)
-        return m
+        pts = sh.points(np.stack([g.xs, g.ys], axis=1))
+        return np.asarray(sh.distance(self.wall_shape, pts) < self.robot_radius + CLEARANCE)
+
+    def segment_free(self, a: Pt, b: Pt, blocked: np.ndarray | None = None) -> bool:
+        """Can the robot's centre move straight from a to b, keeping its radius (and margin) off the walls?"""
+        if blocked is not None and bool(blocked[self.grid.line_cells(a, b)].any()):
+            return False
+        sh = shapely()
+        line = sh.Point(a.x, a.y) if a == b else sh.LineString([(a.x, a.y), (b.x, b.y)])
+        return bool(line.distance(self.wall_shape) >= self.robot_radius + CLEARANCE - 1e-9)
 
     def landmark(self, name: str) -> Pt:
         for n, p in self.landmarks:
             if n == name:
                 return p
         raise KeyError(name)
-
-    def segment_free(self, a: Pt, b: Pt, blocked: np.ndarray | None = None) -> bool:
-        """Can the robot's centre move straight from a to b without touching a wall?"""
-        m = self.robot_blocked if blocked is None else blocked
-        return not bool(m[self.grid.line_cells(a, b)].any())
 
 
 def polyline_length(pts: Sequence[Pt]) -> float:
@@ -359,7 +364,7 @@ def cells_to_points(grid: Grid, cells: Iterable[int]) -> list[Pt]:
     return [grid.center(k) for k in cells]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, order=True)
 class Manip:
     """One way to move an object out of the way (seed 000 Fig. 8).
 

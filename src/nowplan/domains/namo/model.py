@@ -41,6 +41,7 @@ TOL = ToleranceRule()
 A, B, SW = Var("a"), Var("b"), Var("sw")
 V, R, O, AT, LM, E = Var("v"), Var("r"), Var("o"), Var("at"), Var("lm"), Var("e")
 M, HOME, PC, EX, EXO, PLACE = Var("m"), Var("home"), Var("pc"), Var("ex"), Var("exo"), Var("place")
+SPOT, ONLY = Var("spot"), Var("only")
 
 WHERE, SEE, CLEAR = 3, 2, 1
 
@@ -193,14 +194,15 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
             generators=(Generator("manip_fields", (HOME, PC), placement.gen_manip_fields, (M,)),),
         ),
         Operator(
-            "Place", (O, R, EX, EXO, M, HOME, PC, PLACE),
+            "Place", (O, R, EX, EXO, M, HOME, PC, PLACE, SPOT, ONLY),
             (P(atom("Holding", O, M), WHERE), P(atom("RobotAt", PC), WHERE),
-             P(atom("BClear", R, EXO, value=params.eps_clear), WHERE)),
+             P(atom("BClear", R, EXO, value=params.eps_clear), WHERE),
+             P(atom("BClear", SPOT, ONLY, value=params.eps_clear), WHERE)),
             (atom("BClear", R, EX, value=params.eps_clear), atom("HandEmpty"),
              atom("Holding", O, M, value=False), atom("RobotAt", PC, value=False),
              atom("RobotAt", HOME), atom("Placed", O, PLACE), atom("Observed", R, value=False)),
             cost=costs["place"],
-            generators=(Generator("place", (O, EXO, M, HOME, PC, PLACE), placement.gen_place, (R, EX)),),
+            generators=(Generator("place", (O, EXO, M, HOME, PC, PLACE, SPOT, ONLY), placement.gen_place, (R, EX)),),
         ),
     )
     return Domain("namo", PREDICATES, operators, conflicts=CONFLICTS, triggers=make_triggers(params))

@@ -11,8 +11,8 @@ from statistics import NormalDist
 class Sensor:
     range: float = 4.0  # metres
     fov: float = math.radians(160.0)  # radians
-    sigma0: float = 0.02  # object position noise at 0 m (m)
-    sigma_per_m: float = 0.03  # growth of the noise per metre of distance
+    sigma0: float = 0.01  # object position noise at 0 m (m)
+    sigma_per_m: float = 0.015  # growth of the noise per metre of distance
     landmark_range: float = 6.0
     landmark_sigma: float = 0.03
     miss_prob: float = 0.0  # chance a visible object goes undetected on one look
@@ -41,7 +41,7 @@ class Params:
     look_cost: float = 1.0  # path-planning cost of entering a shadow without foresight
     shadow_cost: float = 3.0  # foresight: cost of entering an object's epsilon-shadow (scaled by its size)
     eps_clear: float = 0.025  # BClear tolerance (probability that a region is not clear)
-    eps_pick: float = 0.08  # BVRelPose needed before picking (m)
+    eps_pick: float = 0.06  # BVRelPose needed before picking (m)
     eps_loc: float = 0.2  # robot localisation needed before a base move (m)
     at_tol: float = 0.3  # RobotAt tolerance (m)
     fog_observed_slack: int = 3  # Observed: this many visible fog cells are tolerated

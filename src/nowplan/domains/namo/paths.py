@@ -126,6 +126,9 @@ def build_costmap(belief: NamoBelief, foresight: bool) -> CostMap:
     geom, p = belief.geom, belief.params
     g = geom.grid
     passable = ~geom.robot_blocked
+    if belief.bumps:
+        passable = passable.copy()
+        passable[list(belief.bumps)] = False
     masks = [0] * g.n
     penalties: list[float] = []
     labels: list[str] = []
@@ -241,7 +244,7 @@ class PathPlanner:
         m = 0
         for k in ks.tolist():
             m |= self.cm.masks[k]
-        return (m & ~allowed) == 0
+        return (m & ~allowed) == 0 and self.belief.geom.segment_free(a, b)
 
     def segment_cost(self, a: Pt, b: Pt) -> float:
         """Length plus the penalties of the regions a straight move from a to b enters."""

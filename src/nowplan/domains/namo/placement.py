@@ -20,7 +20,7 @@ being forbidden.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from typing import Any
 
 import numpy as np
@@ -28,11 +28,11 @@ import numpy as np
 from nowplan.core.atoms import Goal, Var
 from nowplan.domains.namo.belief import NamoBelief, k_of
 from nowplan.domains.namo.generators import foresight, robot_at_in
-from nowplan.domains.namo.geometry import Box, Grid, Manip, MapGeometry, Pt, Region
+from nowplan.domains.namo.geometry import Box, Grid, Manip, MapGeometry, Pt, Region, shapely
 from nowplan.domains.namo.paths import INF, dijkstra, trace_back
 
 O, R, EX, EXO, M = Var("o"), Var("r"), Var("ex"), Var("exo"), Var("m")
-HOME, PC, PLACE = Var("home"), Var("pc"), Var("place")
+HOME, PC, PLACE, SPOT, ONLY = Var("home"), Var("pc"), Var("place"), Var("spot"), Var("only")
 
 PLACE_MARGIN = 0.08  # the placed object keeps this far from regions that must stay clear
 
@@ -84,7 +84,7 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
         if belief.held not in ex and m.home == home:
             size = belief.objects[belief.held].size if belief.held in belief.objects else (0.0, 0.0)
             yield {R: region, EX: ex, O: belief.held, EXO: ex | {belief.held}, M: m, HOME: home,
-                   PC: m.pick_conf, PLACE: Box(m.place.x, m.place.y, *size)}
+                   PC: m.pick_conf, **_spot(m, belief.held, size)}
         return
     if not isinstance(region, Region) or not isinstance(ex, frozenset):
         return
@@ -94,9 +94,16 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
     for name in blockers[:3]:
         hard = hard_regions(goal, name, region)
         size = belief.objects[name].size
-        for m in manip_options(belief, name, home, tuple(hard), tuple(taboo), n=2):
-            yield {O: name, EXO: ex | {name}, M: m, HOME: home, PC: m.pick_conf,
-                   PLACE: Box(m.place.x, m.place.y, *size)}
+        # regression order: the other objects in the region and not excepted are moved before this one
+        gone = frozenset(blockers) - {name}
+        for m in manip_options(belief, name, home, tuple(hard), tuple(taboo), n=2, gone=gone):
+            yield {O: name, EXO: ex | {name}, M: m, HOME: home, PC: m.pick_conf, **_spot(m, name, size)}
+
+
+def _spot(m: Manip, name: str, size: tuple[float, float]) -> dict[Var, Any]:
+    """The placed box and the disc around it that must be free of other objects when it is put down."""
+    box = Box(m.place.x, m.place.y, *size)
+    return {PLACE: box, SPOT: Region(m.place, m.place, math.hypot(*size) / 2), ONLY: frozenset({name})}
 
 
 # -- geometry of manipulation -------------------------------------------------------------
@@ -114,6 +121,29 @@ def _dilate_box(grid: Grid, mask: np.ndarray, hw: float, hh: float) -> np.ndarra
         out[d:, :] |= m2[:-d, :]
         out[:-d, :] |= m2[d:, :]
     return out.reshape(-1)
+
+
+def _carry_check(geom: MapGeometry, box: Box, offset: tuple[float, float]) -> Callable[[Pt, Pt], bool]:
+    """Exact test of a straight drag: the robot and the swept object box stay off the walls."""
+    sh = shapely()
+    hw, hh = box.w / 2, box.h / 2
+
+    def ok(a: Pt, b: Pt) -> bool:
+        if not geom.segment_free(a, b):
+            return False
+        corners = [(p.x + offset[0] + sx * hw, p.y + offset[1] + sy * hh)
+                   for p in (a, b) for sx in (-1, 1) for sy in (-1, 1)]
+        return bool(sh.MultiPoint(corners).convex_hull.distance(geom.wall_shape) >= 0.03)
+
+    return ok
+
+
+def _box_dist(g: Grid, box: Box) -> np.ndarray:
+    """Distance from each cell centre to the box."""
+    x0, y0, x1, y1 = box.bounds
+    dx = np.maximum(np.maximum(x0 - g.xs, 0.0), g.xs - x1)
+    dy = np.maximum(np.maximum(y0 - g.ys, 0.0), g.ys - y1)
+    return np.hypot(dx, dy)
 
 
 def _box_off_walls(
@@ -142,7 +172,10 @@ def _shift_cells(grid: Grid, mask: np.ndarray, di: int, dj: int, fill: bool) -> 
     return out.reshape(-1)
 
 
-def smooth_cells(grid: Grid, free: np.ndarray, cells: list[int]) -> list[Pt]:
+def smooth_cells(
+    grid: Grid, free: np.ndarray, cells: list[int], exact: Callable[[Pt, Pt], bool] | None = None
+) -> list[Pt]:
+    """String-pull a cell path: shortcuts must stay on free cells (and pass ``exact`` if given)."""
     pts = [grid.center(k) for k in cells]
     if len(pts) <= 2:
         return pts
@@ -150,7 +183,9 @@ def smooth_cells(grid: Grid, free: np.ndarray, cells: list[int]) -> list[Pt]:
     i = 0
     while i < len(pts) - 1:
         j = i + 1
-        while j + 1 < len(pts) and bool(free[grid.line_cells(pts[i], pts[j + 1])].all()):
+        while j + 1 < len(pts) and bool(free[grid.line_cells(pts[i], pts[j + 1])].all()) and (
+            exact is None or exact(pts[i], pts[j + 1])
+        ):
             j += 1
         out.append(pts[j])
         i = j
@@ -158,21 +193,24 @@ def smooth_cells(grid: Grid, free: np.ndarray, cells: list[int]) -> list[Pt]:
 
 
 def manip_options(
-    belief: NamoBelief, name: str, home: Pt, hard: tuple[Region, ...], taboo: tuple[Region, ...], n: int = 2
+    belief: NamoBelief, name: str, home: Pt, hard: tuple[Region, ...], taboo: tuple[Region, ...], n: int = 2,
+    gone: frozenset[str] = frozenset(),
 ) -> list[Manip]:
-    key = ("manip", name, home, hard, taboo, n)
+    """Up to ``n`` ways to move ``name`` from ``home``; objects in ``gone`` will have been moved already."""
+    key = ("manip", name, home, hard, taboo, n, gone)
     cache = belief.cache()
     if key in cache:
         return cache[key]  # type: ignore[no-any-return]
-    out = _manip_options(belief, name, home, hard, taboo, n)
+    out = _manip_options(belief, name, home, hard, taboo, n, gone)
     cache[key] = out
-    if not out:  # nowhere to put it from here: route around it until something new is seen
+    if not out and not gone:  # nowhere to put it from here: route around it until something new is seen
         belief.unmovable[name] = belief.percept
     return out
 
 
 def _manip_options(
-    belief: NamoBelief, name: str, home: Pt, hard: tuple[Region, ...], taboo: tuple[Region, ...], n: int
+    belief: NamoBelief, name: str, home: Pt, hard: tuple[Region, ...], taboo: tuple[Region, ...], n: int,
+    gone: frozenset[str] = frozenset(),
 ) -> list[Manip]:
     geom, params = belief.geom, belief.params
     g = geom.grid
@@ -181,7 +219,7 @@ def _manip_options(
     obox = est.box
     k = k_of(params.eps_clear)
     others = np.zeros(g.n, dtype=bool)
-    for o in belief.free_objects({name}):
+    for o in belief.free_objects({name} | gone):
         others |= g.box_mask(o.box, k * o.sigma)
     base = ~geom.robot_blocked & belief.observed & ~g.dilate(others, r)
     # the pick happens once the object is localised (BVRelPose), so keep the clearance that needs
@@ -191,8 +229,13 @@ def _manip_options(
     free_pick = base & ~own
     free_pick[hc] = True
     dist_pick, par_pick = dijkstra(g, free_pick, hc)
-    ring = g.box_mask(obox, r + clearance + 1.2 * g.res) & free_pick
-    pcs = sorted((dist_pick[c], c) for c in np.nonzero(ring)[0].tolist() if dist_pick[c] < INF and c != hc)
+    # grasp from right next to the object: the nearest free cells around it (at most a cell further)
+    gap = _box_dist(g, obox)
+    ring_cells = [c for c in np.nonzero(free_pick)[0].tolist() if dist_pick[c] < INF and c != hc]
+    if not ring_cells:
+        return []
+    nearest = min(gap[c] for c in ring_cells)
+    pcs = sorted((dist_pick[c], c) for c in ring_cells if gap[c] <= max(nearest, r + clearance) + g.res * 0.75)
     if not pcs:
         return []
     base_home = base.copy()
@@ -253,14 +296,15 @@ def _manip_options(
             if pick_cells is None or carry_cells is None or ret_cells is None:
                 continue
             ret_cells.reverse()
-            pick_path = smooth_cells(g, free_pick, pick_cells)
+            pick_path = smooth_cells(g, free_pick, pick_cells, geom.segment_free)
             pick_path[0] = home
-            ret_path = smooth_cells(g, free_ret if params.connectivity else base_home, ret_cells)
+            ret_path = smooth_cells(g, free_ret if params.connectivity else base_home, ret_cells, geom.segment_free)
             ret_path[-1] = home
             m = Manip(
                 obj=name, home=home, pick_conf=g.center(pc), obj_at=est.center,
                 place=box.center, release=g.center(c),
-                pick_path=tuple(pick_path), carry_path=tuple(smooth_cells(g, carry_free, carry_cells)),
+                pick_path=tuple(pick_path),
+                carry_path=tuple(smooth_cells(g, carry_free, carry_cells, _carry_check(geom, obox, offset))),
                 return_path=tuple(ret_path),
             )
             results.append((score, m))

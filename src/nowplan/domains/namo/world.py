@@ -154,6 +154,7 @@ class NamoWorld:
             stop = done * self.rng.uniform(0.3, 0.8)
             limit = next((i for i, d in enumerate(ds) if d > stop), len(xs))
         first, hit = self.first_hit(np.array(xs[:limit]), np.array(ys[:limit]), carrying)
+        self._hit_at = (xs[first], ys[first]) if first < limit else None
         last = min(first, limit) - 1
         if last >= 0:
             self.robot = np.array([xs[last], ys[last]])
@@ -217,7 +218,7 @@ class NamoWorld:
         return {"visible": rel.tolist(), "detections": detections, "landmarks": landmarks}
 
     def _contact(self, name: str) -> list[tuple[str, float, float, float, float, float]]:
-        if name == "wall" or name not in self.objects:
+        if name not in self.objects:
             return []
         self.contacts += 1
         box = self.objects[name]
@@ -239,7 +240,10 @@ class NamoWorld:
             from nowplan.errors import ExecutionError
 
             raise ExecutionError(f"the NAMO world cannot execute {action}")
+        self._hit_at: tuple[float, float] | None = None
         ok, data, reason = handler(*action.args)
+        if self._hit_at is not None and reason.endswith("by wall"):  # the bumper felt where
+            data["bump"] = (self._hit_at[0] - self.robot[0], self._hit_at[1] - self.robot[1])
         near = self.sense(None, 2 * math.pi, 0.6)
         for k in ("visible", "detections"):
             data[k] = list(data.get(k, [])) + near[k]
@@ -317,7 +321,7 @@ class NamoWorld:
         return m.obj_at
 
     def _do_Place(self, obj: str, region: Region, ex: Any, exo: Any, m: Manip, home: Pt, pc: Pt,
-                  place: Box) -> tuple[bool, dict[str, Any], str]:
+                  place: Box, spot: Region, only: Any) -> tuple[bool, dict[str, Any], str]:
         data: dict[str, Any] = {"carried": 0.0, "returned": 0.0, "home": False}
         if self.held != obj:
             return False, data, f"not holding {obj}"
