@@ -1,0 +1,233 @@
+"""The agent's belief in the kitchen: particles per object, point estimates for the rest.
+
+Object poses are :class:`~nowplan.belief.particles.PoseParticles` relative to
+their frames; the robot configuration, drawer positions, what the hand holds
+and the stove's state are point estimates (seed 004 III).  Visibility for
+the filter and for the determinized costs is the analytic ray cast from the
+camera to an object's top centre against the other objects' boxes (at their
+particles), with drawer contents visible only when that drawer is open (and,
+for the bottom one, the top drawer closed).  The belief owns a model scene
+(its own PyBullet client) for IK and collision checks, and the kitchen's
+streams.
+"""
+
+from __future__ import annotations
+
+import logging
+import random
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from nowplan.belief.determinize import worst_case_visibility
+from nowplan.belief.particles import DEFAULT_PARTICLES, PoseParticles, Region, SensorModel
+from nowplan.belief.raycast import segment_blocked
+from nowplan.core.operators import Action
+from nowplan.domains.kitchen import scene as S
+from nowplan.worlds.base import Observation
+
+log = logging.getLogger(__name__)
+
+DELTA = 0.04  # radius of the δ-neighbourhood of a sampled pose (m)
+EPSILON = 0.1  # the ε of the BOccluded test
+LOCALIZED = 0.9  # mass within δ for a pose to be believed
+
+
+@dataclass(frozen=True, order=True)
+class Pose:
+    """A position relative to a frame (the box centre)."""
+
+    frame: str
+    x: float
+    y: float
+    z: float
+    constant: ClassVar[bool] = False
+
+    def rel(self) -> np.ndarray:
+        return np.array([self.x, self.y, self.z])
+
+    def __str__(self) -> str:
+        return f"{self.frame}({self.x:.2f},{self.y:.2f})"
+
+
+@dataclass(frozen=True)
+class Conf:
+    q: tuple[float, ...]
+    constant: ClassVar[bool] = False
+
+    def __str__(self) -> str:
+        return f"q(x={self.q[0]:.2f})"
+
+
+@dataclass(frozen=True)
+class Traj:
+    path: tuple[tuple[float, ...], ...]
+    constant: ClassVar[bool] = False
+
+    def __str__(self) -> str:
+        return f"traj[{len(self.path)}]"
+
+
+def pose_of(frame: str, rel: np.ndarray) -> Pose:
+    return Pose(frame, round(float(rel[0]), 4), round(float(rel[1]), 4), round(float(rel[2]), 4))
+
+
+class KitchenBelief:
+    def __init__(self, priors: dict[str, list[Region]], seed: int, sensor: SensorModel = SensorModel(),
+                 n: int = DEFAULT_PARTICLES, scene: S.Scene | None = None) -> None:
+        self.rng = np.random.default_rng(seed)
+        self.prng = random.Random(seed)
+        self.sensor = sensor
+        self.objects = tuple(priors)
+        self.particles: dict[str, PoseParticles] = {}
+        for o, regs in priors.items():
+            lifted = [Region(r.frame, r.lo, r.hi, S.SIZES[o][2]) for r in regs]
+            self.particles[o] = PoseParticles.uniform(lifted, n, self.rng)
+        self.conf = Conf(S.HOME)
+        self.drawers = {d: 0.0 for d in S.DRAWERS}
+        self.held: str | None = None
+        self.stove_on = False
+        self.cooked: set[str] = set()
+        self.scene = scene or S.build(self.objects)
+        self.streams: Any = None  # set by the model (nowplan.domains.kitchen.model)
+        self.version = 0
+
+    # -- geometry ------------------------------------------------------------------
+    def origins(self) -> dict[str, np.ndarray]:
+        out = {f: S.frame_origin(f, self.drawers) for f in ("counter", "stove", *S.DRAWERS)}
+        out["hand"] = np.zeros(3)
+        return out
+
+    def frame_visible(self, frame: str) -> bool:
+        if frame == "hand":
+            return False
+        if frame in S.DRAWERS and self.drawers[frame] < 0.2:
+            return False
+        return not (frame == "bottom" and self.drawers["top"] > 0.05)
+
+    def _top_point(self, o: str, world: np.ndarray) -> np.ndarray:
+        return world + np.array([0.0, 0.0, S.SIZES[o][2] - 0.005])
+
+    def blocks(self, target: str, blocker: str) -> Any:
+        """``B(x_i rows, x_j rows)``: does ``blocker`` at ``x_j`` hide ``target`` at ``x_i``?"""
+        half = np.array(S.SIZES[blocker])
+
+        def fn(xi: np.ndarray, xj: np.ndarray) -> np.ndarray:
+            out = np.zeros((len(xi), len(xj)), dtype=bool)
+            for k, x in enumerate(xi):
+                out[k] = segment_blocked(S.CAMERA, self._top_point(target, x), xj, half)
+            return out
+
+        return fn
+
+    def world_of(self, o: str) -> np.ndarray:
+        return self.particles[o].world(self.origins())
+
+    def visibility(self, target: str) -> Any:
+        """P(visible | particle) for the filter: frame visibility times Π_j P(j does not block)."""
+
+        def fn(frames: np.ndarray, world: np.ndarray) -> np.ndarray:
+            v = np.array([1.0 if self.frame_visible(str(f)) else 0.0 for f in frames])
+            for j in self.objects:
+                if j == target or j == self.held:
+                    continue
+                pj = self.particles[j]
+                b = self.blocks(target, j)(world, self.world_of(j))
+                v *= (1.0 - b.astype(float)) @ pj.weights
+            return v
+
+        return fn
+
+    # -- what the planner asks ------------------------------------------------------------
+    def region_of(self, o: str, pose: Pose) -> np.ndarray:
+        pb = self.particles[o]
+        mask = pb.near(pose.frame, pose.rel(), DELTA)
+        return pb.world(self.origins())[mask] if mask.any() else (S.frame_origin(pose.frame, self.drawers)
+                                                                 + pose.rel())[None, :]
+
+    def not_blocks(self, blocker: str, target: str, pose: Pose) -> bool:
+        """``L_j(𝒳_i) ≥ 1 − ε`` for blocker j and the δ-neighbourhood of ``pose``."""
+        if blocker == self.held or blocker == target:
+            return True
+        pj = self.particles[blocker]
+        if pose.frame == "hand":
+            return True
+        region = self.region_of(target, pose)
+        lj = worst_case_visibility(region, self.world_of(blocker), pj.weights, self.blocks(target, blocker))
+        return lj >= 1.0 - EPSILON
+
+    def localized_at(self, o: str, pose: Pose) -> bool:
+        if pose.frame == "hand":
+            return self.held == o
+        return self.particles[o].mass_near(pose.frame, pose.rel(), DELTA / 2) >= LOCALIZED
+
+    def candidate_poses(self, o: str, frame: str | None, k: int = 4) -> list[Pose]:
+        """Sampled poses of ``o`` (the centres of ?obs), best-supported first."""
+        pb = self.particles[o]
+        mask = np.ones(len(pb), dtype=bool) if frame is None else pb.frames == frame
+        mask &= pb.frames != "hand"
+        if not mask.any():
+            return []
+        w = pb.weights * mask
+        idx = self.prng.choices(range(len(pb)), weights=list(w / w.sum()), k=3 * k)
+        out: list[Pose] = []
+        for i in idx:
+            f, rel = str(pb.frames[i]), pb.poses[i]
+            if any(q.frame == f and np.linalg.norm(q.rel()[:2] - rel[:2]) < DELTA for q in out):
+                continue
+            out.append(pose_of(f, rel))
+        out.sort(key=lambda q: -pb.mass_near(q.frame, q.rel(), DELTA))
+        return out[:k]
+
+    def mode_pose(self, o: str) -> Pose:
+        f, rel, _ = self.particles[o].mode(DELTA / 2)
+        return pose_of(f, rel)
+
+    def sync_scene(self, skip: tuple[str, ...] = ()) -> None:
+        """Put the model scene in the believed state (objects at their modes)."""
+        S.set_conf(self.scene, self.conf.q)
+        for d, q in self.drawers.items():
+            S.set_drawer(self.scene, d, q)
+        origins = self.origins()
+        for o in self.objects:
+            if o in skip or o == self.held:
+                S.set_object(self.scene, o, np.array([0.0, -2.0, -1.0 - self.objects.index(o)]))
+                continue
+            p = self.mode_pose(o)
+            S.set_object(self.scene, o, origins[p.frame] + p.rel())
+
+    # -- updates --------------------------------------------------------------------------
+    def update(self, action: Action, obs: Observation) -> None:
+        self.version += 1
+        name, args = action.name, action.args
+        info = obs.info or {}
+        if "drawers" in info:
+            self.drawers = dict(info["drawers"])
+        if "conf" in info:
+            self.conf = Conf(tuple(info["conf"]))
+        if name == "detect":
+            for o, z in info.get("detections", {}).items():
+                if o == self.held:
+                    continue
+                zz = None if z is None else np.asarray(z, dtype=float)
+                frame = None if z is None else str(info.get("frames", {}).get(o))
+                self.particles[o].update(self.sensor, self.visibility(o), self.origins(), zz, self.rng,
+                                         supports=None, z_frame=frame)
+        elif name in ("pick", "pick_tall") and obs.success:
+            self.held = str(args[0])
+            self.particles[self.held] = PoseParticles.point("hand", (0.0, 0.0, 0.0), len(self.particles[self.held]))
+        elif name in ("place", "place_aside") and obs.success:
+            o, pose = str(args[0]), args[1]
+            self.held = None
+            n = len(self.particles[o])
+            jitter = self.rng.normal(0.0, 0.003, size=(n, 3)) * np.array([1, 1, 0])
+            self.particles[o] = PoseParticles(np.array([pose.frame] * n, dtype=object), pose.rel() + jitter)
+        elif name == "cook" and obs.success:
+            self.stove_on = True
+            self.cooked.add(str(args[0]))
+        elif name == "stove_off" and obs.success:
+            self.stove_on = False
+
+    def copy_summary(self) -> dict[str, Any]:
+        return {o: self.particles[o].frame_masses() for o in self.objects}

@@ -1,0 +1,176 @@
+"""The kitchen's geometry, built in a PyBullet DIRECT client by our own code (seed 004 VIII).
+
+A counter with two stacked drawers on prismatic joints (the tall sugar box
+does not fit under the counter top when the top drawer closes), a stove
+plate with a button, three boxes (green block, sugar box, cracker box), a
+fixed camera, and the Franka Panda from ``pybullet_data`` on a pedestal that
+slides along a rail in front of the counter.  The same builder makes the
+true world and the agent's model scene (for collision checks and IK).
+
+Frames: ``counter``, ``stove``, ``top`` and ``bottom`` (drawer trays, whose
+origins move with the drawer joint) and ``hand``.  Positions of movable
+objects are their box centres relative to a frame's origin.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from nowplan.belief.particles import Region
+from nowplan.errors import require
+
+COUNTER_TOP = 0.60
+FRONT_Y = 0.45  # the counter's front face
+DRAWER_OPEN = 0.27  # how far an open drawer slides out (m)
+DRAWERS = ("top", "bottom")
+DRAWER_FLOOR = {"top": 0.38, "bottom": 0.14}
+BASE_Z = 0.45
+RAIL = (-0.45, 0.45)  # the pedestal's x range
+CAMERA = np.array([0.0, -0.55, 1.55])
+CAMERA_TARGET = np.array([0.0, 0.45, 0.45])
+ARM_JOINTS = tuple(range(7))
+EE_LINK = 11
+HOME = (0.0, 0.0, -0.6, 0.0, -2.3, 0.0, 1.8, 0.8)  # base x, then the 7 arm joints
+
+# box half extents of the movable objects
+SIZES = {
+    "green": (0.025, 0.025, 0.025),
+    "sugar": (0.04, 0.025, 0.095),
+    "cracker": (0.07, 0.025, 0.105),
+}
+COLOURS = {"green": (0.1, 0.8, 0.1, 1), "sugar": (0.9, 0.9, 0.2, 1), "cracker": (0.8, 0.2, 0.1, 1)}
+TALL = ("sugar", "cracker")
+
+
+def frame_origin(frame: str, drawers: dict[str, float]) -> np.ndarray:
+    """World position of a frame's origin given the drawers' joint positions."""
+    if frame == "counter":
+        return np.array([0.0, 0.0, COUNTER_TOP])
+    if frame == "stove":
+        return np.array([0.38, 0.62, COUNTER_TOP + 0.01])
+    if frame in DRAWERS:
+        return np.array([0.0, FRONT_Y - drawers[frame], DRAWER_FLOOR[frame]])
+    raise KeyError(frame)
+
+
+def regions() -> dict[str, Region]:
+    """Where objects may rest in each frame (frame coordinates; z added per object)."""
+    return {
+        "counter": Region("counter", (-0.45, 0.55), (0.15, 0.78)),
+        "stove": Region("stove", (-0.04, -0.04), (0.04, 0.04)),
+        "top": Region("top", (-0.15, 0.04), (0.15, 0.21)),
+        "bottom": Region("bottom", (-0.15, 0.04), (0.15, 0.21)),
+    }
+
+
+BUTTON = np.array([0.38, 0.50, COUNTER_TOP + 0.015])
+
+
+@dataclass
+class Scene:
+    """Body ids in one PyBullet client."""
+
+    client: int
+    robot: int
+    drawers: int  # one multibody, link 0 = top tray, link 1 = bottom tray
+    statics: tuple[int, ...]
+    objects: dict[str, int]
+
+    @property
+    def p(self) -> Any:
+        return require("pybullet", "kitchen")
+
+
+def _box(p: Any, c: int, half: tuple[float, float, float], pos: tuple[float, float, float],
+         rgba: tuple[float, float, float, float], mass: float = 0.0) -> int:
+    col = p.createCollisionShape(p.GEOM_BOX, halfExtents=half, physicsClientId=c)
+    vis = p.createVisualShape(p.GEOM_BOX, halfExtents=half, rgbaColor=rgba, physicsClientId=c)
+    return int(p.createMultiBody(mass, col, vis, pos, physicsClientId=c))
+
+
+def build(objects: tuple[str, ...] = ("green", "sugar", "cracker")) -> Scene:
+    p = require("pybullet", "kitchen")
+    pd = require("pybullet_data", "kitchen")
+    c = p.connect(p.DIRECT)
+    p.setAdditionalSearchPath(pd.getDataPath(), physicsClientId=c)
+    wood, grey = (0.6, 0.45, 0.3, 1), (0.5, 0.5, 0.55, 1)
+    statics = [
+        _box(p, c, (0.7, 0.6, 0.005), (0.0, 0.3, -0.005), (0.8, 0.8, 0.8, 1)),  # floor
+        _box(p, c, (0.175, 0.275, COUNTER_TOP / 2), (-0.425, 0.725, COUNTER_TOP / 2), wood),  # left block
+        _box(p, c, (0.175, 0.275, COUNTER_TOP / 2), (0.425, 0.725, COUNTER_TOP / 2), wood),  # right block
+        _box(p, c, (0.25, 0.275, 0.02), (0.0, 0.725, COUNTER_TOP - 0.02), wood),  # top slab
+        _box(p, c, (0.25, 0.275, 0.01), (0.0, 0.725, 0.35), wood),  # divider
+        _box(p, c, (0.25, 0.275, 0.06), (0.0, 0.725, 0.06), wood),  # plinth
+        _box(p, c, (0.25, 0.01, COUNTER_TOP / 2), (0.0, 0.99, COUNTER_TOP / 2), wood),  # back
+        _box(p, c, (0.07, 0.07, 0.005), (0.38, 0.62, COUNTER_TOP + 0.005), (0.2, 0.2, 0.2, 1)),  # stove
+        _box(p, c, (0.015, 0.015, 0.015), tuple(BUTTON), (0.9, 0.1, 0.1, 1)),  # button
+        _box(p, c, (0.12, 0.12, BASE_Z / 2 - 0.005), (0.0, -0.05, BASE_Z / 2 - 0.005), grey),  # pedestal
+    ]
+    # drawers: two trays on prismatic joints along -y, as links of one multibody
+    tray_col = p.createCollisionShape(
+        p.GEOM_BOX, halfExtents=(0.2, 0.125, 0.01), physicsClientId=c,
+    )
+    front_col = p.createCollisionShape(p.GEOM_BOX, halfExtents=(0.22, 0.01, 0.12), physicsClientId=c)
+    tray_vis = p.createVisualShape(p.GEOM_BOX, halfExtents=(0.2, 0.125, 0.01),
+                                   rgbaColor=(0.75, 0.6, 0.4, 1), physicsClientId=c)
+    front_vis = p.createVisualShape(p.GEOM_BOX, halfExtents=(0.22, 0.01, 0.12),
+                                    rgbaColor=(0.55, 0.4, 0.25, 1), physicsClientId=c)
+    anchor = p.createCollisionShape(p.GEOM_SPHERE, radius=0.001, physicsClientId=c)
+    links_col, links_vis, pos = [], [], []
+    for d in DRAWERS:
+        links_col += [tray_col, front_col]
+        links_vis += [tray_vis, front_vis]
+        z = DRAWER_FLOOR[d] - 0.01
+        pos += [(0.0, FRONT_Y + 0.125, z), (0.0, FRONT_Y - 0.01, z + 0.08)]
+    n = len(links_col)
+    drawers = p.createMultiBody(
+        0, anchor, -1, (0, 0, 0),
+        linkMasses=[0.0] * n, linkCollisionShapeIndices=links_col, linkVisualShapeIndices=links_vis,
+        linkPositions=[pos[0], (0, -0.135, 0.09), pos[2], (0, -0.135, 0.09)],
+        linkOrientations=[(0, 0, 0, 1)] * n, linkInertialFramePositions=[(0, 0, 0)] * n,
+        linkInertialFrameOrientations=[(0, 0, 0, 1)] * n,
+        linkParentIndices=[0, 1, 0, 3],
+        linkJointTypes=[p.JOINT_PRISMATIC, p.JOINT_FIXED, p.JOINT_PRISMATIC, p.JOINT_FIXED],
+        linkJointAxis=[(0, -1, 0)] * n, physicsClientId=c,
+    )
+    robot = p.loadURDF("franka_panda/panda.urdf", (0.0, 0.0, BASE_Z), useFixedBase=True, physicsClientId=c)
+    objs = {}
+    for o in objects:
+        objs[o] = _box(p, c, SIZES[o], (0.0, 0.0, -1.0 - len(objs)), COLOURS[o])
+    sc = Scene(c, int(robot), int(drawers), tuple(statics), objs)
+    set_conf(sc, HOME)
+    return sc
+
+
+def set_conf(sc: Scene, q: tuple[float, ...]) -> None:
+    p = sc.p
+    p.resetBasePositionAndOrientation(sc.robot, (q[0], 0.0, BASE_Z), (0, 0, 0, 1), physicsClientId=sc.client)
+    for j, v in zip(ARM_JOINTS, q[1:], strict=True):
+        p.resetJointState(sc.robot, j, v, physicsClientId=sc.client)
+    for j in (9, 10):
+        p.resetJointState(sc.robot, j, 0.04, physicsClientId=sc.client)
+
+
+def set_drawer(sc: Scene, drawer: str, q: float) -> None:
+    link = 0 if drawer == "top" else 2
+    sc.p.resetJointState(sc.drawers, link, q, physicsClientId=sc.client)
+
+
+def set_object(sc: Scene, name: str, world: np.ndarray) -> None:
+    sc.p.resetBasePositionAndOrientation(sc.objects[name], tuple(float(v) for v in world), (0, 0, 0, 1),
+                                         physicsClientId=sc.client)
+
+
+def ee_position(sc: Scene) -> np.ndarray:
+    st = sc.p.getLinkState(sc.robot, EE_LINK, computeForwardKinematics=True, physicsClientId=sc.client)
+    return np.array(st[4])
+
+
+def camera_matrices(sc: Scene, width: int = 320, height: int = 240) -> tuple[Any, Any]:
+    p = sc.p
+    view = p.computeViewMatrix(tuple(CAMERA), tuple(CAMERA_TARGET), (0, 0, 1), physicsClientId=sc.client)
+    proj = p.computeProjectionMatrixFOV(60, width / height, 0.05, 5.0, physicsClientId=sc.client)
+    return view, proj
