@@ -45,7 +45,13 @@ def trial(task: str, index: int, variant: str, cap: float, seed: int = 0) -> dic
     strategy = strategy.__class__(**{**strategy.__dict__, "planner": strategy.planner.__class__(
         **{**strategy.planner.__dict__, "time_limit": cap, "max_nodes": 3000, "max_generator_values": 4})})
     pol = OnlinePolicy(ep.problem, ep.world, ep.belief, strategy, seed=index, reuse_budget=min(3.0, cap / 5))
-    m = pol.run()
+    try:
+        m = pol.run()
+    finally:
+        from nowplan.domains.kitchen.scene import close
+
+        close(ep.world.scene)
+        close(ep.belief.scene)
     return {"task": task, "index": index, "variant": variant, "outcome": m.outcome.value, "reason": m.reason,
             "planning_s": pol.planning_s, "actions": m.actions,
             "motion_calls": ep.belief.streams.calls["motion"]}

@@ -145,6 +145,14 @@ def build(objects: tuple[str, ...] = ("green", "sugar", "cracker")) -> Scene:
     return sc
 
 
+def close(sc: Scene) -> None:
+    """Disconnect the scene's PyBullet client (each holds its own copy of the meshes)."""
+    try:
+        sc.p.disconnect(physicsClientId=sc.client)
+    except Exception:  # noqa: BLE001 - already disconnected
+        pass
+
+
 def set_conf(sc: Scene, q: tuple[float, ...]) -> None:
     p = sc.p
     p.resetBasePositionAndOrientation(sc.robot, (q[0], 0.0, BASE_Z), (0, 0, 0, 1), physicsClientId=sc.client)
