@@ -42,7 +42,8 @@ test-all: $(STAMP) test-deps
 	$(BIN)/python -m pytest -m ''
 
 bench: $(STAMP)
-	$(BIN)/python benchmarks/flat_logistics.py
+	$(BIN)/python benchmarks/flat_logistics.py --time-limit 30 --seeds 0,1
+	$(BIN)/python benchmarks/summarize.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info src/*.egg-info

@@ -6,6 +6,8 @@ Writes benchmarks/results/flat_logistics.csv and .png.  Usage:
 
     .venv/bin/python benchmarks/flat_logistics.py [--time-limit 60] [--seeds 0,1] [--quick]
 
+nowplan-flat uses the defaults of `nowplan plan` (weighted A* with w = 2, no HPN
+shortcuts); nowplan-hpn uses the executive's defaults (A*, shortcuts on).
 Times are wall-clock seconds of planning only (for HPN: the sum over all the plans
 the executive made while solving the problem in a simulated world); cost is the
 number of actions of the plan (for HPN: actions executed).  Compare ratios within one
@@ -42,7 +44,9 @@ SIZES = [(2, 2, 1, 2), (2, 3, 1, 4), (3, 3, 1, 6), (4, 3, 2, 8), (5, 3, 2, 10), 
 def run_flat(dom: Path, prob: Path, limit: float) -> tuple[str, float, float | None]:
     p = load_pddl(dom, prob)
     t0 = time.perf_counter()
-    res = plan(p.domain, p.objects, p.init, p.goal, flat_levels(), PlannerConfig(time_limit=limit, max_nodes=10**7))
+    # the defaults of `nowplan plan`: weighted A* (w = 2), no HPN shortcuts
+    cfg = PlannerConfig(time_limit=limit, max_nodes=10**7, weight=2.0, serialization=False, monotonic=False)
+    res = plan(p.domain, p.objects, p.init, p.goal, flat_levels(), cfg)
     return res.status.value, time.perf_counter() - t0, float(len(res.plan)) if res.plan else None
 
 
