@@ -11,7 +11,10 @@ compares expected and observed models with the domain's distance
 plan library (:mod:`nowplan.acting.plan_library`) with its intermediate
 states.  When the domain registers its own planner (the seed's means-ends
 planner for shuffled pieces) the monitor makes every plan with it;
-otherwise it uses the regression planner, flat.
+otherwise it uses the regression planner, flat.  When no alternative can
+be planned and the belief offers ``reobserve()`` (a fresh look), the monitor
+calls it once and tries again, since an impossible model is often a
+misperceived one.
 
 Switches: ``monitor`` (the seed's rule), ``monitor-goal`` (always replan to
 the goal), ``monitor-restore`` (always restore), ``monitor-cost`` (cheapest
@@ -33,6 +36,8 @@ from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.monitor_repair import (
     Alternative, Candidate, MonitorConfig, MonitorStats, Repair, order_to_try,
 )
+
+__all__ = ["Monitor", "MonitorConfig", "default_config", "monitor_settings"]
 from nowplan.acting.monitor_support import (
     MonitorSupport, plan_from_actions, simulate, state_of, support_for, target_goal,
 )
@@ -114,16 +119,18 @@ class Monitor(Mechanism):
         if ex.goal_holds():
             ex.trace.emit("note", text=f"monitor: surprise (dm={dm:g}) but the goal holds")
             return
-        cand = self._closest(observed) if self.config.decision in ("rule", "cost") else None
-        dm1 = cand.distance if cand is not None else None
-        order = order_to_try(self.config, dm, dm1)
-        repairs: list[Repair] = []
-        for alt in order:
-            rep = self._make(alt, ex, f, expected, observed, cand)
-            if rep is not None:
-                repairs.append(rep)
-                if self.config.decision != "cost":
-                    break
+        order, repairs, dm1 = self._alternatives(ex, f, expected, observed, dm)
+        reobserve = getattr(ex.belief, "reobserve", None)
+        if not repairs and callable(reobserve):
+            # nothing can be planned from this model: perhaps it is misperceived; look once more
+            ex.trace.emit("note", text=f"monitor: no alternative could be planned (dm={dm:g}); observing again")
+            self.stats.reobservations += 1
+            reobserve()
+            observed = state_of(ex.belief)
+            dm = float(self.support.distance(expected, observed))
+            if dm == 0:
+                return
+            order, repairs, dm1 = self._alternatives(ex, f, expected, observed, dm)
         if not repairs:
             self.stats.unresolved += 1
             ex.trace.emit("note", text=f"monitor: no alternative could be planned (dm={dm:g}); "
@@ -134,6 +141,22 @@ class Monitor(Mechanism):
         if chosen.alternative is not order[0] and self.config.decision != "cost":
             self.stats.fallbacks += 1
         self._apply(ex, f, chosen, dm, dm1)
+
+    def _alternatives(
+        self, ex: Executive, f: Frame, expected: State, observed: State, dm: float,
+    ) -> tuple[list[Alternative], list[Repair], float | None]:
+        """The alternatives to try, the repairs that could be planned (one, or all for ``cost``), dm1."""
+        cand = self._closest(observed) if self.config.decision in ("rule", "cost") else None
+        dm1 = cand.distance if cand is not None else None
+        order = order_to_try(self.config, dm, dm1)
+        repairs: list[Repair] = []
+        for alt in order:
+            rep = self._make(alt, ex, f, expected, observed, cand)
+            if rep is not None:
+                repairs.append(rep)
+                if self.config.decision != "cost":
+                    break
+        return order, repairs, dm1
 
     # -- set-up and the library ----------------------------------------------------------
     def _setup(self, ex: Executive) -> None:

@@ -151,6 +151,7 @@ class MonitorStats:
     decisions: Counter[str] = field(default_factory=Counter)
     fallbacks: int = 0  # a chosen alternative could not be planned; a later one was used
     unresolved: int = 0  # no alternative could be planned; left to the executive
+    reobservations: int = 0  # fresh looks asked of the belief when nothing could be planned
     reuses: int = 0  # plans taken from the library for an exact (initial, goal) pair
     stored: int = 0
     estimated_cost: float = 0.0  # sum of the chosen repairs' accounted costs
@@ -163,6 +164,7 @@ class MonitorStats:
             "decisions": dict(sorted(self.decisions.items())),
             "fallbacks": self.fallbacks,
             "unresolved": self.unresolved,
+            "reobservations": self.reobservations,
             "reuses": self.reuses,
             "stored": self.stored,
             "estimated_cost": round(self.estimated_cost, 6),

@@ -98,6 +98,22 @@ class PiecesBelief(SymbolicBelief):
             self.on_look({"action": action, "observation": observation, "frames": frames,
                           "labels": labels, "expected": expected, "board": believed})
 
+    def reobserve(self) -> None:
+        """Look afresh, without a prediction: ``1 + relooks`` frames, each cell by majority."""
+        if self.relook is None:
+            return
+        frames = []
+        for _ in range(1 + self.relooks):
+            fid, img = self.relook()
+            frames.append((fid, self._see(img)))
+            self.log.relooks += 1
+        labels = self._apply_touch(vote([r for _, r in frames]))
+        for fid, rec in frames:
+            self.log.frames.append((fid, rec.labels))
+        self.log.updates.append((frames[-1][0], labels))
+        arm = self.board.arm
+        self.state = Board.of(self.geometry, {c: k for c, k in labels.items() if k != EMPTY}, arm).to_state()
+
     def _see(self, image: np.ndarray) -> Recognition:
         self.log.looks += 1
         return self.recognizer.recognize(image, self.geometry)
