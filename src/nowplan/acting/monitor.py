@@ -34,12 +34,20 @@ from typing import TYPE_CHECKING, Any
 
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.monitor_repair import (
-    Alternative, Candidate, MonitorConfig, MonitorStats, Repair, order_to_try,
+    Alternative,
+    Candidate,
+    MonitorConfig,
+    MonitorStats,
+    Repair,
+    order_to_try,
 )
-
-__all__ = ["Monitor", "MonitorConfig", "default_config", "monitor_settings"]
 from nowplan.acting.monitor_support import (
-    MonitorSupport, plan_from_actions, simulate, state_of, support_for, target_goal,
+    MonitorSupport,
+    plan_from_actions,
+    simulate,
+    state_of,
+    support_for,
+    target_goal,
 )
 from nowplan.acting.plan_library import PlanLibrary, StoredPlan, goal_key, state_key
 from nowplan.core.atoms import Goal, entails
@@ -51,6 +59,8 @@ from nowplan.planning.regression import plan as regression_plan
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame
     from nowplan.planning.plan import PlanStep
+
+__all__ = ["Monitor", "MonitorConfig", "default_config", "monitor_settings"]
 
 log = logging.getLogger(__name__)
 

@@ -12,7 +12,7 @@ makes its search too slow (see docs/pieces.md).
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from nowplan.acting.hpn import Executive
 from nowplan.acting.strategy import parse_strategy
@@ -71,9 +71,8 @@ def regression_run(task: PiecesProblem, hierarchical: bool = True, time_limit: f
         moves = sum(1 for a in res.plan.actions if a.name == "move_piece")
         return PlannerRun(name, True, res.plan.cost(), moves, res.cpu_time_s)
     world = SymbolicWorld(DOMAIN, prob.init, seed=seed)
-    strategy = parse_strategy("hpn", time_limit=time_limit)
-    strategy = type(strategy)(**{**strategy.__dict__,
-                                 "planner": PlannerConfig(time_limit=time_limit, seed=seed)})
+    strategy = replace(parse_strategy("hpn", time_limit=time_limit),
+                       planner=PlannerConfig(time_limit=time_limit, seed=seed))
     t0 = time.perf_counter()
     m = Executive(prob, world, SymbolicBelief(prob.init), strategy, seed=seed).run()
     ok = m.outcome.value == "reached" and DOMAIN.satisfies(world.state, prob.goal)

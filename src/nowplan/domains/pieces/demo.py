@@ -108,7 +108,6 @@ class _Recorder:
 
 
 def main(args: argparse.Namespace) -> int:
-    pil = require("PIL.Image", "vision")
     size = SIZES[args.size]
     task = generate(size, args.seed, f"pieces-{args.size}")
     rate = float(args.failure_prob)
@@ -138,7 +137,6 @@ def main(args: argparse.Namespace) -> int:
     durations = [1400] + [900] * (len(frames) - 2) + [2500] if len(frames) > 1 else [2500]
     frames[0].save(gif, save_all=True, append_images=frames[1:], duration=durations, loop=0,
                    optimize=False)
-    assert isinstance(frames[0], pil.Image)
     blog = ep.belief.log
     print(f"outcome: {'goal reached' if done else 'goal NOT reached'} ({metrics.outcome.value})")
     print(f"arm travel {ep.world.travel:.1f} cells, {ep.world.piece_moves} piece moves, "

@@ -26,6 +26,7 @@ import logging
 import sys
 import tempfile
 from collections import Counter
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -63,8 +64,8 @@ def run_episode_003(task: PiecesProblem, rate: float, seed: int, switch: str, re
     """One run; returns its measurements (travel from the true world, errors against the truth)."""
     ep = make_episode(task, seed, rate, rec=rec)
     world: PiecesWorld = ep.world
-    strategy = parse_strategy(f"hpn+{switch}", max_actions=400, time_limit=120.0)
-    strategy = type(strategy)(**{**strategy.__dict__, "planner": PlannerConfig(time_limit=10.0, seed=seed)})
+    strategy = replace(parse_strategy(f"hpn+{switch}", max_actions=400, time_limit=120.0),
+                       planner=PlannerConfig(time_limit=10.0, seed=seed))
     with monitor_settings(config):
         ex = Executive(ep.problem, world, ep.belief, strategy, seed=seed)
     m = ex.run()

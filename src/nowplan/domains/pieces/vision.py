@@ -34,7 +34,8 @@ SIDE = (CELL - 2 * INSET) // POOL
 
 def _grey(image: np.ndarray) -> np.ndarray:
     rgb = image.astype(np.float32)
-    return rgb[..., 0] * 0.299 + rgb[..., 1] * 0.587 + rgb[..., 2] * 0.114
+    grey: np.ndarray = rgb[..., 0] * 0.299 + rgb[..., 1] * 0.587 + rgb[..., 2] * 0.114
+    return grey
 
 
 def board_origin(image: np.ndarray, geometry: Geometry, shake: int = 3) -> tuple[int, int]:
@@ -149,7 +150,8 @@ def synthetic_cells(
     geometry = geometry or Geometry(6, 6)
     rng = random.Random(seed)
     camera = Camera(geometry, seed=rng.randrange(2**31), noise=noise)
-    xs, ys = [], []
+    xs: list[np.ndarray] = []
+    ys: list[int] = []
     for _ in range(frames):
         board = _random_board(geometry, rng, density)
         cells, x = segment(camera.grab(board), geometry)
