@@ -31,7 +31,7 @@ def test_demo_runs(capsys, tmp_path):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["run", "--domain", "nope"], "valid domains: logistics"),
+        (["run", "--domain", "nope"], "valid domains: "),
         (["run", "--domain", "logistics", "--scenario", "huge"], "valid scenarios:"),
         (["run", "--domain", "logistics", "--strategy", "zzz"], "valid strategies:"),
         (["run"], "give --domain NAME"),
