@@ -157,7 +157,7 @@ def test_local_sweep_on_logistics_and_summary(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["--domain", "nope"], "unknown domain 'nope'; valid domains: logistics"),
+        (["--domain", "nope"], "unknown domain 'nope'; valid domains: "),
         (["--scenario", "huge"], "unknown scenario 'huge' for domain 'logistics'; valid scenarios:"),
         (["--strategies", "hpn,bogus"], "unknown strategy 'bogus'; valid strategies:"),
         (["--seeds", "9-2"], "seed range '9-2' runs backwards"),
