@@ -137,11 +137,11 @@ def test_select_gap_moves_the_contained_step_before_the_continual_one():
     r = reorderer(s)
     ops = [act("close"), act("place", "x", "hall")]
     goal = Goal.of([atom("closed"), atom("inside", "x")])
-    goals = r.chain(ops, goal)
-    assert goals is not None and TOY.satisfies(s, goals[0])
+    ops, goals = r.chain(ops, goal)
+    assert TOY.satisfies(s, goals[0])
     new, new_goals = r.select_gap(ops, goals)
     assert [str(x) for x in new] == ["place(x, hall)", "close()"]
-    assert new_goals == r.valid(new, goal) and len(r.moves) == 1
+    assert (new, new_goals) == r.valid(new, goal) and len(r.moves) == 1
 
 
 def test_select_gap_does_not_move_when_the_result_is_invalid():
@@ -149,8 +149,7 @@ def test_select_gap_does_not_move_when_the_result_is_invalid():
     r = reorderer(s)
     ops = [act("close"), act("grab", "x"), act("stow", "x")]  # stow needs the grab before it
     goal = Goal.of([atom("closed"), atom("inside", "x")])
-    goals = r.chain(ops, goal)
-    assert goals is not None
+    ops, goals = r.chain(ops, goal)
     assert r.arrange(Subgoal((ops[0],), goals[1]), Subgoal((ops[2],), goals[3])) is Arrange.SECOND
     new, _ = r.select_gap(list(ops), goals)
     assert new == ops and not r.moves and r.validity_checks >= 1
@@ -158,7 +157,7 @@ def test_select_gap_does_not_move_when_the_result_is_invalid():
     s2 = State([*state(robot="door").atoms(), atom("have", "x")])
     r2 = reorderer(s2)
     ops2 = [act("close"), act("stow", "x")]
-    new2, _ = r2.select_gap(ops2, r2.chain(ops2, goal))
+    new2, _ = r2.select_gap(*r2.chain(ops2, goal))
     assert [str(x) for x in new2] == ["stow(x)", "close()"]
 
 
@@ -168,37 +167,57 @@ def test_select_gap_terminates_on_a_cyclic_preference():
     r = reorderer(s, always_second, max_moves=7)
     ops = [act("carry", "x", "hall"), act("carry", "y", "hall"), act("carry", "z", "hall")]
     goal = Goal.of([atom("carried", q) for q in "xyz"])
-    new, goals = r.select_gap(ops, r.chain(ops, goal))
+    new, goals = r.select_gap(*r.chain(ops, goal))
     assert len(r.moves) == 7 and sorted(map(str, new)) == sorted(map(str, ops))
-    assert r.valid(new, goal) == goals
+    assert r.valid(new, goal) == (new, goals)
 
 
 def test_select_parallel_ops_combines_up_to_the_complexity_limit():
     s = state(robot="yard", x="yard", y="hall", z="yard", w="yard")
-    r = reorderer(s, ResourceModel(), max_combined=3)
+    r = reorderer(s, ResourceModel(), max_combined=3, min_hidden_to_combine=1)
     ops = [act("carry", "x", "yard"), act("close"), act("carry", "y", "hall"),
            act("carry", "z", "yard"), act("carry", "w", "yard")]
     goal = Goal.of([atom("closed"), *(atom("carried", q) for q in "xyzw")])
-    goals = r.chain(ops, goal)
+    ops, goals = r.chain(ops, goal)
     new, new_goals, last = r.select_parallel_ops(ops, goals)
     assert last == 2  # three operators in the combined subgoal
     assert [x.name for x in new[:3]] == ["carry"] * 3 and str(new[3]) == "close()"
-    assert new_goals == r.valid(new, goal)
+    assert (new, new_goals) == r.valid(new, goal)
     combined = new_goals[last + 1]
     assert all(atom("carried", x.args[0]) in combined.atoms for x in new[:3])
 
 
+def test_steps_in_their_last_refinement_are_not_combined():
+    s = state(robot="yard", x="yard", z="yard")
+    r = reorderer(s, ResourceModel())  # default: two hidden criticality classes needed
+    ops, goals = r.chain([act("carry", "x", "yard"), act("carry", "z", "yard")],
+                         Goal.of([atom("carried", "x"), atom("carried", "z")]))
+    assert r.arrange(Subgoal((ops[0],), goals[1]), Subgoal((ops[1],), goals[2])) is Arrange.COMBINE
+    assert r.select_parallel_ops(ops, goals)[2] == 0
+
+
+def test_validity_drops_a_redundant_step_that_would_break_the_chain():
+    # carry(x) achieves nothing the goal needs and would undo obj_at(x, hall): it is dropped
+    s = state(robot="hall", x="hall", y="hall")
+    r = reorderer(s)
+    goal = Goal.of([atom("obj_at", "x", "hall"), atom("carried", "y")])
+    kept, goals = r.valid([act("carry", "y", "hall"), act("carry", "x", "hall")], goal)
+    assert [str(a) for a in kept] == ["carry(y, hall)"] and goals[-1] == goal
+    # a useful step whose regression fails still makes the plan invalid
+    assert r.valid([act("carry", "x", "hall")], Goal.of([atom("obj_at", "x", "hall"), atom("carried", "x")])) is None
+
+
 def test_select_parallel_ops_skips_a_combination_that_breaks_the_plan():
     s = state(robot="hall", x="hall", y="shelf", z="hall")
-    r = reorderer(s, ResourceModel(arrange=lambda s1, s2, bel, **kw: Arrange.COMBINE))
+    r = reorderer(s, ResourceModel(arrange=lambda s1, s2, bel, **kw: Arrange.COMBINE), min_hidden_to_combine=1)
     # stow(y) needs the grab before it, so it cannot join carry(x); carry(z) can
     ops = [act("carry", "x", "hall"), act("grab", "y"), act("stow", "y"), act("carry", "z", "hall")]
     goal = Goal.of([atom("carried", "x"), atom("carried", "z"), atom("inside", "y")])
-    goals = r.chain(ops, goal)
+    ops, goals = r.chain(ops, goal)
     new, new_goals, last = r.select_parallel_ops(list(ops), goals)
     assert last == 1
     assert [str(x) for x in new] == ["carry(x, hall)", "carry(z, hall)", "grab(y)", "stow(y)"]
-    assert new_goals == r.valid(new, goal)
+    assert (new, new_goals) == r.valid(new, goal)
 
 
 def test_highest_applicable_subgoal():
@@ -207,7 +226,7 @@ def test_highest_applicable_subgoal():
     s = state(robot="hall", x="hall")
     r = reorderer(s)
     ops = [act("goto", "door", "hall"), act("place", "x", "hall")]
-    goals = r.chain(ops, Goal.of([atom("inside", "x")]))
+    ops, goals = r.chain(ops, Goal.of([atom("inside", "x")]))
     p = Plan(tuple([PlanStep(None, goals[0]), *(PlanStep(op, g) for op, g in zip(ops, goals[1:]))]),
              LevelMap(TOY.top_level))
     assert highest_applicable(TOY, s, p) == 1  # the robot is already in the hall

@@ -9,15 +9,19 @@ It compares the resources each subgoal is estimated to use
 
 * a resource *continual* for one subgoal and *contained* for the other:
   the contained one first;
-* resources *contained* for both (or shareable ones the domain says cannot
-  really be shared): any order is acceptable, and we take the one that is
-  easier to reach from the current state first (greedy, seed Fig. 2);
+* resources *contained* for both: any order is acceptable, and we take the
+  one that is easier to reach from the current state first (greedy, seed
+  Fig. 2);
 * only *shareable* resources in common: combine;
 * nothing in common: keep the order.
 
-One addition of ours: a subgoal whose operator needs an effect of the other
-(an Unload needing its package's Load) is never combined with or moved
-before it — doing both "in parallel" has nothing to share.
+A domain may test, in the now, whether two subgoals can really share a
+resource (seed 002: a vehicle is shareable if everything fits): a resource
+that passes is shareable whatever its declared uses, one that fails is at
+best contained.  One addition of ours: a subgoal whose operator needs an
+effect of the other (an Unload needing its package's Load) is never
+combined with or moved before it — doing both "in parallel" has nothing to
+share.
 """
 
 from __future__ import annotations
@@ -108,6 +112,18 @@ def arrange(
     if not pairs:
         return Arrange.FIRST
     C, K, S = ResourceUse.CONTINUAL, ResourceUse.CONTAINED, ResourceUse.SHAREABLE
+    if model.shareable is not None:
+        # the domain's test, in the now: a resource that can be shared by these two is
+        # shareable whatever the declared uses; one that cannot is at best contained
+        tested = []
+        for r, a, b in pairs:
+            verdict = model.shareable(r, s1.actions, s2.actions, belief)
+            if verdict is True:
+                a, b = S, S
+            elif verdict is False:
+                a, b = (K if a is S else a), (K if b is S else b)
+            tested.append((r, a, b))
+        pairs = tested
     # continual for one, contained for the other: the contained one first
     second_first = any(a is C and b is K for _, a, b in pairs)
     first_first = any(a is K and b is C for _, a, b in pairs)
@@ -116,8 +132,6 @@ def arrange(
     if second_first or any(a is C and b is C for _, a, b in pairs):
         return Arrange.FIRST  # contradictory needs (DRP violated): leave the plan alone
     exclusive = any(a is not S or b is not S for _, a, b in pairs)
-    if not exclusive and model.shareable is not None:
-        exclusive = not all(model.shareable(r, s1.actions, s2.actions, belief) for r, _, _ in pairs)
     if exclusive:
         # any serialization is acceptable: the one easier to reach from here first
         e1 = sum(estimator.effort(a, levels) for a in s1.actions)

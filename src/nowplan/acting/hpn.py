@@ -155,6 +155,8 @@ class Executive:
             self._pending_reason = ""
         remaining = self.strategy.time_limit - (time.perf_counter() - self._t0)
         cfg = self.strategy.planner
+        for m in self.mechanisms:
+            cfg = m.planner_config(self, parent, goal, cfg) or cfg
         if remaining < cfg.time_limit:
             from dataclasses import replace
 

@@ -15,6 +15,8 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame
+    from nowplan.core.atoms import Goal
+    from nowplan.planning.regression import PlannerConfig
     from nowplan.planning.plan import PlanStep
 
 
@@ -36,6 +38,12 @@ class Mechanism:
 
     def after_push(self, ex: Executive, frame: Frame) -> None:
         """A new plan was pushed."""
+
+    def planner_config(
+        self, ex: Executive, parent: Frame, goal: Goal, config: PlannerConfig
+    ) -> PlannerConfig | None:
+        """The planner configuration for the plan about to be made for ``goal`` (None: keep)."""
+        return None
 
 
 MechanismFactory = Callable[[Any], Mechanism]  # Strategy -> Mechanism

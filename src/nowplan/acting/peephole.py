@@ -17,7 +17,10 @@ the now", with the current belief:
 rewrites the top frame's plan and returns the chosen step; for a combined
 step it returns the last operator with the joint subgoal, after lowering
 the level of the other combined operators in the frame's level map (Alg. 2,
-lines 11–13), so the executive pushes one plan for the joint subgoal.
+lines 11–13), so the executive pushes one plan for the joint subgoal.  That
+plan is searched without the random-serialization shortcut (the
+``planner_config`` hook): the subgoals were combined because they share
+resources, so their conjuncts are exactly the ones not to serialize.
 """
 
 from __future__ import annotations
@@ -46,6 +49,9 @@ log = logging.getLogger(__name__)
 @dataclass(frozen=True)
 class PeepholeConfig:
     max_combined: int = 4  # complexity limit: operators in one combined subgoal
+    # a step with fewer criticality classes still hidden is only reordered, never combined:
+    # its refinement is its last one, so there is no abstract structure left to share
+    min_hidden_to_combine: int = 2
     max_moves: int = 0  # moves per SelectGap call (0: the square of the plan length)
     estimate_search: PlannerConfig = field(
         default_factory=lambda: PlannerConfig(
@@ -84,25 +90,42 @@ class Reorderer:
         self.validity_checks = 0
 
     # -- validity ---------------------------------------------------------------
-    def chain(self, ops: Sequence[Action], goal: Goal) -> list[Goal] | None:
-        """Pre-images ``[g0, g1, …, gm = goal]`` of ``ops`` by regression, or None."""
-        goals = [goal]
-        g: Goal | None = goal
-        for a in reversed(ops):
-            g = preimage(g, a, self.levels.level(a), self.domain, self.drop)
-            if g is None:
-                return None
-            goals.append(g)
-        goals.reverse()
-        return goals
+    def chain(self, ops: Sequence[Action], goal: Goal) -> tuple[list[Action], list[Goal]] | None:
+        """Regress ``goal`` back through ``ops``: the kept operators and ``[g0, …, gm = goal]``.
 
-    def valid(self, ops: Sequence[Action], goal: Goal) -> list[Goal] | None:
-        """The recomputed pre-images if the plan ``ops`` is valid from the belief, else None."""
+        A step that achieves nothing the rest of the plan needs and whose
+        regression fails (a now-redundant step after a move, e.g. an
+        inference already made true) is dropped; any other failure is None.
+        """
+        rules = self.domain.rules
+        kept: list[Action] = []
+        goals = [goal]
+        g = goal
+        for a in reversed(ops):
+            pre = preimage(g, a, self.levels.level(a), self.domain, self.drop)
+            if pre is None:
+                table = g.by_key()
+                useful = any(
+                    (w := table.get(e.key)) is not None and rules.rule(w.predicate).entails(e.value, w.value)
+                    for e in a.effects()
+                )
+                if useful:
+                    return None
+                continue
+            kept.append(a)
+            g = pre
+            goals.append(g)
+        kept.reverse()
+        goals.reverse()
+        return kept, goals
+
+    def valid(self, ops: Sequence[Action], goal: Goal) -> tuple[list[Action], list[Goal]] | None:
+        """The plan (redundant steps dropped) and its pre-images if it is valid from the belief."""
         self.validity_checks += 1
-        goals = self.chain(ops, goal)
-        if goals is None or not self.domain.satisfies(self.belief, goals[0]):
+        res = self.chain(ops, goal)
+        if res is None or not self.domain.satisfies(self.belief, res[1][0]):
             return None
-        return goals
+        return res
 
     # -- the preference ---------------------------------------------------------
     def arrangeable(self, a: Action) -> bool:
@@ -110,6 +133,9 @@ class Reorderer:
             return False
         names = self.model.arrangeable
         return names is None or a.name in names
+
+    def combinable(self, a: Action) -> bool:
+        return self.arrangeable(a) and self.levels.describe(a) >= self.config.min_hidden_to_combine
 
     def arrange(self, s1: Subgoal, s2: Subgoal) -> Arrange:
         return arrange(
@@ -131,15 +157,25 @@ class Reorderer:
                 if self.arrange(first, Subgoal((ops[j],), goals[j + 1])) is not Arrange.SECOND:
                     continue
                 new = [ops[j], *ops[:j], *ops[j + 1 :]]
-                g = self.valid(new, goals[-1])
-                if g is not None:
+                res = self.valid(new, goals[-1])
+                if res is not None and res[0][:1] == new[:1]:
                     self.moves.append(f"moved {ops[j]} before {ops[0]}")
-                    ops, goals, moved = new, g, True
+                    self._dropped(new, res[0])
+                    ops, goals = res
+                    moved = True
                     moves += 1
                     break
             if not moved:
                 break
         return ops, goals
+
+    def _dropped(self, before: Sequence[Action], after: Sequence[Action]) -> None:
+        rest = list(after)
+        for a in before:
+            if a in rest:
+                rest.remove(a)
+            else:
+                self.moves.append(f"dropped {a} (no longer needed)")
 
     # -- Alg. 4 -------------------------------------------------------------------
     def select_parallel_ops(
@@ -147,18 +183,20 @@ class Reorderer:
     ) -> tuple[list[Action], list[Goal], int]:
         """Pull steps to combine next to the first; returns the plan and the last combined index."""
         last = 0
-        if not ops or not self.arrangeable(ops[0]):
+        if not ops or not self.combinable(ops[0]):
             return ops, goals, last
         j = 1
         while j < len(ops) and last + 1 < self.config.max_combined:
-            if self.arrangeable(ops[j]):
+            if self.combinable(ops[j]):
                 group = Subgoal(tuple(ops[: last + 1]), goals[last + 1])
                 if self.arrange(group, Subgoal((ops[j],), goals[j + 1])) is Arrange.COMBINE:
                     new = [*ops[: last + 1], ops[j], *ops[last + 1 : j], *ops[j + 1 :]]
-                    g = self.valid(new, goals[-1])
-                    if g is not None:
+                    res = self.valid(new, goals[-1])
+                    if res is not None and res[0][: last + 2] == new[: last + 2]:
                         self.moves.append(f"combined {ops[j]} with {group}")
-                        ops, goals = new, g
+                        self._dropped(new, res[0])
+                        j -= sum(1 for i in _dropped_positions(new, res[0]) if i <= j)
+                        ops, goals = res
                         last += 1
             j += 1
         return ops, goals, last
@@ -240,7 +278,27 @@ class Peephole(Mechanism):
             )
             log.info("peephole on plan %d: %s", frame.plan_id, "; ".join(r.moves))
         frame.i = k + 1 + last
+        frame.info["joint"] = frame.i if last > 0 else None
         return frame.plan.steps[frame.i]
+
+    def planner_config(
+        self, ex: Executive, parent: Frame, goal: Goal, config: PlannerConfig
+    ) -> PlannerConfig | None:
+        """Combined subgoals are planned jointly: no random serialization of their conjuncts."""
+        if parent.info.get("joint") is not None and parent.info.get("joint") == parent.i:
+            return replace(config, serialization=False)
+        return None
+
+
+def _dropped_positions(before: Sequence[Action], after: Sequence[Action]) -> list[int]:
+    """Positions of ``before`` missing from its subsequence ``after``."""
+    out, k = [], 0
+    for i, a in enumerate(before):
+        if k < len(after) and after[k] == a:
+            k += 1
+        else:
+            out.append(i)
+    return out
 
 
 def _permuted(labels: Sequence[int], before: Sequence[Action], after: Sequence[Action]) -> list[int]:

@@ -35,8 +35,9 @@ from nowplan.planning.regression import PlannerConfig, plan
 log = logging.getLogger(__name__)
 
 ResourceName = tuple[Any, ...]
-# (resource name, actions of the first subgoal, actions of the second, belief) -> may they share it?
-ShareableFn = Callable[[ResourceName, Sequence[Action], Sequence[Action], Any], bool]
+# (resource name, actions of the first subgoal, actions of the second, belief) -> can they share
+# it now (True), not (False), or no opinion (None: the declared uses decide)
+ShareableFn = Callable[[ResourceName, Sequence[Action], Sequence[Action], Any], "bool | None"]
 # two different resources that cannot be used at once (e.g. one vehicle at two stops)
 ClashFn = Callable[[ResourceName, ResourceName], bool]
 
@@ -51,8 +52,10 @@ class ResourceModel:
     ``orders`` gives the estimate order per operator name (default 0);
     ``arrangeable`` names the operators whose abstract steps the peephole
     optimizer may move or combine (``None``: every abstract step);
-    ``shareable`` is the domain's test that a shareable resource can really
-    be shared by two subgoals (for vehicles: does everything still fit);
+    ``shareable`` is the domain's test, in the now, whether two subgoals can
+    share a resource (for vehicles: does everything still fit); True makes
+    it shareable whatever the declared uses, False at best contained, None
+    leaves the declared uses;
     ``clash`` says that two distinct resources exclude each other.
     ``arrange`` replaces the rule-based ordering preference altogether.
     """

@@ -17,7 +17,7 @@ from nowplan.core.domain import Domain, Problem
 from nowplan.errors import ScenarioError
 
 # domain packages under nowplan.domains that register a DomainSpec when imported
-KNOWN_PACKAGES = ("logistics", "namo", "pieces", "kitchen")
+KNOWN_PACKAGES = ("logistics", "namo", "pieces", "kitchen", "marsupial")
 
 
 @dataclass

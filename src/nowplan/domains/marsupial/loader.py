@@ -1,0 +1,266 @@
+"""The loader's motion planner: A* over a cargo bay's configurations (seed 002 V-B).
+
+A configuration is a :class:`~nowplan.domains.marsupial.grid.Hold` with the
+package placed at the load anchor.  Its successors are the seed's robot
+operators, each of cost 1: ``LoaderMove`` (walk to a cell it can reach
+through free cells), ``LoaderGrasp`` (lift a neighbouring package) and
+``LoaderPlace`` (set the held package down on free cells next to the
+loader: in storage, exactly at the load anchor, or in the load region as a
+temporary buffer).  Placements are tried in the greedy packer's order of
+preference, which also breaks ties between equally cheap solutions, so
+stowed packages go towards the back and the sides.
+
+Three searches serve the domain's generators: *stow* (the vehicle packed),
+*fetch p* (``p`` alone at the load anchor, ready to unload) and *exact* (a
+given configuration, for regression through a path already found).  Found
+paths are cached, so regression from the end of a path back to the current
+configuration costs one search.
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import logging
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
+
+from nowplan.domains.marsupial.grid import (
+    STEPS,
+    Cell,
+    Door,
+    Hold,
+    adjacent,
+    cells,
+    door_status,
+    in_storage,
+    inside,
+    is_packed,
+    load_anchor,
+    occupancy,
+    placement_penalty,
+    reachable,
+)
+
+log = logging.getLogger(__name__)
+
+Config = tuple[Hold, Door]
+EPS = 1e-3  # weight of the packer's placement preference in the search cost
+MAX_PLACEMENTS = 6  # storage spots the loader walks towards per held package (best first)
+MAX_BUFFER = 2  # temporary spots in the load region it walks towards
+
+
+@dataclass(frozen=True)
+class Transition:
+    """One robot operator: ``kind`` is move/grasp/place, ``arg`` the target cell or package."""
+
+    kind: str
+    arg: object
+    before: Config
+    after: Config
+
+    @property
+    def door_before(self) -> str:
+        return door_status(*self.before)
+
+    @property
+    def door_after(self) -> str:
+        return door_status(*self.after)
+
+
+def spot_penalty(shape: str, anchor: Cell, rows: int, cols: int) -> float:
+    """Spots by the packer's preference; the load anchor first, the load-region buffer last."""
+    if anchor == load_anchor(cols):
+        return -1.0
+    pen = placement_penalty(shape, anchor, rows)
+    return pen if all(in_storage(c, rows, cols) for c in cells(shape, anchor)) else pen + 10.0 * cols
+
+
+def spots(hold: Hold, door: Door, shape: str) -> list[Cell]:
+    """Anchors where ``shape`` can be set down on free cells (the load anchor only if the door is free)."""
+    rows, cols = hold.rows, hold.cols
+    occ = occupancy(hold, door)
+    out = []
+    for r in range(rows):
+        for c in range(cols):
+            cs = cells(shape, (r, c))
+            if all(inside(x, rows, cols) and x not in occ and x != hold.loader for x in cs):
+                if (r, c) == load_anchor(cols) or not any(x == load_anchor(cols) for x in cs) or door is None:
+                    out.append((r, c))
+    return out
+
+
+def _set_down(hold: Hold, door: Door, anchor: Cell) -> Config:
+    assert hold.held is not None and hold.held_shape is not None
+    base = replace(hold, held=None, held_shape=None)
+    if anchor == load_anchor(hold.cols) and door is None:
+        return base, (hold.held, hold.held_shape)
+    return base.with_items([*hold.items, (hold.held, hold.held_shape, anchor)]), door
+
+
+def successors(conf: Config) -> list[tuple[Transition, float]]:
+    hold, door = conf
+    rows, cols = hold.rows, hold.cols
+    out: list[tuple[Transition, float]] = []
+    dist = reachable(hold, door)
+    if hold.held is None:
+        occ = occupancy(hold, door)
+        seen: set[str] = set()
+        for dr, dc in STEPS:  # lift a neighbouring package
+            q = occ.get((hold.loader[0] + dr, hold.loader[1] + dc))
+            if q is None or q in seen:
+                continue
+            seen.add(q)
+            if door is not None and q == door[0]:
+                after: Config = (replace(hold, held=q, held_shape=door[1]), None)
+            else:
+                shape = next(s for n, s, _ in hold.items if n == q)
+                after = (replace(hold.with_items(i for i in hold.items if i[0] != q), held=q, held_shape=shape), door)
+            out.append((Transition("grasp", q, conf, after), 1.0))
+        # walk next to a package, or out of the load region
+        near = {(r + dr, c + dc) for (r, c) in occ for dr, dc in STEPS}
+        targets = {x for x in dist if x in near and x != hold.loader}
+        parking = [x for x in dist if in_storage(x, rows, cols)]
+        if not in_storage(hold.loader, rows, cols) and parking:
+            targets.add(min(parking, key=lambda x: (dist[x], x)))
+        for x in sorted(targets):
+            out.append((Transition("move", x, conf, (replace(hold, loader=x), door)), 1.0))
+        return out
+    shape = hold.held_shape
+    assert shape is not None
+    ranked = sorted((spot_penalty(shape, a, rows, cols), a) for a in spots(hold, door, shape))
+    for pen, a in ranked:  # set it down next to the loader
+        if any(adjacent(hold.loader, x) for x in cells(shape, a)):
+            out.append((Transition("place", hold.held, conf, _set_down(hold, door, a)), 1.0 + EPS * max(pen, 0.0)))
+    # walk towards the best spots (each from its nearest neighbouring cell)
+    stores = [a for p, a in ranked if p < 10.0 * cols][:MAX_PLACEMENTS]
+    buffers = [a for p, a in ranked if p >= 10.0 * cols][:MAX_BUFFER]
+    targets: set[Cell] = set()
+    for a in stores + buffers:
+        cs = set(cells(shape, a))
+        stand = [x for x in dist if x not in cs and any(adjacent(x, y) for y in cs)]
+        if stand and hold.loader not in stand:
+            targets.add(min(stand, key=lambda x: (dist[x], x)))
+    for x in sorted(targets):
+        out.append((Transition("move", x, conf, (replace(hold, loader=x), door)), 1.0))
+    return out
+
+
+Goal = Callable[[Config], bool]
+Heuristic = Callable[[Config], float]
+
+
+def stow_goal(conf: Config) -> bool:
+    return is_packed(*conf)
+
+
+def stow_h(conf: Config) -> float:
+    hold, door = conf
+    rows, cols = hold.rows, hold.cols
+    h = 2.0 if door is not None else 0.0
+    h += 1.0 if hold.held is not None else 0.0
+    h += sum(2.0 for _, s, a in hold.items if not all(in_storage(c, rows, cols) for c in cells(s, a)))
+    if h == 0.0 and not in_storage(hold.loader, rows, cols):
+        h = 1.0
+    return h
+
+
+def fetch_goal(pkg: str) -> Goal:
+    return lambda conf: conf[0].held is None and door_status(*conf) == pkg
+
+
+def fetch_h(pkg: str) -> Heuristic:
+    def h(conf: Config) -> float:
+        hold, door = conf
+        rows, cols = hold.rows, hold.cols
+        blocking = sum(
+            2.0 for n, s, a in hold.items
+            if n != pkg and not all(in_storage(c, rows, cols) for c in cells(s, a))
+        )
+        if door is not None and door[0] == pkg:
+            return blocking + (0.0 if door_status(hold, door) == pkg and hold.held is None else 1.0)
+        return blocking + (2.0 if door is not None else 0.0) + (1.0 if hold.held == pkg else 2.0)
+
+    return h
+
+
+def exact_goal(target: Hold, status: str | None) -> Goal:
+    return lambda conf: conf[0] == target and (status is None or door_status(*conf) == status)
+
+
+def search(
+    start: Config, goal: Goal, h: Heuristic, max_nodes: int = 20_000, weight: float = 1.0
+) -> list[Transition] | None:
+    """Weighted A* over configurations: a cheap operator sequence reaching ``goal``, or None."""
+    counter = itertools.count()
+    frontier: list[tuple[float, int, Config]] = [(h(start), next(counter), start)]
+    best: dict[Config, float] = {start: 0.0}
+    parent: dict[Config, Transition | None] = {start: None}
+    closed: set[Config] = set()
+    while frontier:
+        _, _, conf = heapq.heappop(frontier)
+        if conf in closed:
+            continue
+        if goal(conf):
+            path: list[Transition] = []
+            cur = conf
+            while parent[cur] is not None:
+                t = parent[cur]
+                assert t is not None
+                path.append(t)
+                cur = t.before
+            path.reverse()
+            return path
+        closed.add(conf)
+        if len(closed) > max_nodes:
+            log.info("loader search gave up after %d configurations", max_nodes)
+            return None
+        g = best[conf]
+        for t, cost in successors(conf):
+            nxt = t.after
+            ng = g + cost
+            if nxt in closed or ng >= best.get(nxt, float("inf")):
+                continue
+            best[nxt] = ng
+            parent[nxt] = t
+            heapq.heappush(frontier, (ng + weight * h(nxt), next(counter), nxt))
+    return None
+
+
+class PathCache:
+    """Paths found from each start configuration, so regression can walk back along them."""
+
+    def __init__(self, limit: int = 4096) -> None:
+        self.limit = limit
+        self._paths: dict[tuple[Config, str], list[Transition] | None] = {}
+        self.searches = 0
+
+    def path(self, start: Config, mode: str, goal: Goal, h: Heuristic) -> list[Transition] | None:
+        key = (start, mode)
+        if key not in self._paths:
+            if len(self._paths) >= self.limit:
+                self._paths.clear()
+            self.searches += 1
+            self._paths[key] = search(start, goal, h)
+        return self._paths[key]
+
+    def into(self, start: Config, target: Hold, status: str | None) -> Transition | None:
+        """The transition of a known path from ``start`` that ends in ``target``."""
+        for (s, _), p in self._paths.items():
+            if s != start or not p:
+                continue
+            for t in p:
+                if t.after[0] == target and (status is None or t.door_after == status):
+                    return t
+        p = self.path(start, f"exact:{target}:{status}", exact_goal(target, status), lambda c: 0.0)
+        return p[-1] if p else None
+
+
+CACHE = PathCache()
+
+
+def door_of(status: str, shapes: Mapping[str, str]) -> Door:
+    from nowplan.domains.marsupial.grid import door_package
+
+    pkg = door_package(status)
+    return (pkg, shapes[pkg]) if pkg is not None else None

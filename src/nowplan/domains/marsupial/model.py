@@ -1,0 +1,327 @@
+"""The marsupial logistics domain (seed 002 V-A and appendix) in the core language.
+
+Fluents: ``at(x, l)`` (a package on the ground or a vehicle at a location),
+``in(p, v)``, the derived ``same_city(p, v)`` (a test: ``p`` is in ``v`` or
+lies at a location ``v`` reaches), and per vehicle ``door(v)`` (what is in
+its load region: ``none``, a package ready to unload, or ``busy``),
+``cargo(v)`` (the whole cargo bay, a :class:`~.grid.Hold`) and ``packed(v)``.
+
+Criticalities (a precondition is kept at level ``i`` when its criticality is
+above ``i``; the top level is 4):
+
+====  =========================================================================
+ 5    where packages are: ``at(p, l)`` and ``same_city(p, v)`` for Load,
+      ``in(p, v)`` for Unload, ``at(p, l)`` for SameCity; static facts; a
+      Travel's start; the exact bay for robot operators and Pack
+ 3    ``at(v, l)`` for Load and Unload: where vehicles must be
+ 2    ``door(v)`` for Load (free) and Unload (the package), ``packed(v)`` for Travel
+====  =========================================================================
+
+So the top level plans each package's route as Loads and Unloads (with a
+SameCity inference wherever a package changes vehicle); the next level adds
+the Travels; the last one the loader's work in the cargo bay, which a
+generator plans with A* over the grid (:mod:`.loader`).  A package's place
+is never hidden at a level where its vehicle's is visible: otherwise the
+planner could "teleport" a package with a cheap abstract Unload instead of
+refining the step it was given.  Costs: vehicle operators 10, robot
+operators 1, inference operators 0.  Resources (seed 002 III-C, V-B): Load
+and Unload use their vehicle and its stop (shareable) and the vehicle's
+space — continually for a Load (the package takes room as long as it is
+in), contained for an Unload (room is given back); the domain's test makes
+vehicle and space shareable whenever the greedy packer fits everything, so
+loads are combined while they fit and an unload goes before a load that
+would not fit.  Robot operators use the loader and the load region.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+from nowplan.acting.resources import ResourceModel, register_resource_model
+from nowplan.core.atoms import Atom, Var, atom
+from nowplan.core.domain import Domain, Predicate
+from nowplan.core.operators import Action, Generator, Operator, Precondition, Resource, ResourceUse
+from nowplan.domains.marsupial import loader as lp
+from nowplan.domains.marsupial.grid import NONE, Hold, can_share, door_package, is_packed
+
+NAME = "marsupial"
+VEHICLE_COST, ROBOT_COST, INFERENCE_COST = 10.0, 1.0, 0.0
+PKG, VEH, BAY = 5, 3, 2  # criticality classes (see the module docstring)
+
+p, v, l, a, b = (Var(n) for n in ("p", "v", "l", "a", "b"))
+L1, L2, D1, D2, C, L = (Var(n) for n in ("L1", "L2", "d1", "d2", "c", "L"))
+SH, CT, CN = ResourceUse.SHAREABLE, ResourceUse.CONTAINED, ResourceUse.CONTINUAL
+
+TYPES = {"package": None, "vehicle": None, "truck": "vehicle", "plane": "vehicle", "location": None}
+
+
+def _pre(x: Atom, crit: int) -> Precondition:
+    return Precondition(x, crit)
+
+
+# -- the derived fluent ------------------------------------------------------------------
+
+
+def same_city_holds(belief: Any, args: tuple[Any, ...], value: Any) -> bool:
+    """``same_city(p, v)``: ``p`` is inside ``v`` or on the ground where ``v`` can go."""
+    pkg, veh = args
+    truth = bool(belief.value(("in", (pkg, veh))))
+    if not truth:
+        truth = any(x[0] == pkg and belief.value(("reachable", (x[1], veh))) for x in belief.facts("at"))
+    return truth == bool(value)
+
+
+# -- generators: the bay's configuration from the robot's motion planner -------------------------
+
+
+def _bay(belief: Any, veh: str) -> lp.Config:
+    hold = belief.value(("cargo", (veh,)))
+    shapes = dict(belief.facts("shape"))
+    return hold, lp.door_of(str(belief.value(("door", (veh,)))), shapes)
+
+
+def _transition(kind: str, goal: Any, belief: Any, veh: str) -> lp.Transition | None:
+    """The last robot operator towards what ``goal`` asks of ``veh``'s bay, from the belief."""
+    table = goal.by_key()
+    start = _bay(belief, veh)
+    want_cargo = table.get(("cargo", (veh,)))
+    want_door = table.get(("door", (veh,)))
+    t: lp.Transition | None = None
+    if want_cargo is not None:
+        status = str(want_door.value) if want_door is not None else None
+        t = lp.CACHE.into(start, want_cargo.value, status)
+    elif want_door is not None:
+        target = str(want_door.value)
+        pkg = door_package(target)
+        if target == NONE:
+            path = lp.CACHE.path(start, "stow", lp.stow_goal, lp.stow_h)
+        elif pkg is not None and pkg == target:
+            path = lp.CACHE.path(start, f"fetch:{pkg}", lp.fetch_goal(pkg), lp.fetch_h(pkg))
+        else:
+            path = None
+        t = path[-1] if path else None
+    if t is None or t.kind != kind:
+        return None
+    return t
+
+
+def _robot_gen(kind: str, arg: Var) -> Generator:
+    def fn(bind: Mapping[Var, Any], goal: Any, belief: Any, context: Any) -> Iterator[dict[Var, Any]]:
+        veh = bind.get(v)
+        if veh is None or isinstance(veh, Var):
+            return
+        t = _transition(kind, goal, belief, str(veh))
+        if t is not None:
+            yield {arg: t.arg, L1: t.before[0], L2: t.after[0], D1: t.door_before, D2: t.door_after}
+
+    return Generator(f"loader_{kind}", (arg, L1, L2, D1, D2), fn, (v,))
+
+
+def _pack_gen(bind: Mapping[Var, Any], goal: Any, belief: Any, context: Any) -> Iterator[dict[Var, Any]]:
+    veh = bind.get(v)
+    if veh is None or isinstance(veh, Var):
+        return
+    start = _bay(belief, str(veh))
+    if is_packed(*start):
+        yield {L: start[0]}
+        return
+    path = lp.CACHE.path(start, "stow", lp.stow_goal, lp.stow_h)
+    if path:
+        yield {L: path[-1].after[0]}
+
+
+# -- operators -------------------------------------------------------------------------------
+
+
+def _robot(name: str, arg: Var, arg_type: str | None) -> Operator:
+    return Operator(
+        name, (v, arg, L1, L2, D1, D2),
+        (_pre(atom("cargo", v, value=L1), PKG), _pre(atom("door", v, value=D1), PKG)),
+        (atom("cargo", v, value=L2), atom("door", v, value=D2), atom("packed", v, value=False)),
+        cost=ROBOT_COST, param_types=("vehicle", arg_type, None, None, None, None),
+        resources=(Resource(("loader", v), CT), Resource(("load_region", v), CT)),
+        generators=(_robot_gen(name.split("_", 1)[1], arg),),
+    )
+
+
+def operators(where: Where) -> tuple[Operator, ...]:
+    """The operators; Load and SameCity choose their location with ``where`` (in the now)."""
+    return (
+        Operator(
+            "load", (p, v, l),
+            (_pre(atom("reachable", l, v), PKG), _pre(atom("same_city", p, v), PKG), _pre(atom("at", p, l), PKG),
+             _pre(atom("at", v, l), VEH), _pre(atom("door", v, value=NONE), BAY)),
+            (atom("in", p, v), atom("at", p, l, value=False), atom("door", v, value=p),
+             atom("packed", v, value=False)),
+            cost=VEHICLE_COST, param_types=("package", "vehicle", "location"),
+            resources=(Resource(("vehicle", v), SH), Resource(("stop", v, l), SH), Resource(("space", v), CN)),
+            generators=(Generator("load_place", (l,), where.load_place, (p, v)),),
+        ),
+        Operator(
+            "unload", (p, v, l),
+            (_pre(atom("reachable", l, v), PKG), _pre(atom("in", p, v), PKG), _pre(atom("at", v, l), VEH),
+             _pre(atom("door", v, value=p), BAY)),
+            (atom("at", p, l), atom("in", p, v, value=False), atom("door", v, value=NONE)),
+            cost=VEHICLE_COST, param_types=("package", "vehicle", "location"),
+            resources=(Resource(("vehicle", v), SH), Resource(("stop", v, l), SH), Resource(("space", v), CT)),
+        ),
+        Operator(
+            "travel", (v, a, b),
+            (_pre(atom("connected", a, b, v), PKG), _pre(atom("at", v, a), PKG), _pre(atom("packed", v), BAY)),
+            (atom("at", v, b), atom("at", v, a, value=False)),
+            cost=VEHICLE_COST, param_types=("vehicle", "location", "location"),
+            resources=(Resource(("vehicle", v), SH), Resource(("stop", v, b), SH)),
+        ),
+        _robot("loader_move", C, None),
+        _robot("loader_grasp", p, "package"),
+        _robot("loader_place", p, "package"),
+        Operator(
+            "same_city", (p, v, l),
+            (_pre(atom("reachable", l, v), PKG), _pre(atom("at", p, l), PKG)),
+            (atom("same_city", p, v),),
+            cost=INFERENCE_COST, param_types=("package", "vehicle", "location"),
+            generators=(Generator("same_city_place", (l,), where.same_city_place, (p, v)),),
+        ),
+        Operator(
+            "pack", (v, L),
+            (_pre(atom("cargo", v, value=L), PKG), _pre(atom("door", v, value=NONE), PKG)),
+            (atom("packed", v),),
+            cost=INFERENCE_COST, param_types=("vehicle", None),
+            resources=(Resource(("storage", v), CT),),
+            generators=(Generator("pack", (L,), _pack_gen, (v,)),),
+        ),
+    )
+
+PREDICATES = {
+    "at": Predicate("at", 2, (None, "location")),
+    "in": Predicate("in", 2, ("package", "vehicle")),
+    "same_city": Predicate("same_city", 2, ("package", "vehicle"), test=same_city_holds),
+    "reachable": Predicate("reachable", 2, ("location", "vehicle")),
+    "connected": Predicate("connected", 3, ("location", "location", "vehicle")),
+    "shape": Predicate("shape", 2, ("package", None)),
+    "door": Predicate("door", 1, ("vehicle",), boolean=False),
+    "cargo": Predicate("cargo", 1, ("vehicle",), boolean=False),
+    "packed": Predicate("packed", 1, ("vehicle",)),
+}
+
+
+class Where:
+    """The "choose" of Load and SameCity (seed 002 appendix), decided in the now.
+
+    A package is loaded where it lies if the vehicle can go there; otherwise
+    it must pass through an airport: the vehicle's own for a truck, the one
+    of the package's present city for the plane.  This keeps the abstract
+    search to one location per Load instead of every place of the city.
+    """
+
+    def __init__(self, reach: Mapping[str, frozenset[str]], plane: str) -> None:
+        self.reach = reach
+        self.plane = plane
+        airports = reach.get(plane, frozenset())
+        self.airport_of: dict[str, str] = {}
+        for veh, places in reach.items():
+            if veh != plane:
+                ap = next((x for x in places if x in airports), None)
+                for x in places:
+                    if ap is not None:
+                        self.airport_of[x] = ap
+
+    def place_now(self, belief: Any, pkg: str) -> str | None:
+        """Where the package is (or the place of the vehicle carrying it)."""
+        for args in belief.facts("at"):
+            if args[0] == pkg:
+                return str(args[1])
+        for args in belief.facts("in"):
+            if args[0] == pkg:
+                return self.place_now(belief, str(args[1]))
+        return None
+
+    def choose(self, pkg: str, veh: str, goal: Any, belief: Any) -> list[str]:
+        reach = self.reach.get(veh, frozenset())
+        wanted = [str(a.args[1]) for a in goal.atoms if a.predicate == "at" and a.args[0] == pkg
+                  and a.value is True and a.args[1] in reach]
+        if wanted:
+            return wanted
+        now = self.place_now(belief, pkg)
+        if now is None:
+            return sorted(reach)
+        if now in reach:
+            return [now]
+        if veh == self.plane:
+            return [self.airport_of[now]] if now in self.airport_of else sorted(reach)
+        return sorted(x for x in reach if x in self.reach.get(self.plane, frozenset()))
+
+    def load_place(self, bind: Mapping[Var, Any], goal: Any, belief: Any, ctx: Any) -> Iterator[dict[Var, Any]]:
+        pkg, veh = bind.get(p), bind.get(v)
+        if pkg is None or veh is None or isinstance(pkg, Var) or isinstance(veh, Var):
+            return
+        now = self.place_now(belief, str(pkg))
+        reach = self.reach.get(str(veh), frozenset())
+        places = [now] if now in reach else self.choose(str(pkg), str(veh), goal, belief)
+        for x in places:
+            yield {l: x}
+
+    def same_city_place(
+        self, bind: Mapping[Var, Any], goal: Any, belief: Any, ctx: Any
+    ) -> Iterator[dict[Var, Any]]:
+        pkg, veh = bind.get(p), bind.get(v)
+        if pkg is None or veh is None or isinstance(pkg, Var) or isinstance(veh, Var):
+            return
+        for x in self.choose(str(pkg), str(veh), goal, belief):
+            yield {l: x}
+
+
+def make_domain(reach: Mapping[str, frozenset[str]], plane: str = "plane") -> Domain:
+    """The domain for one map: ``reach[v]`` are the locations vehicle ``v`` can visit."""
+
+    def one_place(x: Atom, y: Atom) -> bool:
+        return (
+            x.predicate in ("at", "in") and y.predicate in ("at", "in") and x.args[0] == y.args[0]
+            and x.value is True and y.value is True and x.key != y.key
+        )
+
+    def city(x: Atom, y: Atom) -> bool:
+        """``same_city(p, v)`` is false once ``p`` is in another vehicle or where ``v`` cannot go."""
+        if x.predicate != "same_city" or x.value is not True or y.value is not True:
+            return False
+        pkg, veh = x.args
+        if y.predicate == "in" and y.args[0] == pkg:
+            return y.args[1] != veh
+        if y.predicate == "at" and y.args[0] == pkg:
+            return y.args[1] not in reach.get(str(veh), frozenset())
+        return False
+
+    return Domain(NAME, PREDICATES, operators(Where(reach, plane)), TYPES, conflicts=(one_place, city))
+
+
+# -- the ordering preference's resources ---------------------------------------------------------
+
+
+def _packages_for(veh: str, actions: tuple[Action, ...] | list[Action]) -> set[str]:
+    return {
+        str(x.args[0]) for x in actions if x.name in ("load", "unload") and x.args[1] == veh
+    }
+
+
+def vehicle_shareable(resource: tuple[Any, ...], first: Any, second: Any, belief: Any) -> bool | None:
+    """A vehicle (and its space) is shareable by two subgoals if everything they move in it can be packed."""
+    if resource[0] not in ("vehicle", "space"):
+        return None
+    veh = str(resource[1])
+    hold, door = _bay(belief, veh)
+    if not isinstance(hold, Hold):
+        return None
+    shapes = dict(belief.facts("shape"))
+    want = {x: shapes[x] for x in _packages_for(veh, [*first, *second]) if x in shapes}
+    return can_share(hold, door, want)
+
+
+RESOURCES = register_resource_model(
+    NAME,
+    ResourceModel(
+        orders={"load": 1, "same_city": 1, "unload": 1},
+        arrangeable=frozenset({"load", "unload", "same_city"}),
+        shareable=vehicle_shareable,
+    ),
+)
