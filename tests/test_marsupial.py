@@ -1,0 +1,259 @@
+"""Marsupial logistics: cargo-bay geometry, the loader's planner, problems, and executed runs."""
+
+from __future__ import annotations
+
+from collections import deque
+
+import pytest
+
+from nowplan.acting.metrics import Outcome
+from nowplan.acting.run import run_episode
+from nowplan.acting.strategy import parse_strategy
+from nowplan.domains.marsupial import loader as lp
+from nowplan.domains.marsupial.grid import (
+    NONE,
+    SHAPES,
+    Hold,
+    can_share,
+    cells,
+    door_package,
+    door_status,
+    greedy_pack,
+    in_storage,
+    is_packed,
+    load_anchor,
+)
+from nowplan.domains.marsupial.model import vehicle_shareable
+from nowplan.domains.marsupial.problems import LAYOUTS, REGIMES, ff_instance, generate, make_map, roads
+from nowplan.domains.marsupial.scenarios import episode
+from nowplan.domains.registry import get_domain
+
+# ------------------------------------------------------------------ an independent geometry check
+
+
+def _occupied(hold: Hold, door) -> dict:
+    occ = {}
+    for name, shape, anchor in hold.items:
+        for c in cells(shape, anchor):
+            assert c not in occ, f"{name} overlaps {occ[c]} at {c}"
+            assert 0 <= c[0] < hold.rows and 0 <= c[1] < hold.cols, f"{name} outside the bay"
+            occ[c] = name
+    if door is not None:
+        for c in cells(door[1], load_anchor(hold.cols)):
+            assert c not in occ
+            occ[c] = door[0]
+    return occ
+
+
+def legal(t: lp.Transition) -> None:
+    """Check one robot operator from first principles (not with the planner's successor code)."""
+    (h1, d1), (h2, d2) = t.before, t.after
+    occ1, occ2 = _occupied(h1, d1), _occupied(h2, d2)
+    assert h1.loader not in occ1 and h2.loader not in occ2
+    near = lambda x, cs: any(abs(x[0] - c[0]) + abs(x[1] - c[1]) == 1 for c in cs)  # noqa: E731
+    if t.kind == "move":
+        assert (h1.items, h1.held, d1) == (h2.items, h2.held, d2)
+        seen, todo = {h1.loader}, deque([h1.loader])
+        while todo:
+            x = todo.popleft()
+            for y in ((x[0] + 1, x[1]), (x[0] - 1, x[1]), (x[0], x[1] + 1), (x[0], x[1] - 1)):
+                if y not in seen and y not in occ1 and 0 <= y[0] < h1.rows and 0 <= y[1] < h1.cols:
+                    seen.add(y)
+                    todo.append(y)
+        assert h2.loader in seen, "no free path for the loader"
+    elif t.kind == "grasp":
+        assert h1.held is None and h2.held == t.arg and h1.loader == h2.loader
+        assert near(h1.loader, [c for c, n in occ1.items() if n == t.arg])
+        assert t.arg not in occ2
+    elif t.kind == "place":
+        assert h1.held == t.arg and h2.held is None and h1.loader == h2.loader
+        placed = [c for c, n in occ2.items() if n == t.arg]
+        assert placed and near(h1.loader, placed) and not any(c in occ1 for c in placed)
+    else:
+        raise AssertionError(f"unknown robot operator {t.kind}")
+
+
+# ------------------------------------------------------------------ geometry and the packer
+
+
+def test_shapes_fit_the_load_region():
+    for shape, cs in SHAPES.items():
+        assert max(c for _, c in cs) <= 1 and max(r for r, _ in cs) <= 2, shape
+        assert all(not in_storage(c, 3, 6) for c in cells(shape, load_anchor(6)))
+
+
+def test_door_status_and_packed():
+    h = Hold.empty(3, 6)
+    assert door_status(h, None) == NONE and is_packed(h, None)
+    assert door_status(h, ("p1", "box")) == "p1" and not is_packed(h, ("p1", "box"))
+    inside = Hold(3, 6, (), (1, 5))  # the loader in the load region
+    assert door_status(inside, None) == "busy" and door_status(inside, ("p1", "pole")) == "busy:p1"
+    assert door_package("busy:p1") == "p1" and door_package(NONE) is None
+
+
+def test_greedy_packer_goes_back_then_to_the_sides():
+    anchors = greedy_pack(4, 8, [], ["dot", "dot"])
+    assert anchors == [(0, 0), (3, 0)]
+    assert greedy_pack(3, 6, [], ["box", "box", "box"]) is None  # 12 cells > 12 - margin
+
+
+def test_shareability_follows_the_packer():
+    h = Hold.empty(3, 6)
+    assert can_share(h, None, {"a": "box", "b": "ell"})
+    assert not can_share(h, None, {"a": "box", "b": "box", "c": "tall"})
+    full = h.with_items([("a", "box", (0, 0)), ("b", "box", (0, 2))])
+    assert not can_share(full, None, {"c": "tall"}) and can_share(full, None, {"c": "dot"})
+
+
+# ------------------------------------------------------------------ the loader's planner
+
+
+def test_stow_then_fetch_with_legal_moves():
+    conf: lp.Config = (Hold.empty(4, 8), None)
+    for i, shape in enumerate(["box", "ell", "tall", "bar", "dot"]):
+        conf = (conf[0], (f"p{i}", shape))
+        path = lp.search(conf, lp.stow_goal, lp.stow_h)
+        assert path, f"cannot stow p{i}"
+        for t in path:
+            legal(t)
+        conf = path[-1].after
+        assert is_packed(*conf)
+    path = lp.search(conf, lp.fetch_goal("p0"), lp.fetch_h("p0"))
+    assert path
+    for t in path:
+        legal(t)
+    assert door_status(*path[-1].after) == "p0"
+
+
+def test_cache_walks_back_along_a_path():
+    cache = lp.PathCache()
+    start: lp.Config = (Hold.empty(3, 6), ("p0", "ell"))
+    path = cache.path(start, "stow", lp.stow_goal, lp.stow_h)
+    assert path and cache.searches == 1
+    mid = path[1]
+    assert cache.into(start, mid.after[0], mid.door_after) == mid and cache.searches == 1
+
+
+# ------------------------------------------------------------------ problems
+
+
+@pytest.mark.parametrize("layout,n_roads", [("circular", 5), ("linear", 4), ("radial", 4), ("connected", 10)])
+def test_layouts(layout, n_roads):
+    import random
+
+    places = ("ap", "a", "b", "c", "d")
+    rs = roads(places, layout, random.Random(0))
+    assert len(rs) == n_roads
+    if layout == "radial":
+        assert all("ap" in r for r in rs)
+
+
+@pytest.mark.parametrize("regime", sorted(REGIMES))
+def test_generator_regimes_and_seeding(regime):
+    prob, spec = generate(regime, 6, 3)
+    again, _ = generate(regime, 6, 3)
+    assert prob.goal == again.goal and prob.init == again.init
+    assert len(spec.cities) == 5 and all(len(c.places) == 5 for c in spec.cities)
+    assert all(c.layout in LAYOUTS for c in spec.cities)
+    origins = {a.args[1] for a in prob.init.atoms()
+               if a.predicate == "at" and prob.objects.get(a.args[0]) == "package"}
+    dests = {a.args[1] for a in prob.goal}
+    assert (len(origins) == 1) == (regime in ("single", "dests"))
+    assert (len(dests) == 1) == (regime in ("single", "origins"))
+    assert all(rc in ((3, 6), (4, 8)) for rc in spec.bays.values())
+
+
+def test_ff_instance_shape():
+    prob, spec = ff_instance(0)
+    places = [q for c in spec.cities for q in c.places]
+    assert len(places) == 8 and len(spec.trucks) == 2 and len(prob.goal) == 1
+    (goal,) = prob.goal
+    assert goal.args[1] == spec.cities[1].airport
+
+
+def test_registered_domain_and_scenarios():
+    spec = get_domain("marsupial")
+    assert {"single-3", "both-10", "ff"} <= set(spec.scenarios)
+    ep = spec.scenario("origins-4")(1)
+    assert len(ep.problem.goal) == 4 and ep.belief.state is not None
+
+
+def test_vehicle_shareability_verdicts():
+    ep = episode("single", 3, 0)
+    load = next(op for op in ep.problem.domain.operators if op.name == "load")
+    acts = [load.instantiate({load.params[0]: f"p{i}", load.params[1]: "truck0", load.params[2]: "c0-l0"})
+            for i in range(3)]
+    assert vehicle_shareable(("stop", "truck0", "c0-l0"), acts[:1], acts[1:], ep.belief) is None
+    shapes = dict(ep.belief.facts("shape"))
+    fits = can_share(ep.belief.value(("cargo", ("truck0",))), None, shapes)
+    assert vehicle_shareable(("vehicle", "truck0"), acts[:1], acts[1:], ep.belief) is fits
+
+
+def test_renderer_gives_a_png():
+    ep = episode("single", 2, 0)
+    png = get_domain("marsupial").renderer(ep.world, ep.belief)
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 2000
+
+
+# ------------------------------------------------------------------ executed runs
+
+
+def _checked_run(ep, strategy: str, seed: int):
+    world = ep.world
+    bad: list[str] = []
+    executed: list[str] = []
+    shapes = dict(world.state.facts("shape"))
+    original = world.execute
+
+    def execute(action):
+        if not world.applicable(action):
+            bad.append(f"preconditions of {action} false in the world")
+        if action.name.startswith("loader_"):
+            b = action.bindings
+            args = {v.name: x for v, x in b.items()}
+            before = (args["L1"], lp.door_of(args["d1"], shapes))
+            after = (args["L2"], lp.door_of(args["d2"], shapes))
+            kind = action.name.split("_", 1)[1]
+            legal(lp.Transition(kind, args.get("p", args.get("c")), before, after))
+        executed.append(str(action))
+        return original(action)
+
+    world.execute = execute
+    m = run_episode(ep, parse_strategy(strategy, max_actions=3000, max_plans=20000, time_limit=120), seed=seed)
+    return m, bad, executed
+
+
+@pytest.mark.parametrize("regime", sorted(REGIMES))
+@pytest.mark.parametrize("strategy", ["hpn", "hpn+peephole"])
+def test_runs_reach_the_goal_with_valid_primitives(regime, strategy):
+    ep = episode(regime, 3, 2)
+    m, bad, executed = _checked_run(ep, strategy, 2)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert not bad, bad[:3]
+    assert ep.problem.domain.satisfies(ep.world.state, ep.problem.goal)
+    costs = {"load": 10, "unload": 10, "travel": 10, "same_city": 0, "pack": 0}
+    assert m.execution_cost == sum(costs.get(a.split("(")[0], 1) for a in executed)
+
+
+def test_ff_instance_is_solved_quickly():
+    import time
+
+    from nowplan.domains.marsupial.scenarios import ff_episode
+
+    ep = ff_episode(0)
+    t0 = time.process_time()
+    m, bad, _ = _checked_run(ep, "hpn", 0)
+    assert m.outcome is Outcome.REACHED and not bad
+    assert time.process_time() - t0 < 10.0
+
+
+def test_rchpn_combines_loads_of_a_shared_origin():
+    from nowplan.trace import Trace
+
+    ep = episode("single", 3, 1)
+    tr = Trace()
+    m = run_episode(ep, parse_strategy("hpn+peephole", max_actions=3000, max_plans=20000), seed=1, trace=tr)
+    assert m.outcome is Outcome.REACHED
+    notes = [e["text"] for e in tr.of("note") if e["text"].startswith("peephole")]
+    assert any("combined load(" in t for t in notes)
+    assert any("combined unload(" in t for t in notes)
