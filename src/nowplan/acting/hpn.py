@@ -230,14 +230,9 @@ class Executive:
         outcome, reason = Outcome.REACHED, ""
         consecutive_failures = 0
         while self.stack:
-            if self.metrics.actions >= self.strategy.max_actions:
-                outcome, reason = Outcome.LIMIT, f"action budget of {self.strategy.max_actions} spent"
-                break
-            if self.metrics.plans_made + self.metrics.plan_failures >= self.strategy.max_plans:
-                outcome, reason = Outcome.LIMIT, f"planning budget of {self.strategy.max_plans} calls spent"
-                break
-            if time.perf_counter() - self._t0 > self.strategy.time_limit:
-                outcome, reason = Outcome.LIMIT, f"time limit of {self.strategy.time_limit:g} s reached"
+            over = self.strategy.exhausted(self.metrics, time.perf_counter() - self._t0)
+            if over is not None:
+                outcome, reason = over
                 break
             f = self.stack[-1]
             if not self.applicable(f):

@@ -130,15 +130,8 @@ class OnlinePolicy:
         )
 
     def _budget_left(self, t0: float) -> tuple[Outcome, str] | None:
-        if self.metrics.actions >= self.strategy.max_actions:
-            return Outcome.LIMIT, f"action budget of {self.strategy.max_actions} spent"
-        if self.metrics.plans_made + self.metrics.plan_failures >= self.strategy.max_plans:
-            return Outcome.LIMIT, f"planning budget of {self.strategy.max_plans} calls spent"
-        if time.perf_counter() - t0 > self.strategy.time_limit:
-            return Outcome.LIMIT, f"time limit of {self.strategy.time_limit:g} s reached"
-        return None
+        return self.strategy.exhausted(self.metrics, time.perf_counter() - t0)
 
-    # -- Alg. 1 -----------------------------------------------------------------------
     def run(self) -> Metrics:
         t0 = time.perf_counter()
         deadline = t0 + self.strategy.time_limit

@@ -12,6 +12,7 @@ import importlib
 from dataclasses import dataclass, field, replace
 from typing import Any
 
+from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.mechanisms import SWITCHES, Mechanism, Switch, register_switch
 from nowplan.errors import ScenarioError
 from nowplan.planning.regression import PlannerConfig
@@ -40,6 +41,16 @@ class Strategy:
     max_plans: int = 2_000
     max_depth: int = 64
     time_limit: float = 600.0
+
+    def exhausted(self, metrics: Metrics, elapsed: float) -> tuple[Outcome, str] | None:
+        """The budget that has run out, as ``(LIMIT, reason)``, or None."""
+        if metrics.actions >= self.max_actions:
+            return Outcome.LIMIT, f"action budget of {self.max_actions} spent"
+        if metrics.plans_made + metrics.plan_failures >= self.max_plans:
+            return Outcome.LIMIT, f"planning budget of {self.max_plans} calls spent"
+        if elapsed > self.time_limit:
+            return Outcome.LIMIT, f"time limit of {self.time_limit:g} s reached"
+        return None
 
     def mechanisms(self) -> list[Mechanism]:
         _load()
