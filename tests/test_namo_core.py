@@ -132,8 +132,10 @@ def test_corridor_obstacle_must_be_moved():
     assert not hallway.hits_box(box)  # it was dragged out of the hallway
 
 
-def test_registered_scenarios_all_parse():
+def test_registered_scenarios_all_build():
     for name in SCENARIOS:
         spec = SCENARIOS.spec(name)
-        assert spec.name == name
-        assert math.isfinite(spec.size[0])
+        assert spec.name == name and math.isfinite(spec.size[0])
+        ep = make(name, 0)
+        start = ep.belief.pose
+        assert not ep.belief.geom.robot_blocked[ep.belief.geom.grid.cell(start)]

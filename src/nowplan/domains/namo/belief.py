@@ -34,6 +34,8 @@ from nowplan.worlds.base import Observation
 
 log = logging.getLogger(__name__)
 
+LOOP_LIMIT = 1500  # move-generator calls without a belief update that signal a planning loop
+
 
 @lru_cache(maxsize=64)
 def k_of(eps: float) -> float:
@@ -105,6 +107,20 @@ class NamoBelief:
             self._cache_version = self.version
         return self._cache
 
+    def planning_loop(self) -> bool:
+        """Has the planner asked for moves far more often than any plan needs, with nothing done since?
+
+        Refinements that fail while the belief does not change would make the
+        executive plan the same thing again and again; past this bound the
+        move generator gives up, so the run ends (no plan) instead of looping.
+        """
+        c = self.cache()
+        n = c.get("move_calls", 0) + 1
+        c["move_calls"] = n
+        if n == LOOP_LIMIT:
+            log.warning("planning loop: %d move requests without acting; giving up on this belief", n)
+        return n >= LOOP_LIMIT
+
     def _bump(self, percept: bool = False) -> None:
         self.version += 1
         if percept:
@@ -153,7 +169,15 @@ class NamoBelief:
         return out
 
     def clear(self, region: Region, exclude: frozenset[str], eps: float) -> bool:
-        return not self.blockers(region, eps, exclude)
+        return not self.blockers(region, eps, exclude) and not self.bumped(region)
+
+    def bumped(self, region: Region) -> bool:
+        """Did the robot bump into something unseen inside the region (its centre cannot go there)?"""
+        if not self.bumps or region.radius <= 0:
+            return False
+        g = self.geom.grid
+        return any(region.hits_box(Box(g.center(c).x, g.center(c).y, 0.0, 0.0), -region.radius + 0.1)
+                   for c in self.bumps)
 
     # -- fog -----------------------------------------------------------------------
     def region_cells(self, region: Region) -> np.ndarray:
@@ -203,7 +227,7 @@ class NamoBelief:
         name = action.name
         if name == "Move":
             region: Region = action.args[2]
-            self._drive((region.start, region.end), float(data.get("traveled", 0.0)))
+            self._drive((self.pose, region.start, region.end), float(data.get("traveled", 0.0)))
             if data.get("completed", obs.success):
                 self.robot_sym = region.end
             else:
@@ -241,9 +265,8 @@ class NamoBelief:
             self.robot_sym = m.home if self.at(m.home) else self.geom.grid.snap(self.pose)
 
     def _update_place(self, action: Action, data: dict[str, Any]) -> None:
-        o = action.args[0]
-        m = self.held_manip
-        if m is None or self.held != o:
+        o, m = action.args[0], action.args[4]
+        if not isinstance(m, Manip) or self.held != o:
             return
         self._drive(m.carry_path, float(data.get("carried", 0.0)))
         est = self.objects.get(o)
@@ -282,7 +305,7 @@ class NamoBelief:
         if seen_cells.size:
             seen = set(seen_cells.tolist())
             for o in self.free_objects():
-                if o.name not in detected and g.cell(o.center) in seen and o.sigma < 0.5:
+                if o.name not in detected and g.cell(o.center) in seen and o.sigma < 0.15:
                     log.info("object %s not seen where believed: dropped", o.name)
                     del self.objects[o.name]
                     self.percept += 1

@@ -17,7 +17,7 @@ from typing import Any
 from nowplan.core.atoms import Goal, Var
 from nowplan.domains.namo.belief import NamoBelief
 from nowplan.domains.namo.geometry import Pt, Region, point_back
-from nowplan.domains.namo.paths import PathPlanner
+from nowplan.domains.namo.paths import INF, PathPlanner
 
 A, B, SW = Var("a"), Var("b"), Var("sw")
 V, R, O, AT, LM, E = Var("v"), Var("r"), Var("o"), Var("at"), Var("lm"), Var("e")
@@ -39,7 +39,7 @@ def robot_at_in(goal: Goal) -> Pt | None:
 
 
 def region(belief: NamoBelief, a: Pt, b: Pt, fs: bool) -> Region:
-    return Region(a, b, belief.geom.robot_radius + 0.05, stamp=belief.percept, foresight=fs)
+    return Region(a, b, belief.geom.robot_radius, stamp=belief.percept, foresight=fs)
 
 
 def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:
@@ -52,7 +52,7 @@ def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -
     trigger, or always for aggressive replanning) computes a new path.
     """
     b = bindings.get(B)
-    if not isinstance(b, Pt):
+    if not isinstance(b, Pt) or belief.planning_loop():
         return
     fs = foresight(context)
     seg = belief.params.segment
@@ -67,24 +67,40 @@ def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -
         start = belief.held_manip.home
     if start.dist(b) < 1e-6:
         return
-    straight = start.dist(b) <= seg + 1e-9 and belief.geom.segment_free(start, b)
-    opts: list[Pt] = [start] if straight else []
-    path = PathPlanner.of(belief, fs).path(start, b)
-    if path is not None and len(path) >= 2:
-        prev = point_back(path, seg)
-        if prev.dist(b) > 1e-6:
-            belief.route_memo.setdefault(b, set()).add(prev)
-            if prev not in opts:
+    good: list[Pt] = []
+    for _ in range(2):
+        stuck_before = set(belief.unmovable.items())
+        pp = PathPlanner.of(belief, fs)
+        straight = start.dist(b) <= seg + 1e-9 and belief.geom.segment_free(start, b)
+        if straight and pp.segment_cost(start, b) == INF and pp.path(start, b) != [start, b]:
+            straight = False  # through something that cannot be moved, while there is another way
+        opts: list[Pt] = [start] if straight else []
+        path = pp.path(start, b)
+        if path is not None and len(path) >= 2:
+            prev = point_back(path, seg)
+            if prev.dist(b) > 1e-6 and prev not in opts:
                 opts.append(prev)
-    for a in opts:
+        # only moves whose refinement can succeed: every obstacle in the way can be looked
+        # at or moved (finding one that cannot marks it, and the path is planned again)
+        good = [a for a in opts if _clearable(belief, region(belief, a, b, fs))]
+        if good or set(belief.unmovable.items()) == stuck_before:
+            break
+    if not good:  # nothing surely refinable: let the refinement try (and fail informatively)
+        good = opts
+    for a in good:
+        if a != start:
+            belief.route_memo.setdefault(b, set()).add(a)
         yield {A: a, SW: region(belief, a, b, fs)}
 
 
 def _clearable(belief: NamoBelief, r: Region) -> bool:
-    """Can every object in the way be moved somewhere (so committing to ``r`` cannot deadlock)?"""
+    """Can every object in the way be looked at (only its shadow is) or moved somewhere?"""
     from nowplan.domains.namo.placement import manip_options
 
     for name in belief.blockers(r, belief.params.eps_clear):
+        est = belief.objects[name]
+        if not r.hits_box(est.box, 0.05):
+            continue  # a closer look will probably show the way is clear
         if not manip_options(belief, name, r.start, (r,), (), n=1):
             return False
     return True

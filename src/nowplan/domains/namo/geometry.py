@@ -20,6 +20,7 @@ from nowplan.errors import require
 
 
 CLEARANCE = 0.03  # the planner keeps the robot this much further from walls than its radius (m)
+GRAZE_OK = 0.02  # a swept volume may graze an object's (shadow) boundary by this much (m)
 
 
 def shapely() -> Any:
@@ -136,7 +137,19 @@ class Region:
         return Pt((self.start.x + self.end.x) / 2, (self.start.y + self.end.y) / 2)
 
     def hits_box(self, box: Box, grow: float = 0.0) -> bool:
-        return box.distance_to_segment(self.start, self.end) <= self.radius + grow
+        """Does the box (grown by ``grow``) meet the volume swept after leaving the start?
+
+        The robot already stands at the start, so what touches only its
+        starting footprint is not in the way of the move (and moving away
+        from something it stands next to stays possible).
+        """
+        L = self.length
+        reach = self.radius + grow - GRAZE_OK
+        if L < 1e-9:
+            return box.distance_to_segment(self.start, self.end) < reach
+        t = min(self.radius, L / 2) / L
+        a = Pt(self.start.x + (self.end.x - self.start.x) * t, self.start.y + (self.end.y - self.start.y) * t)
+        return box.distance_to_segment(a, self.end) < reach
 
     def shape(self) -> Any:
         sh = shapely()
@@ -384,6 +397,7 @@ class Manip:
     pick_path: tuple[Pt, ...]
     carry_path: tuple[Pt, ...]
     return_path: tuple[Pt, ...]
+    survey: Region | None = None  # what must be observed (from the pick configuration) before placing
 
     @property
     def offset(self) -> tuple[float, float]:

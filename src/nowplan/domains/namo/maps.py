@@ -45,7 +45,7 @@ CORRIDOR: dict[str, Any] = {
     "start": [0.6, 1.5],
     "goal": [7.4, 1.5],
     "objects": [{"name": "box", "at": [4.0, 1.5], "size": [0.5, 0.5]}],
-    "landmarks": {"L1": [0.3, 2.7], "L2": [7.7, 0.3], "L3": [3.0, 1.9], "L4": [5.0, 1.1]},
+    "landmarks": {"L1": [0.3, 2.7], "L2": [7.7, 0.3], "L3": [3.0, 1.75], "L4": [5.0, 1.25]},
 }
 
 # Fig. 6: a new obstacle in the planned path; reconsideration finds a detour, the original
@@ -79,7 +79,7 @@ FIG7: dict[str, Any] = {
         {"name": "box2", "at": [5.9, 2.5], "known": True, "sigma": 0.02},
     ],
     "params": {"segment": 3.5},
-    "landmarks": {"L1": [0.2, 2.2], "L2": [3.6, 0.6], "L3": [7.8, 4.2], "L4": [7.8, 0.2]},
+    "landmarks": {"L1": [0.2, 2.2], "L2": [3.6, 0.8], "L3": [7.8, 4.2], "L4": [7.8, 0.2]},
 }
 
 # Fig. 8: a dead-end corridor; the box must go behind the robot.  Just behind it the robot
@@ -106,16 +106,148 @@ FIG9: dict[str, Any] = {
     "description": "Fig. 9: shadows of uncertain obstacles inform the choice of path",
     "size": [9.0, 5.4],
     "walls": [[3.0, 1.4, 7.0, 3.4]],
-    "start": [1.0, 3.0],
-    "goal": [8.2, 3.0],
+    "start": [0.8, 2.4],
+    "goal": [8.2, 3.4],
     "objects": [
-        {"name": "top", "at": [4.0, 5.05], "believed_at": [4.0, 4.65], "known": True, "sigma": 0.3},
+        {"name": "top", "at": [3.6, 5.05], "believed_at": [3.6, 4.65], "known": True, "sigma": 0.3},
         {"name": "bottom", "at": [5.0, 0.4], "known": True, "sigma": 0.03},
     ],
     "landmarks": {"L1": [0.2, 0.2], "L2": [0.2, 5.2], "L3": [8.8, 5.2], "L4": [8.8, 0.2], "L5": [5.0, 5.2]},
 }
 
+# -- seed 000 Fig. 10 in spirit: the three experimental domains and the office ---------------------
+
+LM_GRID = {f"L{i}{j}": [0.3 + i * 3.1, 0.3 + j * 2.7] for i in range(4) for j in range(3)}
+
+# Domain 1: two rooms, two doors; an unknown box in the nearer door, a chair on the way to it and a
+# few more objects scattered in the rooms.
+DOMAIN1: dict[str, Any] = {
+    "name": "domain1",
+    "description": "domain 1: two rooms joined by two doors",
+    "size": [10.0, 6.0],
+    "walls": [vwall(5.0, 0.0, 0.9), vwall(5.0, 2.1, 3.9), vwall(5.0, 5.1, 6.0)],
+    "start": [1.0, 3.4],
+    "goal": [9.0, 3.4],
+    "objects": [
+        {"name": "doorA", "at": [5.0, 4.5], "size": [0.5, 0.5], "jitter": 0.08},
+        {"name": "chair", "at": [3.2, 3.9], "size": [0.45, 0.45], "jitter": 0.3},
+    ],
+    "scatter": [
+        {"count": 2, "area": [0.5, 0.5, 4.4, 5.5], "prefix": "left"},
+        {"count": 3, "area": [5.6, 0.5, 9.5, 5.5], "prefix": "right"},
+    ],
+    "landmarks": LM_GRID,
+}
+
+# Domain 2: three corridors through a block; the straight middle one holds a box, the others may
+# hold scattered objects.
+DOMAIN2: dict[str, Any] = {
+    "name": "domain2",
+    "description": "domain 2: three corridors through a block",
+    "size": [10.0, 6.0],
+    "walls": [[3.0, 1.7, 7.0, 2.5], [3.0, 3.5, 7.0, 4.3], [3.0, 5.4, 7.0, 6.0], [3.0, 0.0, 7.0, 0.5]],
+    "start": [1.0, 3.0],
+    "goal": [9.0, 3.0],
+    "objects": [
+        {"name": "midbox", "at": [5.0, 3.0], "size": [0.5, 0.5], "jitter": 1.2},
+    ],
+    "scatter": [
+        {"count": 2, "area": [3.2, 0.6, 6.8, 1.6], "prefix": "low"},
+        {"count": 1, "area": [3.2, 4.4, 6.8, 5.3], "prefix": "high"},
+        {"count": 2, "area": [0.4, 0.4, 2.8, 5.6], "prefix": "west"},
+        {"count": 2, "area": [7.2, 0.4, 9.6, 5.6], "prefix": "east"},
+    ],
+    "landmarks": {"L1": [0.3, 0.3], "L2": [0.3, 3.0], "L3": [0.3, 5.7], "L4": [5.0, 0.7], "L5": [5.0, 5.2],
+                  "L6": [5.0, 2.6], "L7": [9.7, 0.3], "L8": [9.7, 3.0], "L9": [9.7, 5.7]},
+}
+
+# Domain 3: three rooms in a row; two doors into the middle room, a single door (holding a box)
+# into the last one.
+DOMAIN3: dict[str, Any] = {
+    "name": "domain3",
+    "description": "domain 3: three rooms in a row",
+    "size": [12.0, 6.0],
+    "walls": [vwall(4.0, 0.0, 0.6), vwall(4.0, 1.8, 4.2), vwall(4.0, 5.4, 6.0),
+              vwall(8.0, 0.0, 2.4), vwall(8.0, 3.6, 6.0)],
+    "start": [1.0, 3.0],
+    "goal": [11.0, 3.0],
+    "objects": [
+        {"name": "door2", "at": [8.0, 3.0], "size": [0.5, 0.5], "jitter": 0.1},
+        {"name": "chair", "at": [4.0, 4.8], "size": [0.45, 0.45], "jitter": 0.1},
+    ],
+    "scatter": [
+        {"count": 2, "area": [0.5, 0.5, 3.6, 5.5], "prefix": "r1_"},
+        {"count": 3, "area": [4.4, 0.5, 7.6, 5.5], "prefix": "r2_"},
+        {"count": 2, "area": [8.4, 0.5, 11.5, 5.5], "prefix": "r3_"},
+    ],
+    "landmarks": {**LM_GRID, "L40": [11.7, 0.3], "L41": [11.7, 3.0], "L42": [11.7, 5.7]},
+}
+
+
+def _office_walls() -> list[list[float]]:
+    walls: list[list[float]] = []
+    # four quadrants of 2 x 2 cubicles, separated by a cross of aisles (x, y in [4.4, 5.6])
+    for qx in (0.0, 5.6):
+        for qy in (0.0, 5.6):
+            for cx in (qx, qx + 2.2):
+                for cy in (qy, qy + 2.2):
+                    # a cubicle [cx, cx + 2.2] x [cy, cy + 2.2]: partitions with a 1.2 m opening
+                    # facing the vertical aisle side
+                    top, bottom = cy + 2.2, cy
+                    if cy + 2.2 < 10.0 - 1e-9:
+                        walls.append(hwall(cx + 0.2, cx + 2.0, top))
+                    if cy > 1e-9 and abs(cy - 5.6) > 1e-9:
+                        walls.append(hwall(cx + 0.2, cx + 2.0, bottom))
+                    left = cx < 4.4
+                    side = cx + 2.2 if left else cx
+                    if abs(side - 2.2) < 1e-9 or abs(side - 7.8) < 1e-9:
+                        walls.append(vwall(side, cy + 0.2, cy + 0.5))
+                        walls.append(vwall(side, cy + 1.7, cy + 2.0))
+    return walls
+
+
+def _office_scatter() -> list[dict[str, Any]]:
+    """48 objects (with the two chairs in doorways, 50): three in the back of each cubicle (one in the
+    start's and the goal's), two in each aisle."""
+    out: list[dict[str, Any]] = []
+    i = 0
+    for qx in (0.0, 5.6):
+        for qy in (0.0, 5.6):
+            for cx in (qx, qx + 2.2):
+                for cy in (qy, qy + 2.2):
+                    count = 1 if (cx, cy) in ((0.0, 7.8), (7.8, 0.0)) else 3  # start and goal cubicles
+                    # the back half of the cubicle (away from its opening), where desks and chairs stand
+                    left = cx < 4.4
+                    x0, x1 = (cx + 0.3, cx + 1.6) if (left and cx < 2.2) or (not left and cx >= 7.8) else (cx + 0.3, cx + 1.9)
+                    out.append({"count": count, "area": [x0, cy + 0.35, x1, cy + 1.85], "size": [0.45, 0.45],
+                                "prefix": f"c{i}_", "clearance": 0.9})
+                    i += 1
+    out.append({"count": 2, "area": [4.55, 0.3, 5.45, 9.7], "size": [0.45, 0.45], "prefix": "av", "clearance": 0.9})
+    out.append({"count": 2, "area": [0.3, 4.55, 9.7, 5.45], "size": [0.45, 0.45], "prefix": "ah", "clearance": 0.9})
+    return out
+
+
+OFFICE: dict[str, Any] = {
+    "name": "office",
+    "description": "the 100 m2 office with 50 objects: top-left cubicle to bottom-right cubicle",
+    "size": [10.0, 10.0],
+    "walls": _office_walls(),
+    "start": [1.0, 9.0],
+    "goal": [9.0, 1.0],
+    "objects": [
+        {"name": "chair_a", "at": [2.2, 8.9], "size": [0.45, 0.45], "jitter": 0.15},
+        {"name": "chair_b", "at": [7.8, 1.1], "size": [0.45, 0.45], "jitter": 0.15},
+    ],
+    "scatter": _office_scatter(),
+    "landmarks": {f"L{i}{j}": [0.3 + i * 3.13, 0.3 + j * 3.13] for i in range(4) for j in range(4)},
+    "max_actions": 600,
+}
+
 BUILTIN: dict[str, dict[str, Any]] = {
+    "domain1": DOMAIN1,
+    "domain2": DOMAIN2,
+    "domain3": DOMAIN3,
+    "office": OFFICE,
     "simple": SIMPLE,
     "corridor": CORRIDOR,
     "fig6": FIG6,

@@ -41,7 +41,7 @@ TOL = ToleranceRule()
 A, B, SW = Var("a"), Var("b"), Var("sw")
 V, R, O, AT, LM, E = Var("v"), Var("r"), Var("o"), Var("at"), Var("lm"), Var("e")
 M, HOME, PC, EX, EXO, PLACE = Var("m"), Var("home"), Var("pc"), Var("ex"), Var("exo"), Var("place")
-SPOT, ONLY = Var("spot"), Var("only")
+SPOT, ONLY, SURVEY = Var("spot"), Var("only"), Var("survey")
 
 WHERE, SEE, CLEAR = 3, 2, 1
 
@@ -56,7 +56,10 @@ def _t_hand_empty(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
 
 
 def _t_holding(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
-    return (b.held == args[0] and b.held_manip == args[1]) == bool(value)
+    """Holding ``o`` grasped from the manipulation's pick configuration (its placement may be re-planned)."""
+    m = args[1]
+    held = b.held == args[0] and b.held_manip is not None and b.held_manip.pick_conf == getattr(m, "pick_conf", None)
+    return held == bool(value)
 
 
 def _t_observed(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
@@ -194,15 +197,17 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
             generators=(Generator("manip_fields", (HOME, PC), placement.gen_manip_fields, (M,)),),
         ),
         Operator(
-            "Place", (O, R, EX, EXO, M, HOME, PC, PLACE, SPOT, ONLY),
-            (P(atom("Holding", O, M), WHERE), P(atom("RobotAt", PC), WHERE),
+            "Place", (O, R, EX, EXO, M, HOME, PC, PLACE, SPOT, ONLY, SURVEY),
+            (P(atom("Holding", O, M), WHERE), P(atom("RobotAt", PC), WHERE), P(atom("Observed", SURVEY), WHERE),
+             P(atom("BClear", SURVEY, ONLY, value=params.eps_clear), WHERE),
              P(atom("BClear", R, EXO, value=params.eps_clear), WHERE),
              P(atom("BClear", SPOT, ONLY, value=params.eps_clear), WHERE)),
             (atom("BClear", R, EX, value=params.eps_clear), atom("HandEmpty"),
              atom("Holding", O, M, value=False), atom("RobotAt", PC, value=False),
              atom("RobotAt", HOME), atom("Placed", O, PLACE), atom("Observed", R, value=False)),
             cost=costs["place"],
-            generators=(Generator("place", (O, EXO, M, HOME, PC, PLACE, SPOT, ONLY), placement.gen_place, (R, EX)),),
+            generators=(Generator("place", (O, EXO, M, HOME, PC, PLACE, SPOT, ONLY, SURVEY), placement.gen_place,
+                                  (R, EX)),),
         ),
     )
     return Domain("namo", PREDICATES, operators, conflicts=CONFLICTS, triggers=make_triggers(params))

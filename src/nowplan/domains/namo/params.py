@@ -16,6 +16,7 @@ class Sensor:
     landmark_range: float = 6.0
     landmark_sigma: float = 0.03
     miss_prob: float = 0.0  # chance a visible object goes undetected on one look
+    near_range: float = 1.2  # a short-range all-round sensor (a base laser) runs after every action
 
     def sigma_at(self, d: float) -> float:
         return self.sigma0 + self.sigma_per_m * d
@@ -43,7 +44,7 @@ class Params:
     eps_clear: float = 0.025  # BClear tolerance (probability that a region is not clear)
     eps_pick: float = 0.06  # BVRelPose needed before picking (m)
     eps_loc: float = 0.2  # robot localisation needed before a base move (m)
-    at_tol: float = 0.3  # RobotAt tolerance (m)
+    at_tol: float = 0.15  # RobotAt tolerance (m)
     fog_observed_slack: int = 3  # Observed: this many visible fog cells are tolerated
     connectivity: bool = True  # placements keep the robot connected to where it started (Fig. 8)
     taboo_cost: float = 50.0

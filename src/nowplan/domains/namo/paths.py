@@ -19,12 +19,12 @@ from __future__ import annotations
 import heapq
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from nowplan.domains.namo.belief import NamoBelief, k_of
-from nowplan.domains.namo.geometry import Grid, Pt
+from nowplan.domains.namo.geometry import Box, Grid, Pt
 
 SQRT2 = math.sqrt(2.0)
 INF = float("inf")
@@ -120,9 +120,11 @@ class CostMap:
     masks: list[int]
     penalties: list[float]
     labels: list[str]  # what each bit stands for, e.g. "box1" or "box1~shadow"
+    radius: float = 0.25
+    objects: list[tuple[Box, float, int, int]] = field(default_factory=list)
 
 
-def build_costmap(belief: NamoBelief, foresight: bool) -> CostMap:
+def build_costmap(belief: NamoBelief, foresight: bool, stuck_impassable: bool = True) -> CostMap:
     geom, p = belief.geom, belief.params
     g = geom.grid
     passable = ~geom.robot_blocked
@@ -134,19 +136,23 @@ def build_costmap(belief: NamoBelief, foresight: bool) -> CostMap:
     labels: list[str] = []
     r = geom.robot_radius
     k = k_of(p.eps_clear)
+    objects: list[tuple[Box, float, int, int]] = []  # box, shadow width, core bit, shadow bit
     for o in belief.free_objects():
         core = g.box_mask(o.box, r)
-        if belief.stuck(o.name):  # nowhere to put it: impassable for now
-            passable = passable & ~core
+        width = k * o.sigma
+        stuck = belief.stuck(o.name)
+        if stuck and stuck_impassable:  # nowhere to put it: impassable (with its shadow) for now
+            passable = passable & ~g.box_mask(o.box, r + width)
             continue
         bit = 1 << len(penalties)
-        penalties.append(p.clear_cost)
+        penalties.append(p.clear_cost * (4.0 if stuck else 1.0))
         labels.append(o.name)
+        objects.append((o.box, width, bit, 0))
         for c in np.nonzero(core)[0].tolist():
             masks[c] |= bit
-        width = k * o.sigma
         ring = g.box_mask(o.box, r + width) & ~core
         if ring.any():
+            objects[-1] = (o.box, width, bit, 1 << len(penalties))
             bit = 1 << len(penalties)
             # without foresight a shadow costs a look; with it, the expected cost of finding the
             # object in the way once it is seen better (seed 000 footnote 2)
@@ -154,22 +160,33 @@ def build_costmap(belief: NamoBelief, foresight: bool) -> CostMap:
             labels.append(o.name + "~shadow")
             for c in np.nonzero(ring)[0].tolist():
                 masks[c] |= bit
-    return CostMap(g, passable, masks, penalties, labels)
+    return CostMap(g, passable, masks, penalties, labels, r, objects)
 
 
 class PathPlanner:
     """Paths for one belief version (cached on the belief) with or without shadows."""
 
-    def __init__(self, belief: NamoBelief, foresight: bool) -> None:
+    def __init__(self, belief: NamoBelief, foresight: bool, stuck_impassable: bool = True) -> None:
         self.belief = belief
         self.foresight = foresight
-        self.cm = build_costmap(belief, foresight)
+        self.cm = build_costmap(belief, foresight, stuck_impassable)
         self._trees: dict[int, tuple[list[float], list[int]]] = {}
+        self._fallback: PathPlanner | None = None
+        self._stuck_impassable = stuck_impassable
+
+    def fallback(self) -> PathPlanner | None:
+        """The same planner with unmovable-looking objects expensive instead of impassable."""
+        if not self._stuck_impassable:
+            return None
+        if self._fallback is None:
+            self._fallback = PathPlanner(self.belief, self.foresight, stuck_impassable=False)
+        return self._fallback
 
     @staticmethod
     def of(belief: NamoBelief, foresight: bool) -> PathPlanner:
         c = belief.cache()
-        key = ("planner", foresight)
+        stuck = frozenset(n for n in belief.unmovable if belief.stuck(n))
+        key = ("planner", foresight, stuck)
         pp = c.get(key)
         if pp is None:
             pp = PathPlanner(belief, foresight)
@@ -179,9 +196,9 @@ class PathPlanner:
     def _source(self, p: Pt) -> int:
         g = self.cm.grid
         k = g.cell(p)
-        if self.cm.passable[k]:
-            return k
-        # the nearest passable cell (the robot's pose estimate may sit on a grown wall)
+        if self.cm.passable[k] or not self.belief.geom.robot_blocked[k]:
+            return k  # (a cell blocked only by an object's zone: the robot is there, it can leave)
+        # the nearest cell off the walls (the robot's pose estimate may sit on a grown wall)
         d = np.hypot(g.xs - p.x, g.ys - p.y)
         d[~self.cm.passable] = np.inf
         return int(np.argmin(d))
@@ -190,7 +207,21 @@ class PathPlanner:
         s = self._source(source)
         t = self._trees.get(s)
         if t is None:
-            t = dijkstra(self.cm.grid, self.cm.passable, s, self.cm.masks, self.cm.penalties)
+            passable = self.cm.passable
+            if not passable[s]:  # let the robot leave an object's zone it stands in (moving away only)
+                g = self.cm.grid
+                c = g.center(s)
+                escape = g.disk_mask(c, 0.45) & ~self.belief.geom.robot_blocked
+                for o in self.belief.free_objects():
+                    here = o.box.distance_to_segment(c, c)
+                    if here < self.cm.radius + 3 * o.sigma + 0.3:
+                        x0, y0, x1, y1 = o.box.bounds
+                        dx = np.maximum(np.maximum(x0 - g.xs, 0.0), g.xs - x1)
+                        dy = np.maximum(np.maximum(y0 - g.ys, 0.0), g.ys - y1)
+                        escape &= np.hypot(dx, dy) > here + 0.05
+                escape[s] = True
+                passable = passable | escape
+            t = dijkstra(self.cm.grid, passable, s, self.cm.masks, self.cm.penalties)
             self._trees[s] = t
         return t
 
@@ -206,7 +237,8 @@ class PathPlanner:
         _, parent = self.tree(source)
         cells = trace_back(parent, s, t)
         if cells is None:
-            return None
+            fb = self.fallback()
+            return fb.path(source, target) if fb is not None else None
         pts = self.smooth(cells)
         pts[0] = source
         if pts[-1] != target:
@@ -244,7 +276,16 @@ class PathPlanner:
         m = 0
         for k in ks.tolist():
             m |= self.cm.masks[k]
-        return (m & ~allowed) == 0 and self.belief.geom.segment_free(a, b)
+        if (m & ~allowed) != 0 or not self.belief.geom.segment_free(a, b):
+            return False
+        r = self.cm.radius
+        for box, width, core, shadow in self.cm.objects:  # exactly, not just by cells
+            d = box.distance_to_segment(a, b)
+            if d < r and not (allowed & core):
+                return False
+            if d < r + width and shadow and not (allowed & (shadow | core)):
+                return False
+        return True
 
     def segment_cost(self, a: Pt, b: Pt) -> float:
         """Length plus the penalties of the regions a straight move from a to b enters."""

@@ -9,7 +9,10 @@ it and a placement, such that (seed 000 Fig. 8)
 3. a return path exists from the release configuration back home, hand empty,
    *with the object placed* — the robot stays connected to where it started.
 
-All three run through observed free space only.  The placement must not
+All three run through observed free space; only when that is impossible
+are they planned through fog, and then the carry volume (``Manip.survey``)
+must be observed, from the pick configuration, before the object is put
+down (``Observed(survey)`` is a precondition of ``Place``).  The placement must not
 meet ``R`` nor any other region the goal being planned needs clear (local
 foresight, which regression alone already guarantees).  With foresight on,
 regions that *any* plan on the stack needs clear (the taboo regions, seed
@@ -20,6 +23,7 @@ being forbidden.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from collections.abc import Callable, Iterator, Mapping
 from typing import Any
 
@@ -28,11 +32,12 @@ import numpy as np
 from nowplan.core.atoms import Goal, Var
 from nowplan.domains.namo.belief import NamoBelief, k_of
 from nowplan.domains.namo.generators import foresight, robot_at_in
-from nowplan.domains.namo.geometry import Box, Grid, Manip, MapGeometry, Pt, Region, shapely
+from nowplan.domains.namo.geometry import GRAZE_OK, Box, Grid, Manip, MapGeometry, Pt, Region, shapely
 from nowplan.domains.namo.paths import INF, dijkstra, trace_back
 
 O, R, EX, EXO, M = Var("o"), Var("r"), Var("ex"), Var("exo"), Var("m")
 HOME, PC, PLACE, SPOT, ONLY = Var("home"), Var("pc"), Var("place"), Var("spot"), Var("only")
+SURVEY = Var("survey")
 
 PLACE_MARGIN = 0.08  # the placed object keeps this far from regions that must stay clear
 
@@ -76,15 +81,36 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
     region, ex = bindings.get(R), bindings.get(EX)
     home = robot_at_in(goal) or belief.nominal()
     if belief.held is not None:  # finish the placement under way (or just put the object down)
-        m = belief.held_manip
-        if m is None:
+        m, held = belief.held_manip, belief.held
+        if m is None or held not in belief.objects:
             return
         if not isinstance(region, Region) or not isinstance(ex, frozenset):
             region, ex = Region(m.place, m.place, 0.0), frozenset()
-        if belief.held not in ex and m.home == home:
-            size = belief.objects[belief.held].size if belief.held in belief.objects else (0.0, 0.0)
-            yield {R: region, EX: ex, O: belief.held, EXO: ex | {belief.held}, M: m, HOME: home,
-                   PC: m.pick_conf, **_spot(m, belief.held, size)}
+        if held in ex or m.home != home:
+            return
+        size = belief.objects[held].size
+        options = [m]
+        spot = _spot(m, held, size)
+        if not (belief.clear(spot[SPOT], spot[ONLY], belief.params.eps_clear)
+                and belief.clear(m.survey or spot[SPOT], spot[ONLY], belief.params.eps_clear)):
+            # the planned placement is no longer possible: place it elsewhere from here
+            pc = belief.nominal()
+            grip = belief.grip[0] if belief.grip is not None else np.array(m.offset)
+            at = Pt.of(belief.robot_mean[0] + grip[0], belief.robot_mean[1] + grip[1])
+            hard = tuple(hard_regions(goal, held, region)) if region.radius > 0 else ()
+            options = []
+            for fog_ok, through in ((False, False), (True, False), (True, True)):
+                options = _manip_options(belief, held, m.home, hard, tuple(taboo_regions(context)), 2,
+                                         fog_ok=fog_ok, through=through, held_at=(at, pc))
+                if options:
+                    break
+            if region.radius <= 0:  # only the hand must be emptied: putting it back down is fine too
+                back = tuple(reversed(m.pick_path)) if len(m.pick_path) > 1 else (pc, m.home)
+                options.append(Manip(held, m.home, pc, at, at, pc, (pc,), (pc,), (pc, *back[1:]),
+                                     Region(pc, pc, 0.0)))
+        for opt in options:
+            yield {R: region, EX: ex, O: held, EXO: ex | {held}, M: opt, HOME: home,
+                   PC: opt.pick_conf, **_spot(opt, held, size)}
         return
     if not isinstance(region, Region) or not isinstance(ex, frozenset):
         return
@@ -96,14 +122,18 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
         size = belief.objects[name].size
         # regression order: the other objects in the region and not excepted are moved before this one
         gone = frozenset(blockers) - {name}
-        for m in manip_options(belief, name, home, tuple(hard), tuple(taboo), n=2, gone=gone):
+        options = manip_options(belief, name, home, tuple(hard), tuple(taboo), n=2, gone=gone)
+        if not options and not gone:
+            manip_options(belief, name, home, (region,), (), n=1)  # is it movable at all? (marks it if not)
+        for m in options:
             yield {O: name, EXO: ex | {name}, M: m, HOME: home, PC: m.pick_conf, **_spot(m, name, size)}
 
 
 def _spot(m: Manip, name: str, size: tuple[float, float]) -> dict[Var, Any]:
     """The placed box and the disc around it that must be free of other objects when it is put down."""
     box = Box(m.place.x, m.place.y, *size)
-    return {PLACE: box, SPOT: Region(m.place, m.place, math.hypot(*size) / 2), ONLY: frozenset({name})}
+    return {PLACE: box, SPOT: Region(m.place, m.place, math.hypot(*size) / 2), ONLY: frozenset({name}),
+            SURVEY: m.survey}
 
 
 # -- geometry of manipulation -------------------------------------------------------------
@@ -202,26 +232,77 @@ def manip_options(
     if key in cache:
         return cache[key]  # type: ignore[no-any-return]
     out = _manip_options(belief, name, home, hard, taboo, n, gone)
+    if not out:  # nowhere in observed space: plan through fog, and look there before placing
+        out = _manip_options(belief, name, home, hard, taboo, n, gone, fog_ok=True)
+    if not out:  # other objects in the way: plan through them; they are cleared first (NAMO's recursion)
+        out = _manip_options(belief, name, home, hard, taboo, n, gone, fog_ok=True, through=True)
     cache[key] = out
-    if not out and not gone:  # nowhere to put it from here: route around it until something new is seen
+    if not out and not gone and len(hard) <= 1 and not taboo and home == belief.nominal():
+        # nowhere at all to put it from where the robot is: route around it until something new is seen
         belief.unmovable[name] = belief.percept
     return out
 
 
-def _manip_options(
-    belief: NamoBelief, name: str, home: Pt, hard: tuple[Region, ...], taboo: tuple[Region, ...], n: int,
-    gone: frozenset[str] = frozenset(),
-) -> list[Manip]:
+@dataclass
+class _Carry:
+    """For one pick configuration: where the robot can drag the object to, and at what cost."""
+
+    pc: int
+    offset: tuple[float, float]
+    carry_free: np.ndarray
+    par_c: list[int]
+    cells: np.ndarray  # release cells reachable with the object
+    cx: np.ndarray  # the object's centre when released there
+    cy: np.ndarray
+    base_score: np.ndarray  # carry length + return estimate (+ fog penalty)
+
+
+@dataclass
+class _Core:
+    """Everything about moving one object from one home that does not depend on the goal."""
+
+    obox: Box
+    hc: int
+    base: np.ndarray
+    base_home: np.ndarray
+    free_pick: np.ndarray
+    par_pick: list[int]
+    carries: list[_Carry]
+    returns: dict[int, tuple[list[float], list[int], np.ndarray] | None]
+
+
+def _core(
+    belief: NamoBelief, name: str, home: Pt, gone: frozenset[str], fog_ok: bool, through: bool,
+    held_at: tuple[Pt, Pt] | None,
+) -> _Core | None:
+    key = ("manip-core", name, home, gone, fog_ok, through, held_at)
+    cache = belief.cache()
+    if key in cache:
+        return cache[key]  # type: ignore[no-any-return]
+    core = _build_core(belief, name, home, gone, fog_ok, through, held_at)
+    cache[key] = core
+    return core
+
+
+def _build_core(
+    belief: NamoBelief, name: str, home: Pt, gone: frozenset[str], fog_ok: bool, through: bool,
+    held_at: tuple[Pt, Pt] | None,
+) -> _Core | None:
     geom, params = belief.geom, belief.params
     g = geom.grid
     r = geom.robot_radius
     est = belief.objects[name]
-    obox = est.box
+    obox = est.box if held_at is None else est.box.moved(held_at[0])
     k = k_of(params.eps_clear)
     others = np.zeros(g.n, dtype=bool)
-    for o in belief.free_objects({name} | gone):
-        others |= g.box_mask(o.box, k * o.sigma)
-    base = ~geom.robot_blocked & belief.observed & ~g.dilate(others, r)
+    if not through:
+        for o in belief.free_objects({name} | gone):
+            others |= g.box_mask(o.box, k * o.sigma)
+    base = ~geom.robot_blocked & ~g.dilate(others, r)
+    if belief.bumps:
+        base[list(belief.bumps)] = False
+    if not fog_ok:
+        base &= belief.observed
     # the pick happens once the object is localised (BVRelPose), so keep the clearance that needs
     clearance = k * min(est.sigma, params.eps_pick)
     own = g.box_mask(obox, r + clearance)
@@ -231,24 +312,22 @@ def _manip_options(
     dist_pick, par_pick = dijkstra(g, free_pick, hc)
     # grasp from right next to the object: the nearest free cells around it (at most a cell further)
     gap = _box_dist(g, obox)
-    ring_cells = [c for c in np.nonzero(free_pick)[0].tolist() if dist_pick[c] < INF and c != hc]
+    ring_cells = [c for c in np.nonzero(free_pick)[0].tolist() if dist_pick[c] < INF]
     if not ring_cells:
-        return []
+        return None
     nearest = min(gap[c] for c in ring_cells)
     pcs = sorted((dist_pick[c], c) for c in ring_cells if gap[c] <= max(nearest, r + clearance) + g.res * 0.75)
-    if not pcs:
-        return []
+    if held_at is not None:  # already grasped: the pick configuration is where the robot is
+        pcs = [(0.0, g.cell(held_at[1]))]
     base_home = base.copy()
     base_home[hc] = True
-    dist_home, _ = dijkstra(g, base_home, hc)
-    # where the object's centre may go: its footprint off the walls (exactly), off other objects and
-    # on observed floor (its own cells count as floor: they are hidden behind its front face)
-    # (fog is allowed at a price: the robot itself stays on observed floor, and dragging into
-    # something unseen just stops the drag)
+    dist_home = np.asarray(dijkstra(g, base_home, hc)[0])
+    # where the object's centre may go: off the walls (exactly) and off other objects; fog costs extra
+    # (its own cells count as floor: they are hidden behind its front face)
     hidden_own = g.box_mask(obox, k * est.sigma + g.res)
     obj_ok = ~_dilate_box(g, others, obox.w / 2, obox.h / 2)
     obj_known = ~_dilate_box(g, ~belief.observed & ~hidden_own, obox.w / 2, obox.h / 2)
-    results: list[tuple[float, Manip]] = []
+    carries = []
     for _, pc in pcs[:2]:
         pcp = g.center(pc)
         di = int(round((obox.cx - pcp.x) / g.res))
@@ -257,59 +336,133 @@ def _manip_options(
         carry_free = base & _shift_cells(g, obj_ok, di, dj, False) & _box_off_walls(geom, obox.w, obox.h, *offset)
         carry_free[pc] = True
         dist_c, par_c = dijkstra(g, carry_free, pc)
-        cands: list[tuple[float, int, Box]] = []
-        for c in np.nonzero(np.isfinite(np.asarray(dist_c)))[0].tolist():
-            if c == pc:
-                continue
+        dc = np.asarray(dist_c)
+        cells = np.nonzero(np.isfinite(dc) & np.isfinite(dist_home))[0]
+        cells = cells[(cells != pc) & (cells != hc)]
+        cx = np.round(g.xs[cells] + offset[0], 2)
+        cy = np.round(g.ys[cells] + offset[1], 2)
+        # the placed object must leave room for the robot at home
+        dxh = np.maximum(np.abs(cx - home.x) - obox.w / 2, 0.0)
+        dyh = np.maximum(np.abs(cy - home.y) - obox.h / 2, 0.0)
+        keep = np.hypot(dxh, dyh) > r + 0.05
+        cells, cx, cy = cells[keep], cx[keep], cy[keep]
+        score = dc[cells] + dist_home[cells]
+        oc = cells + dj * g.nx + di
+        known = (oc >= 0) & (oc < g.n)
+        known[known] = obj_known[oc[known]]
+        score = score + np.where(known, 0.0, params.fog_place_cost)
+        carries.append(_Carry(pc, offset, carry_free, par_c, cells, cx, cy, score))
+    return _Core(obox, hc, base, base_home, free_pick, par_pick, carries, {})
+
+
+def _hits(region: Region, cx: np.ndarray, cy: np.ndarray, hw: float, hh: float, grow: float) -> np.ndarray:
+    """Vectorised :meth:`Region.hits_box` for boxes of half-size (hw, hh) centred at (cx, cy)."""
+    a, b = region.start, region.end
+    L = region.length
+    if L > 1e-9:
+        t0 = min(region.radius, L / 2) / L
+        a = Pt(a.x + (b.x - a.x) * t0, a.y + (b.y - a.y) * t0)
+    n = max(2, int(a.dist(b) / 0.05) + 2)
+    ts = np.linspace(0.0, 1.0, n)
+    px = a.x + ts * (b.x - a.x)
+    py = a.y + ts * (b.y - a.y)
+    dx = np.maximum(np.abs(px[None, :] - cx[:, None]) - hw, 0.0)
+    dy = np.maximum(np.abs(py[None, :] - cy[:, None]) - hh, 0.0)
+    d = np.hypot(dx, dy).min(axis=1)
+    return d < region.radius + grow - GRAZE_OK
+
+
+def _manip_options(
+    belief: NamoBelief, name: str, home: Pt, hard: tuple[Region, ...], taboo: tuple[Region, ...], n: int,
+    gone: frozenset[str] = frozenset(), fog_ok: bool = False, through: bool = False,
+    held_at: tuple[Pt, Pt] | None = None,
+) -> list[Manip]:
+    """Manipulations through observed space, or (``fog_ok``) also through fog, to be surveyed first,
+    or (``through``) also through other movable objects, which must be cleared from the carry volume.
+
+    ``held_at`` = (object centre, pick configuration) re-plans the placement of an object already held.
+    """
+    core = _core(belief, name, home, gone, fog_ok, through, held_at)
+    if core is None:
+        return []
+    geom, params = belief.geom, belief.params
+    g = geom.grid
+    r = geom.robot_radius
+    obox, hc = core.obox, core.hc
+    hw, hh = obox.w / 2, obox.h / 2
+    results: list[tuple[float, Manip]] = []
+    for carry in core.carries:
+        if not carry.cells.size:
+            continue
+        ok = np.ones(carry.cells.size, dtype=bool)
+        for h in hard:
+            ok &= ~_hits(h, carry.cx, carry.cy, hw, hh, PLACE_MARGIN)
+        score = carry.base_score.copy()
+        for t in taboo:
+            score = score + np.where(_hits(t, carry.cx, carry.cy, hw, hh, PLACE_MARGIN), params.taboo_cost, 0.0)
+        idx = np.nonzero(ok)[0]
+        order = idx[np.lexsort((carry.cells[idx], score[idx]))]
+        found, checks = 0, 0
+        rejected: list[Pt] = []
+        for i in order.tolist():
+            if checks >= 40:
+                break
+            c = int(carry.cells[i])
             rel = g.center(c)
-            box = Box(round(rel.x + offset[0], 2), round(rel.y + offset[1], 2), obox.w, obox.h)
-            if any(h.hits_box(box, PLACE_MARGIN) for h in hard):
+            if any(rel.dist(q) < 0.35 for q in rejected):
+                continue  # next to a placement that cut the robot off: so would this one, most likely
+            checks += 1
+            box = Box(float(carry.cx[i]), float(carry.cy[i]), obox.w, obox.h)
+            ret = _return_path(core, box, c, params.connectivity, r, g)
+            if ret is None:
+                rejected.append(rel)
                 continue
-            if box.distance_to_segment(home, home) <= r + 0.05:
-                continue
-            score = dist_c[c] + dist_home[c]
-            if score == INF:
-                continue
-            oc = c + dj * g.nx + di
-            if not (0 <= oc < g.n and obj_known[oc]):
-                score += params.fog_place_cost
-            if any(t.hits_box(box, PLACE_MARGIN) for t in taboo):
-                score += params.taboo_cost
-            cands.append((score, c, box))
-        cands.sort(key=lambda x: (x[0], x[1]))
-        found = 0
-        for score, c, box in cands[:40]:
-            placed = g.box_mask(box, r)
-            free_ret = base & ~placed
-            free_ret[hc] = True
-            if params.connectivity:
-                dist_r, par_r = dijkstra(g, free_ret, hc, target=c)
-                if dist_r[c] == INF:
-                    continue
-            else:  # the check of Fig. 8 switched off: the placed object is ignored
-                dist_r, par_r = dijkstra(g, base_home, hc, target=c)
-                if dist_r[c] == INF:
-                    continue
-            pick_cells = trace_back(par_pick, hc, pc)
-            carry_cells = trace_back(par_c, pc, c)
+            par_r, free_ret = ret
+            pick_cells = trace_back(core.par_pick, hc, carry.pc)
+            carry_cells = trace_back(carry.par_c, carry.pc, c)
             ret_cells = trace_back(par_r, hc, c)
             if pick_cells is None or carry_cells is None or ret_cells is None:
                 continue
             ret_cells.reverse()
-            pick_path = smooth_cells(g, free_pick, pick_cells, geom.segment_free)
+            pick_path = smooth_cells(g, core.free_pick, pick_cells, geom.segment_free)
             pick_path[0] = home
-            ret_path = smooth_cells(g, free_ret if params.connectivity else base_home, ret_cells, geom.segment_free)
+            ret_path = smooth_cells(g, free_ret, ret_cells, geom.segment_free)
             ret_path[-1] = home
+            pcp = g.center(carry.pc)
+            survey = Region(pcp, rel, r + math.hypot(obox.w, obox.h) / 2) if fog_ok else Region(pcp, pcp, 0.0)
             m = Manip(
-                obj=name, home=home, pick_conf=g.center(pc), obj_at=est.center,
-                place=box.center, release=g.center(c),
+                obj=name, home=home, pick_conf=pcp if held_at is None else held_at[1], obj_at=obox.center,
+                place=box.center, release=rel, survey=survey,
                 pick_path=tuple(pick_path),
-                carry_path=tuple(smooth_cells(g, carry_free, carry_cells, _carry_check(geom, obox, offset))),
+                carry_path=tuple(smooth_cells(g, carry.carry_free, carry_cells,
+                                              _carry_check(geom, obox, carry.offset))),
                 return_path=tuple(ret_path),
             )
-            results.append((score, m))
+            results.append((float(score[i]), m))
             found += 1
             if found >= n:
                 break
     results.sort(key=lambda x: x[0])
     return [m for _, m in results[:n]]
+
+
+def _return_path(
+    core: _Core, box: Box, c: int, connectivity: bool, r: float, g: Grid
+) -> tuple[list[int], np.ndarray] | None:
+    """A way home from release cell ``c`` with the object placed as ``box`` (Fig. 8), memoised."""
+    key = (box.cx, box.cy, c) if connectivity else (None, None, c)
+    if key in core.returns:
+        hit = core.returns[key]
+        return None if hit is None else (hit[1], hit[2])
+    if connectivity:
+        free_ret = core.base & ~(_box_dist(g, box) < r - 0.01)  # exactly: the robot was released next to it
+        free_ret[core.hc] = True
+        free_ret[c] = True
+    else:  # the check of Fig. 8 switched off: the placed object is ignored
+        free_ret = core.base_home
+    dist_r, par_r = dijkstra(g, free_ret, core.hc, target=c)
+    if dist_r[c] == INF:
+        core.returns[key] = None
+        return None
+    core.returns[key] = (dist_r, par_r, free_ret)
+    return par_r, free_ret

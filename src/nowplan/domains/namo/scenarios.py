@@ -116,6 +116,9 @@ def episode(spec: ScenarioSpec, seed: int) -> Episode:
         raise ScenarioError(f"scenario '{spec.name}': start: {list(spec.start)} is too close to a wall")
     if geom.robot_blocked[geom.grid.cell(goal)]:
         raise ScenarioError(f"scenario '{spec.name}': goal: {list(spec.goal)} is too close to a wall")
+    for name, p in geom.landmarks:
+        if geom.wall_mask[geom.grid.cell(p)]:
+            raise ScenarioError(f"scenario '{spec.name}': landmarks.{name}: {p} lies inside a wall")
     world = NamoWorld(geom, start, objects, sensor=spec.sensor, noise=spec.noise, seed=rng.randrange(2**31))
     belief = initial_belief(spec, geom, objects)
 

@@ -96,6 +96,8 @@ def make_triggers(params: Params) -> tuple[Trigger, ...]:
             if path is None:
                 return None
             new = pp.polyline_cost(path)
+            if new < INF and old == INF:
+                return "the planned path is blocked (something there cannot be moved); another exists"
             if new < INF and new < old - params.reconsider_gain:
                 return f"a path shorter by {old - new:.1f} m exists"
             return None

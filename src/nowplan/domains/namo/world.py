@@ -244,7 +244,7 @@ class NamoWorld:
         ok, data, reason = handler(*action.args)
         if self._hit_at is not None and reason.endswith("by wall"):  # the bumper felt where
             data["bump"] = (self._hit_at[0] - self.robot[0], self._hit_at[1] - self.robot[1])
-        near = self.sense(None, 2 * math.pi, 0.6)
+        near = self.sense(None, 2 * math.pi, self.sensor.near_range)
         for k in ("visible", "detections"):
             data[k] = list(data.get(k, [])) + near[k]
         if not ok:
@@ -259,7 +259,7 @@ class NamoWorld:
         return Observation(ok, data, tuple(exo), info)
 
     def _do_Move(self, a: Pt, b: Pt, region: Region) -> tuple[bool, dict[str, Any], str]:
-        traveled, hit, done = self._follow((a, b))
+        traveled, hit, done = self._follow((self.pose, a, b))  # onto the planned segment, then along it
         data: dict[str, Any] = {"traveled": traveled, "completed": done}
         if hit is not None:
             data["contacts"] = self._contact(hit)
@@ -321,7 +321,7 @@ class NamoWorld:
         return m.obj_at
 
     def _do_Place(self, obj: str, region: Region, ex: Any, exo: Any, m: Manip, home: Pt, pc: Pt,
-                  place: Box, spot: Region, only: Any) -> tuple[bool, dict[str, Any], str]:
+                  place: Box, spot: Region, only: Any, survey: Region) -> tuple[bool, dict[str, Any], str]:
         data: dict[str, Any] = {"carried": 0.0, "returned": 0.0, "home": False}
         if self.held != obj:
             return False, data, f"not holding {obj}"
