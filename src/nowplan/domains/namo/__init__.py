@@ -41,4 +41,8 @@ SPEC = register(
     )
 )
 
+from nowplan.domains.namo.reproduction import register_reproduction  # noqa: E402
+
+register_reproduction()
+
 __all__ = ["DOMAIN", "SPEC", "SCENARIOS", "build_domain", "episode", "make"]

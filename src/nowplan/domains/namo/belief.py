@@ -318,6 +318,7 @@ class NamoBelief:
         self.robot_var = (1 - k) * self.robot_var
 
     def _detect(self, name: str, rx: float, ry: float, s: float, size: tuple[float, float]) -> None:
+        self.version += 1  # (update() bumps it again at the end; this keeps direct calls honest)
         z = self.robot_mean + np.array([rx, ry])
         R = np.eye(2) * (s * s + self.robot_var)
         est = self.objects.get(name)

@@ -207,23 +207,24 @@ def _office_walls() -> list[list[float]]:
 
 
 def _office_scatter() -> list[dict[str, Any]]:
-    """48 objects (with the two chairs in doorways, 50): three in the back of each cubicle (one in the
-    start's and the goal's), two in each aisle."""
+    """48 objects (with the two chairs in doorways, 50): in each cubicle, three along its two long
+    partitions, leaving a walkway through the middle (one in the start's and in the goal's cubicle);
+    three in each aisle (the start and goal cubicles are too small for their share)."""
     out: list[dict[str, Any]] = []
     i = 0
     for qx in (0.0, 5.6):
         for qy in (0.0, 5.6):
             for cx in (qx, qx + 2.2):
                 for cy in (qy, qy + 2.2):
-                    count = 1 if (cx, cy) in ((0.0, 7.8), (7.8, 0.0)) else 3  # start and goal cubicles
-                    # the back half of the cubicle (away from its opening), where desks and chairs stand
-                    left = cx < 4.4
-                    x0, x1 = (cx + 0.3, cx + 1.6) if (left and cx < 2.2) or (not left and cx >= 7.8) else (cx + 0.3, cx + 1.9)
-                    out.append({"count": count, "area": [x0, cy + 0.35, x1, cy + 1.85], "size": [0.45, 0.45],
-                                "prefix": f"c{i}_", "clearance": 0.9})
+                    mine = (cx, cy) in ((0.0, 7.8), (7.8, 0.0))  # start and goal cubicles
+                    out.append({"count": 1 if mine else 2, "area": [cx + 0.35, cy + 0.38, cx + 1.85, cy + 0.42],
+                                "size": [0.45, 0.45], "prefix": f"c{i}b", "clearance": 0.9})
+                    if not mine:
+                        out.append({"count": 1, "area": [cx + 0.35, cy + 1.78, cx + 1.85, cy + 1.82],
+                                    "size": [0.45, 0.45], "prefix": f"c{i}t", "clearance": 0.9})
                     i += 1
-    out.append({"count": 2, "area": [4.55, 0.3, 5.45, 9.7], "size": [0.45, 0.45], "prefix": "av", "clearance": 0.9})
-    out.append({"count": 2, "area": [0.3, 4.55, 9.7, 5.45], "size": [0.45, 0.45], "prefix": "ah", "clearance": 0.9})
+    out.append({"count": 3, "area": [4.55, 0.3, 5.45, 9.7], "size": [0.45, 0.45], "prefix": "av", "clearance": 0.9})
+    out.append({"count": 3, "area": [0.3, 4.55, 9.7, 5.45], "size": [0.45, 0.45], "prefix": "ah", "clearance": 0.9})
     return out
 
 

@@ -1,0 +1,129 @@
+"""NAMO around the runs: frames and GIFs, the demo, triggers, the seed 000 reproduction."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+pytest.importorskip("shapely")
+
+from nowplan.acting.strategy import parse_strategy  # noqa: E402
+from nowplan.cli import main  # noqa: E402
+from nowplan.core.levels import LevelMap  # noqa: E402
+from nowplan.domains.namo.belief import NamoBelief  # noqa: E402
+from nowplan.core.atoms import Var  # noqa: E402
+from nowplan.domains.namo.generators import region  # noqa: E402
+from nowplan.domains.namo.geometry import MapGeometry, Pt  # noqa: E402
+from nowplan.domains.namo.model import build_domain  # noqa: E402
+from nowplan.domains.namo.params import Params  # noqa: E402
+from nowplan.domains.namo.render import write_gif  # noqa: E402
+from nowplan.domains.namo.reproduction import aggregate, targets  # noqa: E402
+from nowplan.domains.namo.runner import run_recorded  # noqa: E402
+from nowplan.domains.namo.scenarios import make  # noqa: E402
+from nowplan.domains.namo.triggers import make_triggers  # noqa: E402
+from nowplan.planning.regression import plan as regression_plan  # noqa: E402
+from nowplan.trace import Trace  # noqa: E402
+
+
+def test_frames_are_trace_events_and_make_a_gif(tmp_path):
+    tr = Trace()
+    m, pngs = run_recorded(make("simple", 0), parse_strategy("hpn+foresight", max_actions=40), seed=0, trace=tr)
+    frames = tr.of("frame")
+    assert len(frames) == len(pngs) == m.actions + 2  # before the first action, after each, at the end
+    assert all(f["image"].startswith("data:image/png;base64,") for f in frames)
+    assert all(p[:8] == b"\x89PNG\r\n\x1a\n" for p in pngs)
+    gif = tmp_path / "run.gif"
+    write_gif(pngs, gif)
+    assert gif.read_bytes()[:4] == b"GIF8"
+
+
+def test_demo_namo_writes_trace_frames_and_animation(tmp_path, capsys):
+    assert main(["demo", "namo", "--out", str(tmp_path), "--failure-prob", "0"]) == 0
+    out = capsys.readouterr().out
+    assert "outcome: reached" in out and "picks/places" in out
+    d = tmp_path / "namo"
+    events = [json.loads(x) for x in (d / "trace.jsonl").read_text().splitlines()]
+    assert any(e["event"] == "frame" for e in events)
+    assert (d / "namo.gif").read_bytes()[:4] == b"GIF8"
+    assert len(list((d / "frames").glob("frame-*.png"))) == sum(e["event"] == "frame" for e in events)
+
+
+def _top_plan(ep):
+    dom = ep.problem.domain
+    res = regression_plan(dom, {}, ep.belief, ep.problem.goal, LevelMap(dom.top_level))
+    assert res.solved and res.plan is not None
+    return res.plan
+
+
+def test_new_obstacle_trigger_fires_once_per_perceptual_event():
+    ep = make("fig6", 0)
+    plan = _top_plan(ep)
+    new_obstacle, _ = make_triggers(ep.belief.params)
+    assert new_obstacle(plan, ep.belief) is None
+    b = ep.belief
+    route = [a.args[2] for a in plan.actions if a.name == "Move"]
+    mid = route[len(route) // 2].centroid
+    b._detect("crate", mid.x - b.pose.x, mid.y - b.pose.y, 0.02, (0.5, 0.5))
+    reason = new_obstacle(plan, b)
+    assert reason is not None and "crate" in reason
+    assert new_obstacle(plan, b) is None  # already answered for this perceptual state
+
+
+def test_shorter_path_trigger_after_a_better_estimate():
+    ep = make("fig9", 0)
+    b = ep.belief
+    b.observed[:] = True
+    from nowplan.planning.context import PlanningContext
+
+    dom = ep.problem.domain
+    ctx = PlanningContext((), {"foresight": True})
+    res = regression_plan(dom, {}, b, ep.problem.goal, LevelMap(dom.top_level), context=ctx)
+    assert res.solved
+    _, shorter = make_triggers(b.params)
+    assert shorter(res.plan, b) is None
+    top = b.objects["top"]  # a look localises it near the wall, out of the way
+    top.mean, top.cov = np.array([3.6, 5.05]), np.eye(2) * 0.02**2
+    b._bump(percept=True)
+    reason = shorter(res.plan, b)
+    assert reason is not None and "shorter" in reason
+
+
+def test_cost_of_a_move_rises_with_an_obstacle_in_its_volume():
+    geom = MapGeometry(6.0, 3.0, ())
+    b = NamoBelief(geom, np.array([0.5, 1.5]))
+    params = Params()
+    move_op = build_domain(params).operator_map["Move"]
+    a, c = Pt(0.5, 1.5), Pt(2.1, 1.5)
+    move = move_op.instantiate({Var("a"): a, Var("b"): c, Var("sw"): region(b, a, c, False)})
+    before = move.cost(b)
+    assert before == pytest.approx(a.dist(c))
+    b._detect("box", 0.8, 0.0, 0.02, (0.4, 0.4))  # right on the way
+    assert move.cost(b) == pytest.approx(before + params.clear_cost)
+
+
+def test_aggregate_and_targets_follow_the_records():
+    recs = []
+    for dom in ("1", "2", "3"):
+        for alg, pp, t in (("original BHPN", 4, 2.0), ("aggressive replanning", 2, 4.0), ("selective replanning", 2, 1.0)):
+            for seed in range(2):
+                recs.append({"domain": dom, "algorithm": alg, "seed": seed, "outcome": "reached", "reason": "",
+                             "picks_places": pp + seed, "looks": 3, "moves": 5, "planning_cpu_s": t,
+                             "run_cpu_s": 2 * t, "objects": 3})
+    rows = aggregate(recs)
+    by = {(r["domain"], r["algorithm"]): r for r in rows}
+    assert by[("1", "original BHPN")]["picks_places"] == 4.5
+    assert by[("2", "aggressive replanning")]["time_ratio"] == 2.0
+    assert by[("Avg", "selective replanning")]["planning_ratio"] == 0.5
+    text = "\n".join(targets(rows))
+    assert "0.50x original's (target <= 0.7): met" in text
+    assert "0.25x aggressive's (target <= 0.5): met" in text
+
+
+@pytest.mark.slow
+def test_reproduce_000_quick_prints_the_table(tmp_path, capsys):
+    assert main(["reproduce", "000", "--quick", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "selective replanning" in out and "Office" in out
+    assert (tmp_path / "report.md").exists() and (tmp_path / "runs.json").exists()
