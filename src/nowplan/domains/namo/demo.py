@@ -1,7 +1,6 @@
 """``nowplan demo namo``: a robot clears its way through fog, with pictures.
 
-Runs one NAMO scenario under BHPN with flexible execution, serendipity,
-selective replanning and foresight; writes the trace (with a PNG frame
+Runs one NAMO scenario under BHPN with selective replanning and foresight; writes the trace (with a PNG frame
 after every action, embedded by the viewer), the frames as files and an
 animated GIF, and prints the metrics.  ``--failure-prob`` is the world's
 grasp-failure probability.
@@ -23,7 +22,7 @@ from nowplan.trace import Trace
 log = logging.getLogger(__name__)
 
 DEMO_SCENARIO = "domain1"
-DEMO_STRATEGY = "hpn+flexible+serendipity+selective+foresight"
+DEMO_STRATEGY = "hpn+foresight+selective"
 
 
 def main(args: argparse.Namespace) -> int:

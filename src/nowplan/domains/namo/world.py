@@ -66,6 +66,7 @@ class NamoWorld:
         self.actions = 0
         self.failures = 0
         self.contacts = 0
+        self.drives = 0  # base motions: moves, and the approach and return drives of picks and places
         self._wall_geom = geom.wall_shape
         # the robot's grasp controller aims at the agent's latest estimate of the object
         # (set by the episode; without it the grasp aims where the plan expected the object)
@@ -259,6 +260,7 @@ class NamoWorld:
         return Observation(ok, data, tuple(exo), info)
 
     def _do_Move(self, a: Pt, b: Pt, region: Region) -> tuple[bool, dict[str, Any], str]:
+        self.drives += 1
         traveled, hit, done = self._follow((self.pose, a, b))  # onto the planned segment, then along it
         data: dict[str, Any] = {"traveled": traveled, "completed": done}
         if hit is not None:
@@ -287,6 +289,7 @@ class NamoWorld:
         return self._look(math.atan2(p.y - self.robot[1], p.x - self.robot[0]))
 
     def _do_Pick(self, obj: str, m: Manip, home: Pt, pc: Pt) -> tuple[bool, dict[str, Any], str]:
+        self.drives += len(m.pick_path) > 1
         traveled, hit, done = self._follow(m.pick_path)
         data: dict[str, Any] = {"traveled": traveled, "grasped": False, "returned": False}
         if hit is not None:
@@ -339,6 +342,7 @@ class NamoWorld:
             return False, data, f"dragging {obj} blocked by {hit}"
         if not done:
             return False, data, "dragging stopped early"
+        self.drives += len(m.return_path) > 1
         back, hit, home_ok = self._follow(m.return_path)
         data["returned"] = back
         data["home"] = home_ok
