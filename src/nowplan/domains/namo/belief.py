@@ -72,7 +72,7 @@ class NamoBelief:
     robot_var: float = 0.0004
     params: Params = DEFAULT_PARAMS
     sensor: Sensor = DEFAULT_SENSOR
-    observed: np.ndarray = field(default=None)  # type: ignore[assignment]
+    observed: np.ndarray = field(default=None)  # type: ignore[arg-type]
     objects: dict[str, ObjectEstimate] = field(default_factory=dict)
     held: str | None = None
     held_manip: Manip | None = None
@@ -115,7 +115,7 @@ class NamoBelief:
         move generator gives up, so the run ends (no plan) instead of looping.
         """
         c = self.cache()
-        n = c.get("move_calls", 0) + 1
+        n = int(c.get("move_calls", 0)) + 1
         c["move_calls"] = n
         if n == LOOP_LIMIT:
             log.warning("planning loop: %d move requests without acting; giving up on this belief", n)
@@ -226,7 +226,8 @@ class NamoBelief:
         data: dict[str, Any] = obs.data if isinstance(obs.data, dict) else {}
         name = action.name
         if name == "Move":
-            region: Region = action.args[2]
+            region = action.args[2]
+            assert isinstance(region, Region)
             self._drive((self.pose, region.start, region.end), float(data.get("traveled", 0.0)))
             if data.get("completed", obs.success):
                 self.robot_sym = region.end
@@ -246,7 +247,7 @@ class NamoBelief:
         self.trajectory.append(p)
 
     def _update_pick(self, action: Action, data: dict[str, Any]) -> None:
-        o, m = action.args[0], action.args[1]
+        o, m = str(action.args[0]), action.args[1]
         assert isinstance(m, Manip)
         self._drive(m.pick_path, float(data.get("traveled", 0.0)))
         if data.get("grasped"):
@@ -265,7 +266,7 @@ class NamoBelief:
             self.robot_sym = m.home if self.at(m.home) else self.geom.grid.snap(self.pose)
 
     def _update_place(self, action: Action, data: dict[str, Any]) -> None:
-        o, m = action.args[0], action.args[4]
+        o, m = str(action.args[0]), action.args[4]
         if not isinstance(m, Manip) or self.held != o:
             return
         self._drive(m.carry_path, float(data.get("carried", 0.0)))

@@ -34,7 +34,8 @@ def robot_at_in(goal: Goal) -> Pt | None:
     """The pose a goal asks the robot to be at, if any."""
     for a in goal.atoms:
         if a.predicate == "RobotAt" and a.value is True:
-            return a.args[0]  # type: ignore[no-any-return]
+            p = a.args[0]
+            return p if isinstance(p, Pt) else None
     return None
 
 

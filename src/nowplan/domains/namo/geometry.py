@@ -276,7 +276,7 @@ class Grid:
             ok &= (ang <= fov / 2) | (dist <= self.res * 1.5)
         idx = np.nonzero(ok)[0]
         if idx.size == 0:
-            return ok
+            return np.asarray(ok, dtype=bool)
         steps = int(max_range / (self.res / 3)) + 2
         t = np.linspace(0.0, 1.0, steps)[1:-1]  # exclude both ends
         sx = origin.x + np.outer(dx[idx], t)
@@ -289,7 +289,7 @@ class Grid:
         # only samples that lie before the target along the ray count
         seen = ~blocked.any(axis=1)
         ok[idx] = seen
-        return ok
+        return np.asarray(ok, dtype=bool)
 
 
 def _shift(m: np.ndarray, di: int, dj: int) -> np.ndarray:

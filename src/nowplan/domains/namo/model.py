@@ -116,7 +116,7 @@ def _placed_in_clear(x: Atom, y: Atom) -> bool:
         return False
     obj, where = x.args
     region, ex = y.args
-    if obj in ex or not isinstance(region, Region) or not isinstance(where, Box):
+    if not isinstance(ex, frozenset) or obj in ex or not isinstance(region, Region) or not isinstance(where, Box):
         return False
     return region.hits_box(where)
 

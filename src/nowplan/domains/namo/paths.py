@@ -191,7 +191,8 @@ class PathPlanner:
         if pp is None:
             pp = PathPlanner(belief, foresight)
             c[key] = pp
-        return pp  # type: ignore[no-any-return]
+        assert isinstance(pp, PathPlanner)
+        return pp
 
     def _source(self, p: Pt) -> int:
         g = self.cm.grid

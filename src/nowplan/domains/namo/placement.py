@@ -70,7 +70,8 @@ def taboo_regions(context: Any) -> list[Region]:
 def hard_regions(goal: Goal, obj: str, cleared: Region) -> list[Region]:
     out = [cleared]
     for a in goal.atoms:
-        if a.predicate == "BClear" and isinstance(a.args[0], Region) and obj not in a.args[1]:
+        ex = a.args[1] if a.predicate == "BClear" else frozenset()
+        if a.predicate == "BClear" and isinstance(a.args[0], Region) and isinstance(ex, frozenset) and obj not in ex:
             if a.args[0] != cleared:
                 out.append(a.args[0])
     return out
@@ -97,7 +98,7 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
             pc = belief.nominal()
             grip = belief.grip[0] if belief.grip is not None else np.array(m.offset)
             at = Pt.of(belief.robot_mean[0] + grip[0], belief.robot_mean[1] + grip[1])
-            hard = tuple(hard_regions(goal, held, region)) if region.radius > 0 else ()
+            hard: tuple[Region, ...] = tuple(hard_regions(goal, held, region)) if region.radius > 0 else ()
             options = []
             for fog_ok, through in ((False, False), (True, False), (True, True)):
                 options = _manip_options(belief, held, m.home, hard, tuple(taboo_regions(context)), 2,
@@ -118,11 +119,11 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
     blockers.sort(key=lambda n: belief.objects[n].center.dist(home))
     taboo = taboo_regions(context)
     for name in blockers[:3]:
-        hard = hard_regions(goal, name, region)
+        hard_list = hard_regions(goal, name, region)
         size = belief.objects[name].size
         # regression order: the other objects in the region and not excepted are moved before this one
         gone = frozenset(blockers) - {name}
-        options = manip_options(belief, name, home, tuple(hard), tuple(taboo), n=2, gone=gone)
+        options = manip_options(belief, name, home, tuple(hard_list), tuple(taboo), n=2, gone=gone)
         if not options and not gone:
             manip_options(belief, name, home, (region,), (), n=1)  # is it movable at all? (marks it if not)
         for m in options:
@@ -268,7 +269,7 @@ class _Core:
     free_pick: np.ndarray
     par_pick: list[int]
     carries: list[_Carry]
-    returns: dict[int, tuple[list[float], list[int], np.ndarray] | None]
+    returns: dict[tuple[float | None, float | None, int], tuple[list[float], list[int], np.ndarray] | None]
 
 
 def _core(
@@ -369,7 +370,7 @@ def _hits(region: Region, cx: np.ndarray, cy: np.ndarray, hw: float, hh: float, 
     dx = np.maximum(np.abs(px[None, :] - cx[:, None]) - hw, 0.0)
     dy = np.maximum(np.abs(py[None, :] - cy[:, None]) - hh, 0.0)
     d = np.hypot(dx, dy).min(axis=1)
-    return d < region.radius + grow - GRAZE_OK
+    return np.asarray(d < region.radius + grow - GRAZE_OK, dtype=bool)
 
 
 def _manip_options(

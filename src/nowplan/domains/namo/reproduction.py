@@ -199,14 +199,14 @@ def write_outputs(out_dir: Any, rows: Sequence[dict[str, Any]], records: Sequenc
     from pathlib import Path
 
     from nowplan.experiments.papers import PAPERS
-    from nowplan.experiments.report import Heading, Paragraph, write_report
+    from nowplan.experiments.report import Block, Heading, Paragraph, write_report
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     ours = [{k: v for k, v in r.items() if k in ("domain", "algorithm", "picks_places", "looks", "moves",
                                                    "time_ratio")} for r in rows if r["domain"] != "office"]
     paper = [dict(r) for r in PAPERS["000"].rows]
-    blocks = [
+    blocks: list[Block] = [
         Heading("Seed 000, Table I: ours beside the paper's", 1),
         side_by_side(ours, paper, ["domain", "algorithm"], "picks/places, looks, moves, time relative to original"),
         Heading("All our rows"),

@@ -74,7 +74,8 @@ class RecordingExecutive(Executive):
                 rec.old_routes = [old]
         if outer is not None:
             rec._outer = outer
-        goal = next((a.args[0] for a in self.problem.goal.atoms if a.predicate == "RobotAt"), None)
+        goal = next((a.args[0] for a in self.problem.goal.atoms
+                     if a.predicate == "RobotAt" and isinstance(a.args[0], Pt)), None)
         png = render_png(
             self.world, self.belief, stack_regions(self), rec.old_routes, stack_manips(self), goal,
             caption, rec.dpi,

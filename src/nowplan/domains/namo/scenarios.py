@@ -152,7 +152,7 @@ class ScenarioTable(Mapping[str, Callable[[int], Episode]]):
         spec = self.spec(name)
         return lambda seed: episode(spec, seed)
 
-    def get(self, name: str, default: Any = None) -> Any:  # type: ignore[override]
+    def get(self, name: str, default: Any = None) -> Any:
         try:
             return self[name]
         except KeyError:

@@ -102,7 +102,7 @@ class _Reader:
     def dataclass_fields(self, cls: Any, d: Any, path: str) -> Any:
         names = {f.name: f for f in fields(cls)}
         d = self.obj(d, set(names), path)
-        vals = {}
+        vals: dict[str, Any] = {}
         for k, v in d.items():
             default = getattr(cls(), k)
             if isinstance(default, bool):

@@ -63,6 +63,7 @@ class NamoWorld:
         )
         self.held: str | None = None
         self.grip: np.ndarray = np.zeros(2)
+        self._hit_at: tuple[float, float] | None = None  # where the last motion touched something
         self.actions = 0
         self.failures = 0
         self.contacts = 0
@@ -241,7 +242,7 @@ class NamoWorld:
             from nowplan.errors import ExecutionError
 
             raise ExecutionError(f"the NAMO world cannot execute {action}")
-        self._hit_at: tuple[float, float] | None = None
+        self._hit_at = None
         ok, data, reason = handler(*action.args)
         if self._hit_at is not None and reason.endswith("by wall"):  # the bumper felt where
             data["bump"] = (self._hit_at[0] - self.robot[0], self._hit_at[1] - self.robot[1])
