@@ -31,6 +31,7 @@ def register(sub: Any) -> None:
         "domain", nargs="?", default="logistics",
         help="which domain's demo to run (default: logistics; any registered domain with a demo)",
     )
+    p.add_argument("--scenario", help="scenario for a domain's own demo (default: the domain's choice)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="problem and world seed (default 0)")
     p.add_argument("--size", default="medium", choices=["tiny", "small", "medium", "large"])
     p.add_argument("--failure-prob", type=probability, default=0.1, help="action failure probability (default 0.1)")
