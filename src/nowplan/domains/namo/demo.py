@@ -17,6 +17,7 @@ from nowplan.acting.strategy import parse_strategy
 from nowplan.domains.namo.render import write_gif
 from nowplan.domains.namo.runner import run_recorded
 from nowplan.domains.namo.scenarios import SCENARIOS, episode
+from nowplan.errors import ScenarioError
 from nowplan.trace import Trace
 
 log = logging.getLogger(__name__)
@@ -28,6 +29,8 @@ DEMO_STRATEGY = "hpn+foresight+selective"
 def main(args: argparse.Namespace) -> int:
     name = getattr(args, "scenario", None) or DEMO_SCENARIO
     seed = int(getattr(args, "seed", 0))
+    if name not in SCENARIOS:
+        raise ScenarioError(f"unknown scenario '{name}' for domain 'namo'; valid scenarios: {', '.join(sorted(SCENARIOS))}")
     spec = SCENARIOS.spec(name)
     fail = getattr(args, "failure_prob", None)
     if fail is not None:
