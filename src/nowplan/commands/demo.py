@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import importlib.util
 from pathlib import Path
 from typing import Any
 
@@ -15,6 +14,7 @@ from nowplan.domains.registry import domain_names, get_domain
 from nowplan.errors import ScenarioError
 from nowplan.trace import Trace
 from nowplan.tree import render_text
+from nowplan.viz.viewer import write_viewer
 
 
 def register(sub: Any) -> None:
@@ -60,10 +60,7 @@ def main(args: argparse.Namespace) -> int:
     print()
     print(metrics.summary())
     print(f"\ntrace: {trace_path}")
-    if importlib.util.find_spec("nowplan.viz.viewer") is not None:
-        from nowplan.viz.viewer import write_viewer  # type: ignore[attr-defined]
-
-        page = args.out / "trace.html"
-        write_viewer(trace_path, page)
-        print(f"viewer: {page} (open it in a browser)")
+    page = args.out / "trace.html"
+    write_viewer(trace_path, page)
+    print(f"viewer: {page} (open it in a browser)")
     return 0 if metrics.outcome.value == "reached" else 1
