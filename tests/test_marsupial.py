@@ -23,7 +23,7 @@ from nowplan.domains.marsupial.grid import (
     is_packed,
     load_anchor,
 )
-from nowplan.domains.marsupial.model import vehicle_shareable
+from nowplan.domains.marsupial.model import PLANNER, vehicle_shareable
 from nowplan.domains.marsupial.problems import LAYOUTS, REGIMES, ff_instance, generate, make_map, roads
 from nowplan.domains.marsupial.scenarios import episode
 from nowplan.domains.registry import get_domain
@@ -219,7 +219,8 @@ def _checked_run(ep, strategy: str, seed: int):
         return original(action)
 
     world.execute = execute
-    m = run_episode(ep, parse_strategy(strategy, max_actions=3000, max_plans=20000, time_limit=120), seed=seed)
+    st = parse_strategy(strategy, max_actions=3000, max_plans=20000, time_limit=120, planner=PLANNER)
+    m = run_episode(ep, st, seed=seed)
     return m, bad, executed
 
 

@@ -15,6 +15,10 @@ It compares the resources each subgoal is estimated to use
 * only *shareable* resources in common: combine;
 * nothing in common: keep the order.
 
+Before these rules, a subgoal the estimate cannot reach from the current
+state (no small plan for the preconditions its next level exposes) is put
+after one it can reach.
+
 A domain may test, in the now, whether two subgoals can really share a
 resource (seed 002: a vehicle is shareable if everything fits): a resource
 that passes is shareable whatever its declared uses, one that fails is at
@@ -27,6 +31,7 @@ share.
 from __future__ import annotations
 
 import enum
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -101,6 +106,11 @@ def arrange(
         return Arrange.FIRST
     u1 = subgoal_uses(s1, estimator, levels)
     u2 = subgoal_uses(s2, estimator, levels)
+    # a step the estimate cannot reach from here waits for one it can reach (in the now)
+    f1 = sum(estimator.estimate(a, levels).effort for a in s1.actions)
+    f2 = sum(estimator.estimate(a, levels).effort for a in s2.actions)
+    if math.isinf(f1) != math.isinf(f2):
+        return Arrange.SECOND if math.isinf(f1) else Arrange.FIRST
     pairs: list[tuple[ResourceName, ResourceUse, ResourceUse]] = [
         (r, u1[r], u2[r]) for r in u1.keys() & u2.keys()
     ]

@@ -52,10 +52,13 @@ class PeepholeConfig:
     # a step with fewer criticality classes still hidden is only reordered, never combined:
     # its refinement is its last one, so there is no abstract structure left to share
     min_hidden_to_combine: int = 2
+    joint_search: bool = True  # plan combined subgoals without the random-serialization shortcut
+    joint_weight: float = 1.0  # A* weight for those joint plans
     max_moves: int = 0  # moves per SelectGap call (0: the square of the plan length)
+    # small searches bounded by nodes (a wall-clock bound would make runs depend on the machine)
     estimate_search: PlannerConfig = field(
         default_factory=lambda: PlannerConfig(
-            max_nodes=300, time_limit=1.0, serialization=True, monotonic=False, shortcut_nodes=300
+            max_nodes=300, time_limit=30.0, serialization=True, monotonic=False, shortcut_nodes=300
         )
     )
 
@@ -138,10 +141,16 @@ class Reorderer:
         return self.arrangeable(a) and self.levels.describe(a) >= self.config.min_hidden_to_combine
 
     def arrange(self, s1: Subgoal, s2: Subgoal) -> Arrange:
-        return arrange(
+        verdict = arrange(
             s1, s2, self.belief, domain=self.domain, levels=self.levels, estimator=self.estimator,
             model=self.model,
         )
+        if verdict is Arrange.COMBINE and not all(self.combinable(a) for a in (*s1.actions, *s2.actions)):
+            # nothing left to share at this level: independent, so the easier one first
+            e1 = sum(self.estimator.effort(a, self.levels) for a in s1.actions)
+            e2 = sum(self.estimator.effort(a, self.levels) for a in s2.actions)
+            return Arrange.SECOND if e2 < e1 else Arrange.FIRST
+        return verdict
 
     # -- Alg. 3 -------------------------------------------------------------------
     def select_gap(self, ops: list[Action], goals: list[Goal]) -> tuple[list[Action], list[Goal]]:
@@ -285,8 +294,9 @@ class Peephole(Mechanism):
         self, ex: Executive, parent: Frame, goal: Goal, config: PlannerConfig
     ) -> PlannerConfig | None:
         """Combined subgoals are planned jointly: no random serialization of their conjuncts."""
-        if parent.info.get("joint") is not None and parent.info.get("joint") == parent.i:
-            return replace(config, serialization=False)
+        joint = parent.info.get("joint")
+        if self.config.joint_search and joint is not None and joint == parent.i:
+            return replace(config, serialization=False, weight=self.config.joint_weight)
         return None
 
 

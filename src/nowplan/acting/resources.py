@@ -86,7 +86,11 @@ def resource_model(domain: Domain) -> ResourceModel:
 
 @dataclass(frozen=True)
 class Estimate:
-    """Resources used to achieve a subgoal, and the effort to reach it from the belief."""
+    """Resources used to achieve a subgoal, and the effort to reach it from the belief.
+
+    ``effort`` is infinite when no small plan reaches the step's exposed
+    preconditions from the current belief (only computed for orders >= 1).
+    """
 
     uses: Mapping[ResourceName, ResourceUse] = field(hash=False)
     effort: float = 0.0
@@ -123,7 +127,7 @@ class Estimator:
         self.belief = belief
         self.model = model
         self.search = search or PlannerConfig(
-            max_nodes=300, time_limit=1.0, serialization=True, monotonic=False, shortcut_nodes=300
+            max_nodes=300, time_limit=30.0, serialization=True, monotonic=False, shortcut_nodes=300
         )
         self._cache: dict[tuple[Any, int, int], Estimate] = {}
         self._plans: dict[tuple[Any, int], tuple[Action, ...] | None] = {}
@@ -143,7 +147,9 @@ class Estimator:
             classes = hidden_classes(action, lvl)
             # 1st order: a small plan for the preconditions the next level exposes
             first = self._support(action, levels, classes[0])
-            if first is not None:
+            if first is None:
+                effort = float("inf")  # not reachable from here with a small search
+            else:
                 effort += sum(a.cost(self.belief) for a in first)
                 for a in first:
                     sub = self.estimate(a, levels, k - 1)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import importlib.util
 
-from nowplan.domains.marsupial.model import make_domain
+from nowplan.domains.marsupial.model import PLANNER, make_domain
 from nowplan.domains.marsupial.problems import REGIMES, ff_instance, generate
 from nowplan.domains.marsupial.scenarios import data_uri, episode, renderer, scenarios
 from nowplan.domains.registry import DomainSpec, register
@@ -35,7 +35,7 @@ def demo(args: argparse.Namespace) -> int:
             "frame", n=len(trace.of("action")), image=data_uri(png), caption=caption
         )
         trace.emit("frame", n=0, image=data_uri(renderer(ep.world, ep.belief)), caption="start")
-        metrics = run_episode(ep, parse_strategy("hpn+peephole"), seed=args.seed, trace=trace)
+        metrics = run_episode(ep, parse_strategy("hpn+peephole", planner=PLANNER), seed=args.seed, trace=trace)
     print(render_text(trace.events, max_lines=80))
     print()
     print(metrics.summary())

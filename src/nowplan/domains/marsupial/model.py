@@ -10,27 +10,32 @@ Criticalities (a precondition is kept at level ``i`` when its criticality is
 above ``i``; the top level is 4):
 
 ====  =========================================================================
- 5    where packages are: ``at(p, l)`` and ``same_city(p, v)`` for Load,
-      ``in(p, v)`` for Unload, ``at(p, l)`` for SameCity; static facts; a
-      Travel's start; the exact bay for robot operators and Pack
+ 5    where packages are: ``same_city(p, v)`` for Unload, ``at(p, l)`` for Load
+      and SameCity; static facts; a Travel's start; the exact bay for robot
+      operators and Pack
+ 4    ``in(p, v)`` for Unload
  3    ``at(v, l)`` for Load and Unload: where vehicles must be
  2    ``door(v)`` for Load (free) and Unload (the package), ``packed(v)`` for Travel
 ====  =========================================================================
 
-So the top level plans each package's route as Loads and Unloads (with a
-SameCity inference wherever a package changes vehicle); the next level adds
-the Travels; the last one the loader's work in the cargo bay, which a
-generator plans with A* over the grid (:mod:`.loader`).  A package's place
-is never hidden at a level where its vehicle's is visible: otherwise the
-planner could "teleport" a package with a cheap abstract Unload instead of
-refining the step it was given.  Costs: vehicle operators 10, robot
-operators 1, inference operators 0.  Resources (seed 002 III-C, V-B): Load
-and Unload use their vehicle and its stop (shareable) and the vehicle's
-space — continually for a Load (the package takes room as long as it is
-in), contained for an Unload (room is given back); the domain's test makes
-vehicle and space shareable whenever the greedy packer fits everything, so
-loads are combined while they fit and an unload goes before a load that
-would not fit.  Robot operators use the loader and the load region.
+So the top level plans each package's route as Unloads and SameCity
+inferences (a truck to its airport, the plane, a truck to the destination);
+the next level adds the Loads; then the Travels; the last one the loader's
+work in the cargo bay, which a generator plans with A* over the grid
+(:mod:`.loader`).  Load and SameCity choose their location in the now
+(:class:`Where`), which also keeps the planner from refining a step by
+"teleporting" a package with a cheaper abstract Unload instance.  Costs:
+vehicle operators 10, robot operators 1, inference operators 0.  Resources
+(seed 002 III-C, V-B): Load and Unload use their vehicle and its stop
+(shareable) and the vehicle's space — continually for a Load (the package
+takes room as long as it is in), contained for an Unload (room is given
+back); the domain's test makes vehicle and space shareable whenever the
+greedy packer fits everything, so loads are combined while they fit and an
+unload goes before a load that would not fit.  Robot operators use the
+loader and the load region.
+
+Long conjunctions at the top level need a larger search budget for the
+random-serialization shortcut than the engine's default: :data:`PLANNER`.
 """
 
 from __future__ import annotations
@@ -39,15 +44,18 @@ from collections.abc import Iterator, Mapping
 from typing import Any
 
 from nowplan.acting.resources import ResourceModel, register_resource_model
-from nowplan.core.atoms import Atom, Var, atom
+from nowplan.core.atoms import AtMostOne, Atom, Var, atom
 from nowplan.core.domain import Domain, Predicate
 from nowplan.core.operators import Action, Generator, Operator, Precondition, Resource, ResourceUse
 from nowplan.domains.marsupial import loader as lp
 from nowplan.domains.marsupial.grid import NONE, Hold, can_share, door_package, is_packed
+from nowplan.planning.regression import PlannerConfig
 
 NAME = "marsupial"
+# planner settings for this domain: up to 10 packages' routes in one top-level serialization
+PLANNER = PlannerConfig(shortcut_nodes=200_000, time_limit=120.0)
 VEHICLE_COST, ROBOT_COST, INFERENCE_COST = 10.0, 1.0, 0.0
-PKG, VEH, BAY = 5, 3, 2  # criticality classes (see the module docstring)
+PKG, IN, VEH, BAY = 5, 4, 3, 2  # criticality classes (see the module docstring)
 
 p, v, l, a, b = (Var(n) for n in ("p", "v", "l", "a", "b"))
 L1, L2, D1, D2, C, L = (Var(n) for n in ("L1", "L2", "d1", "d2", "c", "L"))
@@ -150,8 +158,8 @@ def operators(where: Where) -> tuple[Operator, ...]:
     return (
         Operator(
             "load", (p, v, l),
-            (_pre(atom("reachable", l, v), PKG), _pre(atom("same_city", p, v), PKG), _pre(atom("at", p, l), PKG),
-             _pre(atom("at", v, l), VEH), _pre(atom("door", v, value=NONE), BAY)),
+            (_pre(atom("reachable", l, v), PKG), _pre(atom("at", p, l), PKG), _pre(atom("at", v, l), VEH),
+             _pre(atom("door", v, value=NONE), BAY)),
             (atom("in", p, v), atom("at", p, l, value=False), atom("door", v, value=p),
              atom("packed", v, value=False)),
             cost=VEHICLE_COST, param_types=("package", "vehicle", "location"),
@@ -160,8 +168,8 @@ def operators(where: Where) -> tuple[Operator, ...]:
         ),
         Operator(
             "unload", (p, v, l),
-            (_pre(atom("reachable", l, v), PKG), _pre(atom("in", p, v), PKG), _pre(atom("at", v, l), VEH),
-             _pre(atom("door", v, value=p), BAY)),
+            (_pre(atom("reachable", l, v), PKG), _pre(atom("same_city", p, v), PKG), _pre(atom("in", p, v), IN),
+             _pre(atom("at", v, l), VEH), _pre(atom("door", v, value=p), BAY)),
             (atom("at", p, l), atom("in", p, v, value=False), atom("door", v, value=NONE)),
             cost=VEHICLE_COST, param_types=("package", "vehicle", "location"),
             resources=(Resource(("vehicle", v), SH), Resource(("stop", v, l), SH), Resource(("space", v), CT)),
@@ -272,27 +280,41 @@ class Where:
             yield {l: x}
 
 
+class CityRule:
+    """``same_city(p, v)`` is false once ``p`` is in another vehicle or where ``v`` cannot go.
+
+    A keyed conflict rule (``group_keys``): atoms sharing a key cannot hold
+    together, so goals are checked in linear time.
+    """
+
+    def __init__(self, reach: Mapping[str, frozenset[str]]) -> None:
+        self.reach = reach
+        self.vehicles = tuple(sorted(reach))
+
+    def group_keys(self, a: Atom) -> list[Any]:
+        if a.value is not True or not a.args or a.args[0] in self.reach:
+            return []
+        pkg = a.args[0]
+        if a.predicate == "same_city":
+            return [("city", pkg, a.args[1])]
+        if a.predicate == "in":
+            return [("city", pkg, w) for w in self.vehicles if w != a.args[1]]
+        if a.predicate == "at":
+            return [("city", pkg, w) for w in self.vehicles if a.args[1] not in self.reach[w]]
+        return []
+
+    def __call__(self, a: Atom, b: Atom) -> bool:
+        if a == b:
+            return False
+        ka = set(self.group_keys(a))
+        return bool(ka) and any(k in ka for k in self.group_keys(b))
+
+
 def make_domain(reach: Mapping[str, frozenset[str]], plane: str = "plane") -> Domain:
     """The domain for one map: ``reach[v]`` are the locations vehicle ``v`` can visit."""
 
-    def one_place(x: Atom, y: Atom) -> bool:
-        return (
-            x.predicate in ("at", "in") and y.predicate in ("at", "in") and x.args[0] == y.args[0]
-            and x.value is True and y.value is True and x.key != y.key
-        )
-
-    def city(x: Atom, y: Atom) -> bool:
-        """``same_city(p, v)`` is false once ``p`` is in another vehicle or where ``v`` cannot go."""
-        if x.predicate != "same_city" or x.value is not True or y.value is not True:
-            return False
-        pkg, veh = x.args
-        if y.predicate == "in" and y.args[0] == pkg:
-            return y.args[1] != veh
-        if y.predicate == "at" and y.args[0] == pkg:
-            return y.args[1] not in reach.get(str(veh), frozenset())
-        return False
-
-    return Domain(NAME, PREDICATES, operators(Where(reach, plane)), TYPES, conflicts=(one_place, city))
+    conflicts = (AtMostOne(("at", "in")), CityRule(reach))
+    return Domain(NAME, PREDICATES, operators(Where(reach, plane)), TYPES, conflicts=conflicts)
 
 
 # -- the ordering preference's resources ---------------------------------------------------------

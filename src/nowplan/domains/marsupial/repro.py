@@ -56,11 +56,12 @@ def run_one(job: tuple[str, int, int, str, float]) -> dict[str, Any]:
     """One run (in a worker process): the metrics the figures need."""
     from nowplan.acting.run import run_episode
     from nowplan.acting.strategy import parse_strategy
+    from nowplan.domains.marsupial.model import PLANNER
     from nowplan.domains.marsupial.scenarios import episode
 
     regime, n, trial, strategy, limit = job
     ep = episode(regime, n, trial)
-    st = parse_strategy(strategy, max_actions=20_000, max_plans=50_000, time_limit=limit)
+    st = parse_strategy(strategy, max_actions=20_000, max_plans=50_000, time_limit=limit, planner=PLANNER)
     cpu0 = time.process_time()
     m = run_episode(ep, st, seed=trial)
     cpu = time.process_time() - cpu0
