@@ -113,9 +113,17 @@ def occupancy(hold: Hold, door: Door) -> dict[Cell, str]:
 
 
 def door_status(hold: Hold, door: Door) -> str:
-    """The ``door(v)`` fluent: ``none``, the placed package's name, ``busy`` or ``busy:<name>``."""
+    """The ``door(v)`` fluent: ``none``, the placed package's name, ``busy`` or ``busy:<name>``.
+
+    The load region is busy while the loader stands in it, another package
+    covers part of it, or the loader is carrying a package.
+    """
     lc = hold.cols - 2
-    other = hold.loader[1] >= lc or any(c[1] >= lc for _, s, a in hold.items for c in cells(s, a))
+    other = (
+        hold.held is not None
+        or hold.loader[1] >= lc
+        or any(c[1] >= lc for _, s, a in hold.items for c in cells(s, a))
+    )
     if door is None:
         return BUSY if other else NONE
     return f"{BUSY}:{door[0]}" if other else door[0]
