@@ -24,6 +24,16 @@ def nonneg_int(value: str) -> int:
     return v
 
 
+def positive_int(value: str) -> int:
+    try:
+        v = int(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got '{value}'") from None
+    if v <= 0:
+        raise argparse.ArgumentTypeError(f"expected a number > 0, got {v}")
+    return v
+
+
 def positive_float(value: str) -> float:
     try:
         v = float(value)

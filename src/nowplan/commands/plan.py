@@ -18,31 +18,12 @@ import time
 from typing import Any
 
 from nowplan.core.levels import LevelMap, flat_levels
+from nowplan.commands.common import positive_float, positive_int
 from nowplan.errors import UsageError
 
 log = logging.getLogger(__name__)
 
 ENGINES = ("regression", "fd")
-
-
-def _positive_float(value: str) -> float:
-    try:
-        v = float(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got '{value}'") from None
-    if not v > 0:
-        raise argparse.ArgumentTypeError(f"expected a number > 0, got {value}")
-    return v
-
-
-def _positive_int(value: str) -> int:
-    try:
-        v = int(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got '{value}'") from None
-    if v <= 0:
-        raise argparse.ArgumentTypeError(f"expected a number > 0, got {v}")
-    return v
 
 
 def _level(value: str) -> str | int:
@@ -70,11 +51,11 @@ def register(subparsers: Any) -> None:
                    help="'flat' (default: a concrete plan), 'top' (the most abstract level) or a number")
     p.add_argument("--json", action="store_true", help="print a JSON document instead of the plan")
     p.add_argument("--seed", type=int, default=0, help="seed for the planner's random choices (default 0)")
-    p.add_argument("--time-limit", type=_positive_float, default=60.0, metavar="S",
+    p.add_argument("--time-limit", type=positive_float, default=60.0, metavar="S",
                    help="wall-clock limit in seconds (default 60)")
-    p.add_argument("--max-nodes", type=_positive_int, default=500_000, metavar="N",
+    p.add_argument("--max-nodes", type=positive_int, default=500_000, metavar="N",
                    help="node expansions allowed to the regression search (default 500000)")
-    p.add_argument("--weight", type=_positive_float, default=2.0, metavar="W",
+    p.add_argument("--weight", type=positive_float, default=2.0, metavar="W",
                    help="weighted A*: f = g + W*h (regression engine; default 2, 1 = A*)")
     p.add_argument("--shortcuts", action="store_true",
                    help="try HPN's serialization and monotonic shortcuts before full search")

@@ -7,27 +7,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from nowplan.commands.common import positive_float, positive_int
 from nowplan.errors import ScenarioError
-
-
-def _jobs(value: str) -> int:
-    try:
-        v = int(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number of jobs, got '{value}'") from None
-    if v < 1:
-        raise argparse.ArgumentTypeError(f"expected at least 1 job, got {v}")
-    return v
-
-
-def _seconds(value: str) -> float:
-    try:
-        v = float(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number of seconds, got '{value}'") from None
-    if not v > 0:
-        raise argparse.ArgumentTypeError(f"expected a time limit > 0 seconds, got {value}")
-    return v
 
 
 def register(sub: Any) -> None:
@@ -47,8 +28,8 @@ def register(sub: Any) -> None:
     p.add_argument("--store", required=True, type=Path, help="SQLite file for the run records")
     p.add_argument("--backend", choices=("local", "ray"), default="local",
                    help="local worker processes (default) or Ray (pip install 'nowplan[ray]')")
-    p.add_argument("--jobs", type=_jobs, help="runs at a time (default: CPU count)")
-    p.add_argument("--time-limit", type=_seconds, default=600.0,
+    p.add_argument("--jobs", type=positive_int, help="runs at a time (default: CPU count)")
+    p.add_argument("--time-limit", type=positive_float, default=600.0,
                    help="seconds per run (default 600); a run that overruns it is stopped and recorded")
     p.add_argument("--address", help="Ray cluster to join ('auto' or HOST:PORT); needs --backend ray")
     p.add_argument("--retry-errors", action="store_true", help="run again the configurations that crashed")
