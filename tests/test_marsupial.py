@@ -258,3 +258,51 @@ def test_rchpn_combines_loads_of_a_shared_origin():
     notes = [e["text"] for e in tr.of("note") if e["text"].startswith("peephole")]
     assert any("combined load(" in t for t in notes)
     assert any("combined unload(" in t for t in notes)
+
+
+# ------------------------------------------------------------------ the reproduction's bookkeeping
+
+
+def test_reproduction_summaries_pair_runs_and_average():
+    from nowplan.domains.marsupial.repro import summarize
+
+    def run(regime, n, trial, strategy, cost, cpu, ok=True):
+        return {"regime": regime, "packages": n, "trial": trial, "strategy": strategy, "outcome": "reached",
+                "goal_holds": ok, "cost": cost, "cpu_s": cpu}
+
+    runs = [run("single", 3, 0, "hpn", 200.0, 1.0), run("single", 3, 0, "hpn+peephole", 150.0, 2.0),
+            run("single", 3, 1, "hpn", 100.0, 1.0), run("single", 3, 1, "hpn+peephole", 90.0, 1.5),
+            run("both", 3, 0, "hpn", 100.0, 1.0), run("both", 3, 0, "hpn+peephole", 0.0, 9.0, ok=False)]
+    fig3, fig4, summary = summarize(runs)
+    single = [r for r in fig4 if r["regime"] == "single"]
+    assert [r["cost_decrease_pct"] for r in single] == [25.0, 10.0]
+    assert [r["time_increase_pct"] for r in single] == [100.0, 50.0]
+    row = next(r for r in fig3 if r["regime"] == "single")
+    assert row["cost_decrease_pct"] == 17.5 and row["trials"] == 2 and row["unsolved"] == 0
+    both = next(r for r in fig3 if r["regime"] == "both")
+    assert both["trials"] == 0 and both["unsolved"] == 1
+    assert [s["regime"] for s in summary] == ["single origin, single destination"]
+
+
+@pytest.mark.slow
+def test_reproduce_002_quick_prints_both_figures():
+    from nowplan.experiments.reproductions import ReproductionOptions, ReproStatus, reproduce
+
+    res = reproduce("002", ReproductionOptions(quick=True))
+    assert res.status is ReproStatus.DONE
+    assert any(r.get("figure") == "3" for r in res.rows) and any(r.get("figure") == "4" for r in res.rows)
+    assert all(r["solved"] == "both" for r in res.rows if r.get("figure") == "4")
+
+
+@pytest.mark.slow
+def test_demo_writes_frames(tmp_path):
+    import argparse
+    import json
+
+    from nowplan.domains.marsupial import demo
+
+    code = demo(argparse.Namespace(seed=0, size="tiny", failure_prob=0.0, out=tmp_path))
+    assert code == 0
+    events = [json.loads(x) for x in (tmp_path / "trace.jsonl").read_text().splitlines()]
+    frames = [e for e in events if e["event"] == "frame"]
+    assert len(frames) > 3 and all(f["image"].startswith("data:image/png;base64,") for f in frames)
