@@ -160,3 +160,71 @@ def test_foresight_shows_generators_the_plan_stack():
     seen.clear()
     run(dom, [], ["y"], "hpn+foresight")
     assert seen and all(f for f, _ in seen) and max(n for _, n in seen) >= 2
+
+
+# gety needs x (criticality 2) and q (criticality 1); getq needs "blocked", which nothing makes:
+# the abstract plan is found at the top level, but its refinement fails every time while the
+# belief stays the same
+STUCK = Domain("stuck", PREDS, (op("gety", [("x", 2), ("q", 1)], ["y"]), op("getq", [("blocked", 1)], ["q"])))
+
+
+def _stuck(strategy: str, **overrides):
+    prob = Problem(STUCK, {}, State([atom("x")]), Goal.of([atom("y")]))
+    ep = Episode(prob, SymbolicWorld(STUCK, prob.init), SymbolicBelief(prob.init))
+    tr = Trace()
+    return run_episode(ep, parse_strategy(strategy, **overrides), trace=tr), tr
+
+
+def test_a_refinement_that_keeps_failing_is_given_up_with_a_reason():
+    for strategy in ("hpn", "hpn+flexible", "hpn+flexible+serendipity+selective"):
+        m, tr = _stuck(strategy)
+        assert m.outcome is Outcome.FAILED, (strategy, m.reason)
+        assert "without an action" in m.reason
+        assert m.plans_made + m.plan_failures <= 4 * 6, strategy  # not the 2 000-call budget
+    # the bound is the strategy's: a larger one spends more planner calls before giving up
+    big, _ = _stuck("hpn", max_refinements=20)
+    small, _ = _stuck("hpn", max_refinements=2)
+    assert big.plans_made + big.plan_failures > small.plans_made + small.plan_failures
+
+
+def test_domain_planner_switch_uses_the_domains_own_planner():
+    from dataclasses import replace
+
+    import pytest
+
+    from nowplan.errors import ScenarioError
+    from nowplan.planning.regression import plan as regression_plan
+
+    calls: list[str] = []
+
+    def own(domain, objects, belief, goal, levels, config, context, rng):
+        calls.append(str(goal))
+        return regression_plan(domain, objects, belief, goal, levels, config, context, rng)
+
+    chain = replace(CHAIN, planner=own)
+    run(chain, ["s0"], ["s3"], "flat")
+    assert calls == []
+    m, _ = run(chain, ["s0"], ["s3"], "flat+domain-planner")
+    assert calls and m.actions == 3
+    with pytest.raises(ScenarioError, match="no planner of its own"):
+        run(CHAIN, ["s0"], ["s3"], "flat+domain-planner")
+
+
+def test_run_episode_traces_a_rendered_frame_per_action():
+    prob = Problem(CHAIN, {}, State([atom("s0")]), Goal.of([atom("s3")]))
+    ep = Episode(prob, SymbolicWorld(CHAIN, prob.init), SymbolicBelief(prob.init))
+    seen: list[int] = []
+
+    def render(world, belief):
+        seen.append(len(belief.state.facts("s1")) if hasattr(belief, "state") else 0)
+        return b"\x89PNG fake"
+
+    tr = Trace()
+    m = run_episode(ep, parse_strategy("flat"), trace=tr, render=render)
+    frames = tr.of("frame")
+    assert [f["n"] for f in frames] == list(range(m.actions + 1))
+    assert frames[0]["image"].startswith("data:image/png;base64,")
+    tr2 = Trace()
+    run_episode(Episode(prob, SymbolicWorld(CHAIN, prob.init), SymbolicBelief(prob.init)),
+                parse_strategy("flat"), trace=tr2, render=render, every=2)
+    assert [f["n"] for f in tr2.of("frame")] == [0, 2, 3]

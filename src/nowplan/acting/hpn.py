@@ -17,6 +17,8 @@ from __future__ import annotations
 import logging
 import random
 import time
+from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -26,8 +28,9 @@ from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.operators import Action
+from nowplan.errors import ScenarioError
 from nowplan.planning.context import PlanningContext
-from nowplan.planning.plan import Plan, PlanStatus, PlanStep
+from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.regression import plan as regression_plan
 from nowplan.trace import Trace
 from nowplan.worlds.base import World
@@ -64,6 +67,7 @@ class Executive:
         *,
         seed: int = 0,
         trace: Trace | None = None,
+        on_action: Callable[[Executive, Action], None] | None = None,
     ) -> None:
         self.problem = problem
         self.domain = problem.domain
@@ -78,8 +82,23 @@ class Executive:
         self._pending_trigger: str | None = None
         self._pending_reason = ""
         self.serendipity_events = 0
+        self._last_status: PlanStatus | None = None
+        self._last_failure = ""
         self._made: dict[int, dict[str, Any]] = {}  # plans made but not pushed yet
         self.mechanisms = strategy.mechanisms()
+        self.on_action = on_action  # observers (e.g. a renderer); never change control flow
+        # refinements of each (plan, step) since the last action: the bound on re-planning a
+        # step that keeps failing while the belief does not change
+        self._refinements: Counter[tuple[int, int]] = Counter()
+        if strategy.domain_planner and self.domain.planner is None:
+            raise ScenarioError(
+                f"domain {self.domain.name} has no planner of its own; "
+                "drop the 'domain-planner' switch from the strategy"
+            )
+        self._planner: Callable[..., PlanResult] = (
+            self.domain.planner if self.domain.planner is not None and strategy.domain_planner
+            else regression_plan
+        )
         self.base_levels = (
             LevelMap(self.domain.top_level) if strategy.hierarchical else flat_levels()
         )
@@ -161,7 +180,7 @@ class Executive:
             from dataclasses import replace
 
             cfg = replace(cfg, time_limit=max(remaining, 0.01))
-        res = regression_plan(
+        res = self._planner(
             self.domain, self.problem.objects, self.belief, goal, levels, cfg,
             self.context(), self.rng,
         )
@@ -194,12 +213,15 @@ class Executive:
         self.metrics.action_counts[action.name] += 1
         self.metrics.execution_cost += cost
         self.belief.update(action, obs)
+        self._refinements.clear()
         self.trace.emit(
             "observation", n=self.metrics.actions - 1, action=action.pddl(), success=obs.success,
             observation=obs.info or None,
         )
         if obs.exogenous:
             self.trace.emit("exogenous", n=self.metrics.actions - 1, change=list(obs.exogenous))
+        if self.on_action is not None:
+            self.on_action(self, action)
         if not obs.success or not self.domain.satisfies(self.belief, f.plan.preimage(f.i)):
             self.trace.emit(
                 "failure", plan_id=f.plan_id, index=f.i, action=action.pddl(),
@@ -223,7 +245,7 @@ class Executive:
     def run(self) -> Metrics:
         self._t0 = time.perf_counter()
         self._last_failure = ""
-        self._last_status: PlanStatus | None = None
+        self._last_status = None
         goal = self.problem.goal
         root_plan = Plan((PlanStep(None, TRUE), PlanStep(None, goal)), self.base_levels)
         self.push(root_plan, None, root=True)
@@ -250,6 +272,20 @@ class Executive:
                 if len(self.stack) >= self.strategy.max_depth:
                     outcome, reason = Outcome.LIMIT, f"plan stack deeper than {self.strategy.max_depth}"
                     break
+                key = (f.plan_id, f.i if not f.root else 1)
+                self._refinements[key] += 1
+                if self._refinements[key] > self.strategy.max_refinements:
+                    why = (
+                        f"step {key[1]} of plan {f.plan_id} refined {self.strategy.max_refinements} "
+                        "times without an action in between"
+                    )
+                    if f.root:
+                        outcome, reason = Outcome.FAILED, f"no progress: {why}"
+                        break
+                    self.trace.emit("note", plan_id=f.plan_id, text=f"executive: gave up: {why}")
+                    self._refinements[key] = 0
+                    self.pop("failed")
+                    continue
                 levels = f.plan.levels if action is None else f.plan.levels.next_level(action)
                 if f.root:
                     levels = self.base_levels

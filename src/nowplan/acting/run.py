@@ -2,18 +2,39 @@
 
 from __future__ import annotations
 
+import base64
+from collections.abc import Callable
+from typing import Any
+
 from nowplan import __version__
 from nowplan.acting.hpn import Executive
 from nowplan.acting.metrics import Metrics
+from nowplan.core.operators import Action
 from nowplan.acting.strategy import Strategy
 from nowplan.domains.registry import Episode
 from nowplan.trace import Trace
 
 
+def _frame(trace: Trace, render: Callable[[Any, Any], bytes], episode: Episode, n: int, caption: str) -> None:
+    png = render(episode.world, episode.belief)
+    uri = "data:image/png;base64," + base64.b64encode(png).decode("ascii")
+    trace.emit("frame", n=n, image=uri, caption=caption)
+
+
 def run_episode(
-    episode: Episode, strategy: Strategy, seed: int = 0, trace: Trace | None = None
+    episode: Episode,
+    strategy: Strategy,
+    seed: int = 0,
+    trace: Trace | None = None,
+    render: Callable[[Any, Any], bytes] | None = None,
+    every: int = 1,
 ) -> Metrics:
-    """Plan, act, observe and update until the goal holds or a budget runs out."""
+    """Plan, act, observe and update until the goal holds or a budget runs out.
+
+    With ``render`` (a domain's ``(world, belief) -> PNG`` renderer), a
+    ``frame`` event is traced at the start, after every ``every``-th action
+    and at the end, so the viewer shows the run.
+    """
     trace = trace or Trace()
     p = episode.problem
     trace.emit(
@@ -22,9 +43,22 @@ def run_episode(
     )
     from nowplan.acting.online import OnlinePolicy, is_online
 
+    on_action = None
+    if render is not None:
+        _frame(trace, render, episode, 0, "start")
+        step = max(1, every)
+
+        def on_action(ex: Executive, action: Action) -> None:
+            if ex.metrics.actions % step == 0:
+                _frame(trace, render, episode, ex.metrics.actions, f"after {action.pddl()}")
+
     if is_online(strategy):  # seed 004's online policy (switches online / reuse / deferred)
         metrics = OnlinePolicy(p, episode.world, episode.belief, strategy, seed=seed, trace=trace).run()
     else:
-        metrics = Executive(p, episode.world, episode.belief, strategy, seed=seed, trace=trace).run()
+        metrics = Executive(
+            p, episode.world, episode.belief, strategy, seed=seed, trace=trace, on_action=on_action
+        ).run()
+    if render is not None and (metrics.actions % max(1, every) != 0 or is_online(strategy)):
+        _frame(trace, render, episode, metrics.actions, f"end: {metrics.outcome.value}")
     trace.emit("run_end", outcome=metrics.outcome.value, reason=metrics.reason, metrics=metrics.to_dict())
     return metrics

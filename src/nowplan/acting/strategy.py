@@ -40,6 +40,8 @@ class Strategy:
     max_actions: int = 1_000  # executive budgets: no loop without a bound
     max_plans: int = 2_000
     max_depth: int = 64
+    max_refinements: int = 5  # refinements of one plan step without an action before it is given up
+    domain_planner: bool = False  # plan with the domain's own planner (Domain.planner) when it has one
     time_limit: float = 600.0
 
     def exhausted(self, metrics: Metrics, elapsed: float) -> tuple[Outcome, str] | None:
@@ -70,6 +72,7 @@ class Strategy:
             "serialization": self.planner.serialization,
             "monotonic": self.planner.monotonic,
             "max_actions": self.max_actions,
+            "domain_planner": self.domain_planner,
         }
 
 
@@ -82,6 +85,11 @@ register_switch(
 register_switch(
     Switch("noshortcuts", "full backward search only (no serialization or monotonic tries)",
            planner={"serialization": False, "monotonic": False})
+)
+
+register_switch(
+    Switch("domain-planner", "plan with the domain's own planner (e.g. pieces' means-ends rule)",
+           {"domain_planner": True})
 )
 
 # switches whose mechanisms arrive with later work; named so users are told plainly

@@ -39,6 +39,11 @@ def register(sub: Any) -> None:
     p.add_argument("--max-actions", type=nonneg_int, help="action budget")
     p.add_argument("--time-limit", type=positive_float, help="wall-clock budget for the whole run (s)")
     p.add_argument("--trace", type=Path, help="write the JSONL trace here")
+    p.add_argument(
+        "--frames", type=nonneg_int, nargs="?", const=1, default=0, metavar="EVERY",
+        help="with --trace: add the domain's rendered frames to the trace, one every EVERY actions "
+        "(default 1), for `nowplan view`",
+    )
     p.add_argument("--tree", action="store_true", help="print the plan tree")
     p.add_argument("--json", action="store_true", help="print the metrics as JSON")
     p.set_defaults(func=main)
@@ -77,8 +82,15 @@ def main(args: argparse.Namespace) -> int:
             if not hasattr(episode.world, attr):
                 raise UsageError(f"--{attr.replace('_', '-')} is not supported by this domain's world")
             setattr(episode.world, attr, val)
+    render = None
+    if args.frames:
+        if not args.trace:
+            raise UsageError("--frames needs --trace FILE (frames are stored in the trace)")
+        if args.pddl or get_domain(args.domain).renderer is None:
+            raise UsageError("--frames: this problem's domain has no renderer; drop --frames")
+        render = get_domain(args.domain).renderer
     with Trace(args.trace) as trace:
-        metrics = run_episode(episode, strategy, seed=args.seed, trace=trace)
+        metrics = run_episode(episode, strategy, seed=args.seed, trace=trace, render=render, every=args.frames or 1)
     if args.json:
         print(json.dumps(metrics.to_dict(), indent=2))
     else:

@@ -41,6 +41,9 @@ class Domain:
     conflicts: tuple[ConflictRule, ...] = field(default=(), hash=False, compare=False)
     # reconsideration triggers (seed 000 Fig. 5): fn(plan, belief) -> reason to replan, or None
     triggers: tuple[Callable[[Any, Any], str | None], ...] = field(default=(), hash=False, compare=False)
+    # the domain's own planner, used by the executive under the ``domain-planner`` switch; it has
+    # the signature of nowplan.planning.regression.plan and returns a PlanResult
+    planner: Callable[..., Any] | None = field(default=None, hash=False, compare=False)
 
     def __post_init__(self) -> None:
         names = [o.name for o in self.operators]
@@ -92,7 +95,7 @@ class Domain:
     def subtypes(self, t: str | None) -> set[str | None]:
         if t is None:
             return {None, *self.types}
-        out = {t}
+        out: set[str | None] = {t}
         grew = True
         while grew:
             grew = False
