@@ -87,7 +87,7 @@ def test_bad_monitor_settings_are_refused(bad: dict[str, object]) -> None:
 
 def test_switches_are_registered() -> None:
     assert "monitor" not in PLANNED
-    for name in ("monitor", "monitor-goal", "monitor-restore", "monitor-cost"):
+    for name in ("monitor", "monitor-goal", "monitor-restore", "monitor-cost", "monitor-rule-cost"):
         assert any(isinstance(m, Monitor) for m in parse_strategy(f"hpn+{name}").mechanisms())
 
 
@@ -127,6 +127,26 @@ def test_goal_after_a_large_disturbance() -> None:
 def test_thresholds_are_configurable() -> None:
     _, mon, _ = run_pieces(carry("pawn", "r0c0", "r1c0"), config=MonitorConfig(thr=1.0))
     assert dict(mon.stats.decisions) == {"goal": 1}
+
+
+def test_rule_cost_orders_the_eligible_alternatives() -> None:
+    cfg = MonitorConfig(decision="rule-cost")
+    assert order_to_try(cfg, 2, 0) == [Alternative.INTERMEDIATE, Alternative.RESTORE, Alternative.GOAL]
+    assert order_to_try(cfg, 2, None) == [Alternative.RESTORE, Alternative.GOAL]
+    assert order_to_try(cfg, 2, 2) == [Alternative.RESTORE, Alternative.GOAL]  # dm1 must be below dm
+    assert order_to_try(cfg, 6, 5) == [Alternative.GOAL]  # both above the threshold: only the goal
+    assert cfg.compares and not MonitorConfig().compares
+
+
+def test_rule_cost_does_not_restore_when_replanning_is_cheaper() -> None:
+    # the pawn, not yet moved, is pushed one cell towards its goal: restoring carries it back first
+    m_rule, mon_rule, _ = run_pieces(carry("pawn", "r0c0", "r1c0"))
+    m_rc, mon_rc, trace = run_pieces(carry("pawn", "r0c0", "r1c0"), "monitor-rule-cost")
+    assert dict(mon_rule.stats.decisions) == {"restore": 1}
+    assert dict(mon_rc.stats.decisions) == {"goal": 1}
+    note = next(e for e in trace.of("note") if e.get("alternative"))
+    assert note["decision"] == "rule-cost"
+    assert m_rc.execution_cost < m_rule.execution_cost
 
 
 def test_cost_decision_takes_the_cheapest_alternative() -> None:

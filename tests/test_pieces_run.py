@@ -122,8 +122,10 @@ def test_reproduce_003_quick_prints_the_table(capsys: pytest.CaptureFixture[str]
     doc = json.loads(capsys.readouterr().out)
     assert code == 0 and doc["status"] == "done"
     strategies = {r["strategy"] for r in doc["rows"]}
-    assert {"replan to goal", "always restore", "seed rule, cold library", "seed rule, warm library"} <= strategies
+    assert {"replan to goal", "always restore", "seed rule, cold library", "seed rule, warm library",
+            "seed rule + costs, warm library", "flexible+serendipity (HPN)"} <= strategies
     assert {r["disturbance"] for r in doc["rows"]} == {0.0, 0.1, 0.2, 0.3}
     assert all(r["success_pct"] == 100.0 for r in doc["rows"])
-    assert "flexible" in doc["notes"] and "target" in doc["notes"]
+    assert "target" in doc["notes"]
+    assert all(r["extra_travel"].startswith("0 ") for r in doc["rows"] if r["disturbance"] == 0.0)
     assert (tmp_path / "table_003.md").exists()

@@ -18,7 +18,8 @@ misperceived one.
 
 Switches: ``monitor`` (the seed's rule), ``monitor-goal`` (always replan to
 the goal), ``monitor-restore`` (always restore), ``monitor-cost`` (cheapest
-alternative).  Thresholds, library and accounting come from
+alternative), ``monitor-rule-cost`` (the cheapest of the alternatives the
+seed's thresholds admit).  Thresholds, library and accounting come from
 :func:`monitor_settings` (default: :class:`MonitorConfig` with the library
 file named by ``NOWPLAN_PLAN_LIBRARY``, if set).
 """
@@ -146,17 +147,17 @@ class Monitor(Mechanism):
             ex.trace.emit("note", text=f"monitor: no alternative could be planned (dm={dm:g}); "
                           "the executive replans")
             return
-        chosen = min(repairs, key=lambda r: r.total(self.config)) if self.config.decision == "cost" \
+        chosen = min(repairs, key=lambda r: r.total(self.config)) if self.config.compares \
             else repairs[0]
-        if chosen.alternative is not order[0] and self.config.decision != "cost":
+        if chosen.alternative is not order[0] and not self.config.compares:
             self.stats.fallbacks += 1
         self._apply(ex, f, chosen, dm, dm1)
 
     def _alternatives(
         self, ex: Executive, f: Frame, expected: State, observed: State, dm: float,
     ) -> tuple[list[Alternative], list[Repair], float | None]:
-        """The alternatives to try, the repairs that could be planned (one, or all for ``cost``), dm1."""
-        cand = self._closest(observed) if self.config.decision in ("rule", "cost") else None
+        """The alternatives to try, the repairs that could be planned (one, or all when comparing), dm1."""
+        cand = self._closest(observed) if self.config.uses_library else None
         dm1 = cand.distance if cand is not None else None
         order = order_to_try(self.config, dm, dm1)
         repairs: list[Repair] = []
@@ -164,7 +165,7 @@ class Monitor(Mechanism):
             rep = self._make(alt, ex, f, expected, observed, cand)
             if rep is not None:
                 repairs.append(rep)
-                if self.config.decision != "cost":
+                if not self.config.compares:
                     break
         return order, repairs, dm1
 
@@ -369,3 +370,5 @@ register_switch(Switch("monitor-restore", "monitor that always plans back to the
                        mechanism=_factory("restore")))
 register_switch(Switch("monitor-cost", "monitor that plans every alternative and takes the cheapest",
                        mechanism=_factory("cost")))
+register_switch(Switch("monitor-rule-cost", "monitor that plans the alternatives the seed's thresholds "
+                       "admit (the goal always) and takes the cheapest", mechanism=_factory("rule-cost")))

@@ -12,6 +12,13 @@ stored plan, the seed's rule is:
    current plan (:attr:`Alternative.RESTORE`);
 3. else plan from the observed model to the goal (:attr:`Alternative.GOAL`).
 
+The seed's scheduler also computes each alternative's cost (``alter1-cost()``,
+``alter2-cost()`` in Fig. 1) and its text asks the replanner to "make a
+decision between backtracking or going directly to a final state" that
+minimises cost.  ``rule-cost`` reads it that way: the thresholds decide which
+alternatives are *eligible* (1 and 2 as above; replanning to the goal always
+is) and the cheapest eligible one by the accounting below is taken.
+
 This module holds the decision rules and the bookkeeping of what each
 alternative costs; :mod:`nowplan.acting.monitor` applies them to the plan stack.
 """
@@ -34,7 +41,7 @@ class Alternative(enum.Enum):
     GOAL = "goal"
 
 
-DECISIONS = ("rule", "goal", "restore", "cost")
+DECISIONS = ("rule", "goal", "restore", "cost", "rule-cost")
 
 
 @dataclass(frozen=True)
@@ -43,8 +50,10 @@ class MonitorConfig:
 
     ``decision``: ``rule`` (the seed's thresholds), ``goal`` (always replan to
     the goal), ``restore`` (always plan back to the expected model, falling
-    back to the goal when that is impossible) or ``cost`` (plan every
-    feasible alternative and take the cheapest by the accounting below).
+    back to the goal when that is impossible), ``cost`` (plan every
+    feasible alternative and take the cheapest by the accounting below) or
+    ``rule-cost`` (plan the alternatives the seed's thresholds admit, the
+    goal always among them, and take the cheapest).
     ``thr`` bounds ``dm`` for restoring, ``thr_intermediate`` bounds ``dm1``
     (default: ``thr``).  ``restore_target``: ``preimage`` restores only what
     the rest of the current plan needs (its regression pre-image), ``model``
@@ -87,6 +96,16 @@ class MonitorConfig:
     def thr1(self) -> float:
         return self.thr if self.thr_intermediate is None else self.thr_intermediate
 
+    @property
+    def compares(self) -> bool:
+        """Every alternative tried is planned and the cheapest taken (else the first plannable one)."""
+        return self.decision in ("cost", "rule-cost")
+
+    @property
+    def uses_library(self) -> bool:
+        """The decision looks at stored intermediate states (``dm1``)."""
+        return self.decision in ("rule", "cost", "rule-cost")
+
 
 def seed_rule(dm: float, dm1: float | None, thr: float, thr1: float) -> Alternative:
     """The seed's ``Replanner()`` decision, verbatim."""
@@ -106,6 +125,13 @@ def order_to_try(config: MonitorConfig, dm: float, dm1: float | None) -> list[Al
     if config.decision == "cost":
         out = [Alternative.RESTORE, Alternative.GOAL]
         return ([Alternative.INTERMEDIATE] if dm1 is not None else []) + out
+    if config.decision == "rule-cost":
+        eligible = []
+        if dm1 is not None and dm1 < config.thr1 and dm1 < dm:
+            eligible.append(Alternative.INTERMEDIATE)
+        if dm != 0 and dm < config.thr:
+            eligible.append(Alternative.RESTORE)
+        return [*eligible, Alternative.GOAL]
     first = seed_rule(dm, dm1, config.thr, config.thr1)
     out = [first]
     if first is Alternative.INTERMEDIATE and dm != 0 and dm < config.thr:

@@ -6,7 +6,10 @@ Primitives (seed 003 Table 3): ``move_arm(a, b)`` and ``move_piece(k, a, b)``
 arm's straight-line travel.  Criticalities make it hierarchical in HPN's
 way: at the top level only where the pieces are matters (a move needs the
 piece at ``a`` and ``b`` empty); the arm's position is added one level down,
-so arm moves appear only when a piece move is refined.
+so arm moves appear only when a piece move is refined.  The domain brings
+the seed's means-ends planner as its own (``Domain.planner``, used by the
+executive under the ``domain-planner`` switch; see
+:mod:`nowplan.domains.pieces.planner`).
 
 The goal of a problem is ``has(c, k)`` for each goal cell: pieces are
 interchangeable within a kind, and surplus pieces may stand anywhere that
@@ -16,6 +19,7 @@ is not a goal cell of another kind.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import Any
 
 from nowplan.core.atoms import Atom, Goal, Var, atom
 from nowplan.core.domain import Domain, Predicate, Problem
@@ -68,9 +72,16 @@ def one_occupant(x: Atom, y: Atom) -> bool:
     return False
 
 
+def _means_ends(*args: Any, **kwargs: Any) -> Any:
+    """The seed's means-ends planner for the executive's ``domain-planner`` switch."""
+    from nowplan.domains.pieces.planner import means_ends_for_executive  # it imports this module
+
+    return means_ends_for_executive(*args, **kwargs)
+
+
 DOMAIN = Domain(
     "pieces", PREDICATES, OPERATORS, {"cell": None, "kind": None},
-    constants={kd: "kind" for kd in KINDS}, conflicts=(one_occupant,),
+    constants={kd: "kind" for kd in KINDS}, conflicts=(one_occupant,), planner=_means_ends,
 )
 
 
