@@ -113,6 +113,15 @@ def trace_back(parent: Sequence[int], source: int, target: int) -> list[int] | N
     return out
 
 
+def _far(box: Box, a: Pt, b: Pt, margin: float) -> bool:
+    """Is the box surely further than ``margin`` from segment ab (their bounding boxes apart)?"""
+    x0, y0, x1, y1 = box.bounds
+    return (
+        min(a.x, b.x) - margin > x1 or max(a.x, b.x) + margin < x0
+        or min(a.y, b.y) - margin > y1 or max(a.y, b.y) + margin < y0
+    )
+
+
 @dataclass
 class CostMap:
     grid: Grid
@@ -281,6 +290,8 @@ class PathPlanner:
             return False
         r = self.cm.radius
         for box, width, core, shadow in self.cm.objects:  # exactly, not just by cells
+            if _far(box, a, b, r + width):
+                continue
             d = box.distance_to_segment(a, b)
             if d < r and not (allowed & core):
                 return False
@@ -305,7 +316,7 @@ class PathPlanner:
         swept = Region(a, b, r)  # the volume BClear tests: swept after leaving a
         pen = 0.0
         for box, width, core, shadow in self.cm.objects:
-            if not swept.hits_box(box, width):
+            if _far(box, a, b, r + width) or not swept.hits_box(box, width):
                 continue
             inside = box.distance_to_segment(a, a) < r  # a move starting inside pays nothing for it
             if not inside and swept.hits_box(box, 0.0):

@@ -35,6 +35,11 @@ from nowplan.domains.namo.generators import foresight, robot_at_in
 from nowplan.domains.namo.geometry import GRAZE_OK, Box, Grid, Manip, MapGeometry, Pt, Region, shapely
 from nowplan.domains.namo.paths import INF, dijkstra, trace_back
 
+try:  # optional: a faster connectivity test (imported here, not inside a timed planning call)
+    from scipy import ndimage
+except ImportError:  # pragma: no cover
+    ndimage = None
+
 O, R, EX, EXO, M = Var("o"), Var("r"), Var("ex"), Var("exo"), Var("m")
 HOME, PC, PLACE, SPOT, ONLY = Var("home"), Var("pc"), Var("place"), Var("spot"), Var("only")
 SURVEY = Var("survey")
@@ -447,6 +452,22 @@ def _manip_options(
     return [m for _, m in results[:n]]
 
 
+def _connected(g: Grid, free: np.ndarray, a: int, b: int) -> bool:
+    """Are cells a and b in one 4-connected component of ``free``?
+
+    The same answer as :func:`~nowplan.domains.namo.paths.dijkstra`'s
+    reachability: its diagonal steps need both side cells free, so they never
+    connect what 4-neighbour steps do not.  Uses scipy's labelling when scipy
+    is installed (it is not a dependency), else says yes and lets the
+    Dijkstra search decide.
+    """
+    if ndimage is None:  # pragma: no cover - scipy present in the development environment
+        return True
+    labels, _ = ndimage.label(free.reshape(g.ny, g.nx))
+    flat = labels.reshape(-1)
+    return bool(flat[a] != 0 and flat[a] == flat[b])
+
+
 def _return_path(
     core: _Core, box: Box, c: int, connectivity: bool, r: float, g: Grid
 ) -> tuple[list[int], np.ndarray] | None:
@@ -461,6 +482,9 @@ def _return_path(
         free_ret[c] = True
     else:  # the check of Fig. 8 switched off: the placed object is ignored
         free_ret = core.base_home
+    if not _connected(g, free_ret, core.hc, c):  # most rejections: no Dijkstra for them
+        core.returns[key] = None
+        return None
     dist_r, par_r = dijkstra(g, free_ret, core.hc, target=c)
     if dist_r[c] == INF:
         core.returns[key] = None
