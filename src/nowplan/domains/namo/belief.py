@@ -241,7 +241,19 @@ class NamoBelief:
         self._bump()
 
     def _drive(self, path: tuple[Pt, ...], traveled: float) -> None:
-        p = along(path, traveled)
+        """Dead-reckon ``traveled`` metres (odometry along the commanded path) from where the robot is.
+
+        The controller drives from the robot's actual pose through the
+        commanded waypoints after the first (the world does the same), so
+        the estimate starts from the current mean, not from the path's first
+        point (a planned cell centre up to 0.14 m away): otherwise a drag
+        stopped at once would move the estimate, and the object with it.
+        """
+        if len(path) < 2:
+            return
+        pts = [Pt.of(float(self.robot_mean[0]), float(self.robot_mean[1])), *path[1:]]
+        planned, done = polyline_length(path), polyline_length(pts)
+        p = along(pts, traveled * done / planned if planned > 1e-9 else 0.0)
         self.robot_mean = np.array([p.x, p.y])
         self.robot_var += (self.params.motion_model * traveled) ** 2
         self.trajectory.append(p)
@@ -269,7 +281,8 @@ class NamoBelief:
         o, m = str(action.args[0]), action.args[4]
         if not isinstance(m, Manip) or self.held != o:
             return
-        self._drive(m.carry_path, float(data.get("carried", 0.0)))
+        carried = float(data.get("carried", 0.0))
+        self._drive(m.carry_path, carried)
         est = self.objects.get(o)
         if est is not None:
             offset, cov = self.grip if self.grip is not None else (np.array(m.offset), np.eye(2) * 0.0004)
@@ -277,7 +290,10 @@ class NamoBelief:
             est.cov = cov + np.eye(2) * (self.robot_var + 0.0001)
         self.grip = None
         self.held, self.held_manip = None, None
-        self._drive(m.return_path, float(data.get("returned", 0.0)))
+        if carried >= polyline_length(m.carry_path) - 1e-3 or data.get("home"):
+            # the return starts at the release configuration only if the drag got there: a drag
+            # stopped early leaves the robot where it stopped (not at the return path's start)
+            self._drive(m.return_path, float(data.get("returned", 0.0)))
         self.robot_sym = m.home if data.get("home") and self.at(m.home) else self.geom.grid.snap(self.pose)
         self.percept += 1  # the map changed where the object was and where it went
 

@@ -90,8 +90,10 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
         m, held = belief.held_manip, belief.held
         if m is None or held not in belief.objects:
             return
-        if not isinstance(region, Region) or not isinstance(ex, frozenset):
+        only_hand = not isinstance(region, Region) or not isinstance(ex, frozenset)
+        if only_hand:  # only the hand must be emptied: "cleared" is the spot the object goes to
             region, ex = Region(m.place, m.place, 0.0), frozenset()
+        assert isinstance(region, Region) and isinstance(ex, frozenset)
         if held in ex or m.home != home:
             return
         size = belief.objects[held].size
@@ -115,7 +117,9 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
                 options.append(Manip(held, m.home, pc, at, at, pc, (pc,), (pc,), (pc, *back[1:]),
                                      Region(pc, pc, 0.0)))
         for opt in options:
-            yield {R: region, EX: ex, O: held, EXO: ex | {held}, M: opt, HOME: home,
+            # (not the first placement's spot: a new object there is why this one was chosen)
+            r_opt = Region(opt.place, opt.place, 0.0) if only_hand else region
+            yield {R: r_opt, EX: ex, O: held, EXO: ex | {held}, M: opt, HOME: home,
                    PC: opt.pick_conf, **_spot(opt, held, size)}
         return
     if not isinstance(region, Region) or not isinstance(ex, frozenset):

@@ -86,8 +86,16 @@ class NamoWorld:
                 out.append((name, sh.box(*box.bounds)))
         return out
 
-    def first_hit(self, xs: np.ndarray, ys: np.ndarray, carrying: str | None = None) -> tuple[int, str | None]:
-        """Index of the first sample where the robot (or the object it drags) touches something."""
+    def first_hit(
+        self, xs: np.ndarray, ys: np.ndarray, carrying: str | None = None, start: Pt | None = None,
+    ) -> tuple[int, str | None]:
+        """Index of the first sample where the robot (or the object it drags) touches something.
+
+        With ``start`` (where the robot is before the motion), an object the
+        robot already touches there (e.g. one just put down a little closer
+        than planned) stops it only if the motion goes deeper into it: the
+        robot can back away from what it touches.
+        """
         sh = shapely()
         first, what = len(xs), None
         if not len(xs):
@@ -95,8 +103,12 @@ class NamoWorld:
         pts = sh.points(np.stack([xs, ys], axis=1))
         reach = self.geom.robot_radius - GRAZE
         obstacles = self._obstacles(carrying)
+        here = sh.Point(start.x, start.y) if start is not None else None
         for name, geom in obstacles:
-            hit = np.nonzero(sh.distance(geom, pts) < reach)[0]
+            limit = reach
+            if here is not None and name != "wall":
+                limit = min(reach, float(geom.distance(here)) - 1e-3)
+            hit = np.nonzero(sh.distance(geom, pts) < limit)[0]
             if hit.size and hit[0] < first:
                 first, what = int(hit[0]), name
         if carrying is not None:
@@ -155,7 +167,7 @@ class NamoWorld:
         if self.noise.move_fail and self.rng.random() < self.noise.move_fail:
             stop = done * self.rng.uniform(0.3, 0.8)
             limit = next((i for i, d in enumerate(ds) if d > stop), len(xs))
-        first, hit = self.first_hit(np.array(xs[:limit]), np.array(ys[:limit]), carrying)
+        first, hit = self.first_hit(np.array(xs[:limit]), np.array(ys[:limit]), carrying, start=pts[0])
         self._hit_at = (xs[first], ys[first]) if first < limit else None
         last = min(first, limit) - 1
         if last >= 0:
