@@ -180,6 +180,10 @@ class PathPlanner:
         self.foresight = foresight
         self.cm = build_costmap(belief, foresight, stuck_impassable)
         self._trees: dict[int, tuple[list[float], list[int]]] = {}
+        # answers for this belief version (paths and straight-line checks repeat across the
+        # planner's generator calls and the triggers)
+        self._paths: dict[tuple[Pt, Pt], list[Pt] | None] = {}
+        self._lines: dict[tuple[Pt, Pt, int], bool] = {}
         self._fallback: PathPlanner | None = None
         self._stuck_impassable = stuck_impassable
 
@@ -241,6 +245,13 @@ class PathPlanner:
 
     def path(self, source: Pt, target: Pt) -> list[Pt] | None:
         """A string-pulled polyline from ``source`` to ``target`` (both included), or None."""
+        key = (source, target)
+        if key not in self._paths:
+            self._paths[key] = self._path(source, target)
+        out = self._paths[key]
+        return None if out is None else list(out)
+
+    def _path(self, source: Pt, target: Pt) -> list[Pt] | None:
         g = self.cm.grid
         s = self._source(source)
         t = g.cell(target)
@@ -280,6 +291,13 @@ class PathPlanner:
         return out
 
     def line_ok(self, a: Pt, b: Pt, allowed: int) -> bool:
+        key = (a, b, allowed)
+        hit = self._lines.get(key)
+        if hit is None:
+            hit = self._lines[key] = self._line_ok(a, b, allowed)
+        return hit
+
+    def _line_ok(self, a: Pt, b: Pt, allowed: int) -> bool:
         ks = self.cm.grid.line_cells(a, b)
         if not self.cm.passable[ks].all():
             return False
