@@ -109,7 +109,8 @@ class OnlinePolicy:
     # -- one planning call -------------------------------------------------------
     def _plan(self, prev: tuple[SkeletonStep, ...] | None, deadline: float) -> PlanResult:
         goal = self.problem.goal
-        ctx = PlanningContext((), {"online": True})
+        # a domain may offer its own goal-distance estimate through the belief (regression's hook)
+        ctx = PlanningContext((), {"online": True, "heuristic": getattr(self.belief, "planning_heuristic", None)})
         if self.reuse and prev:
             self.constrained_tried += 1
             budget = max(min(self.reuse_budget, deadline - time.perf_counter()), 0.01)
@@ -121,13 +122,23 @@ class OnlinePolicy:
                 self.constrained_ok += 1
                 return res
             self.trace.emit("note", text=f"constrained replanning failed ({res.reason}); unconstrained")
-        cfg = self.strategy.planner
-        remaining = deadline - time.perf_counter()
-        if remaining < cfg.time_limit:
-            cfg = replace(cfg, time_limit=max(remaining, 0.01))
-        return regression_plan(
-            self.domain, self.problem.objects, self.belief, goal, self.levels, cfg, ctx, self.rng
-        )
+        base = self.strategy.planner
+        grow = getattr(self.streams, "grow", None)
+        if self.streams is not None and hasattr(self.streams, "reset_level"):
+            self.streams.reset_level()
+        while True:
+            level = int(getattr(self.streams, "level", 1))
+            cfg = replace(base, max_generator_values=base.max_generator_values * level)
+            remaining = deadline - time.perf_counter()
+            if remaining < cfg.time_limit:
+                cfg = replace(cfg, time_limit=max(remaining, 0.01))
+            res = regression_plan(
+                self.domain, self.problem.objects, self.belief, goal, self.levels, cfg, ctx, self.rng
+            )
+            # adaptive sampling: a search that ran out of candidates gets larger sample pools
+            if res.solved or res.status is PlanStatus.TIME_LIMIT or not callable(grow) or not grow():
+                return res
+            self.trace.emit("note", text=f"planning failed ({res.reason}); sample pools grow")
 
     def _budget_left(self, t0: float) -> tuple[Outcome, str] | None:
         return self.strategy.exhausted(self.metrics, time.perf_counter() - t0)

@@ -116,6 +116,8 @@ class _Search:
         )
         self.min_cost = max(self.min_cost, 0.0)
         self.hadd: HAdd | None = None
+        # a domain's own estimate, fn(goal, belief, holds) -> cost, passed as context.extras["heuristic"]
+        self.domain_h = context.extras.get("heuristic") if context is not None else None
         if config.heuristic == "hadd" and can_relax(self.grounder, belief):
             self.hadd = HAdd(hadd_table(self.grounder, levels, self.drop, self.cost), self.holds)
 
@@ -132,6 +134,8 @@ class _Search:
     def h(self, g: Goal) -> float:
         if self.hadd is not None:
             return self.hadd(g)
+        if callable(self.domain_h):
+            return float(self.domain_h(g, self.belief, self.holds))
         unmet = sum(1 for a in g.atoms if not self.holds(a))
         return unmet * (self.min_cost if self.min_cost > 0 else 1.0)
 

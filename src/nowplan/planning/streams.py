@@ -8,6 +8,12 @@ is expensive and likely (and not ``never_defer``) may instead contribute an
 a candidate plan is found, PDDLStream-style.  :class:`StreamSet` evaluates
 streams, counts calls and time, and remembers failed inputs so generators
 can avoid them on the next planning call.
+
+Sampling generators draw from per-planning-call *pools* (memoised, so the
+search sees the same samples at every node) whose size is ``level`` times a
+base size; the online policy calls :meth:`StreamSet.grow` when a search fails
+for want of samples and :meth:`StreamSet.reset_level` before each new
+planning call (the adaptive/incremental scheme of seed 004 IV).
 """
 
 from __future__ import annotations
@@ -66,6 +72,19 @@ class StreamSet:
         self.seconds = 0.0
         self.failed: set[tuple[str, tuple[Any, ...]]] = set()
         self._cache: dict[tuple[str, tuple[Any, ...], tuple[Any, ...]], Any] = {}
+        self.level = 1  # multiplier of the sampling generators' pool sizes
+        self.max_level = 4
+
+    def grow(self) -> bool:
+        """Allow larger sample pools; False when :attr:`max_level` is reached."""
+        if self.level >= self.max_level:
+            return False
+        self.level += 1
+        log.info("stream sample pools grow to level %d", self.level)
+        return True
+
+    def reset_level(self) -> None:
+        self.level = 1
 
     def __getitem__(self, name: str) -> Stream:
         s = self.streams.get(name)

@@ -91,7 +91,9 @@ class KitchenBelief:
         self.cooked: set[str] = set()
         self.scene = scene or S.build(self.objects)
         self.streams: Any = None  # set by the model (nowplan.domains.kitchen.model)
+        self.planning_heuristic: Any = None  # likewise (nowplan.domains.kitchen.heuristic.estimate)
         self.version = 0
+        self._modes: dict[tuple[str, int], Pose] = {}
 
     # -- geometry ------------------------------------------------------------------
     def origins(self) -> dict[str, np.ndarray]:
@@ -181,15 +183,22 @@ class KitchenBelief:
         return out[:k]
 
     def mode_pose(self, o: str) -> Pose:
-        f, rel, _ = self.particles[o].mode(DELTA / 2)
-        return pose_of(f, rel)
+        """The most supported pose of ``o`` (memoised until the belief's next update)."""
+        key = (o, self.version)
+        m = self._modes.get(key)
+        if m is None:
+            f, rel, _ = self.particles[o].mode(DELTA / 2)
+            m = pose_of(f, rel)
+            self._modes[key] = m
+        return m
 
-    def sync_scene(self, skip: tuple[str, ...] = ()) -> None:
-        """Put the model scene in the believed state (objects at their modes)."""
+    def sync_scene(self, skip: tuple[str, ...] = (), drawers: dict[str, float] | None = None) -> None:
+        """Put the model scene in the believed state (objects at their modes; ``drawers`` overrides)."""
         S.set_conf(self.scene, self.conf.q)
-        for d, q in self.drawers.items():
+        state = drawers if drawers is not None else self.drawers
+        for d, q in state.items():
             S.set_drawer(self.scene, d, q)
-        origins = self.origins()
+        origins = {f: S.frame_origin(f, state) for f in ("counter", "stove", *S.DRAWERS)} | {"hand": np.zeros(3)}
         for o in self.objects:
             if o in skip or o == self.held:
                 S.set_object(self.scene, o, np.array([0.0, -2.0, -1.0 - self.objects.index(o)]))
@@ -199,7 +208,9 @@ class KitchenBelief:
 
     # -- updates --------------------------------------------------------------------------
     def update(self, action: Action, obs: Observation) -> None:
+        """Bayesian update after ``action``; bumps :attr:`version` (memoised queries are keyed by it)."""
         self.version += 1
+        self._modes.clear()
         name, args = action.name, action.args
         info = obs.info or {}
         if "drawers" in info:
@@ -228,6 +239,7 @@ class KitchenBelief:
             self.cooked.add(str(args[0]))
         elif name == "stove_off" and obs.success:
             self.stove_on = False
+        self._modes.clear()
 
     def copy_summary(self) -> dict[str, Any]:
         return {o: self.particles[o].frame_masses() for o in self.objects}

@@ -24,10 +24,11 @@ from typing import Any
 import numpy as np
 
 from nowplan.belief.determinize import StochasticCost, epsilon_lower_bound, self_loop_cost
-from nowplan.core.atoms import Var, atom
+from nowplan.core.atoms import Atom, Var, atom
 from nowplan.core.domain import Domain, Predicate
 from nowplan.core.operators import Action, Generator, Operator, Precondition
 from nowplan.domains.kitchen import scene as S
+from nowplan.domains.kitchen.heuristic import estimate
 from nowplan.domains.kitchen.belief import DELTA, EPSILON, Conf, KitchenBelief, Pose, Traj, pose_of
 from nowplan.domains.kitchen.motion import inverse_kinematics, rrt_connect
 from nowplan.planning.streams import Stream, StreamSet
@@ -35,6 +36,7 @@ from nowplan.planning.streams import Stream, StreamSet
 O, P, F, G, Q, T, D, E, J, K = (Var(n) for n in ("o", "p", "f", "g", "q", "t", "d", "e", "j", "k"))
 PICK = StochasticCost(cost=1.0, recovery=1.0, success=0.95)
 GRASP = "top"
+OVERLAP_MASS = 0.5  # belief mass of another object at a placement that makes it taken
 
 
 def _tests() -> dict[str, Predicate]:
@@ -70,12 +72,53 @@ def _tests() -> dict[str, Predicate]:
     }
 
 
+class _OneInHand:
+    """Keyed conflict: at most one of ``HandEmpty`` and ``Holding(o)`` (any o) is true."""
+
+    def group_keys(self, a: Atom) -> list[Any]:
+        return [("hand",)] if a.value is True and a.predicate in ("HandEmpty", "Holding") else []
+
+    def __call__(self, a: Atom, b: Atom) -> bool:
+        ka = self.group_keys(a)
+        return bool(ka) and ka == self.group_keys(b) and a != b
+
+
+class _OnePlace:
+    """Keyed conflict: an object is held or in one frame (``Holding(o)``, ``In(o, f)``)."""
+
+    def group_keys(self, a: Atom) -> list[Any]:
+        return [("place", a.args[0])] if a.value is True and a.predicate in ("Holding", "In") else []
+
+    def __call__(self, a: Atom, b: Atom) -> bool:
+        ka = self.group_keys(a)
+        return bool(ka) and ka == self.group_keys(b) and a != b
+
+
+def _pose_clash(a: Atom, b: Atom) -> bool:
+    """``AtPose(o) = p`` against ``Holding(o)`` / ``In(o, f)`` elsewhere; ``Closable(f)`` against a tall
+    object in f."""
+    if a.predicate == "AtPose" and isinstance(a.value, Pose) and b.value is True and b.args[:1] == a.args[:1]:
+        if b.predicate == "Holding":
+            return a.value.frame != "hand"
+        if b.predicate == "In":
+            return a.value.frame != b.args[1]
+    if a.predicate == "Closable" and a.value is True and b.predicate == "In" and b.value is True:
+        return b.args[0] in S.TALL and b.args[1] == a.args[0]
+    return False
+
+
+CONFLICTS = (_OneInHand(), _OnePlace(), _pose_clash)
+
+
 class KitchenModel:
     """Builds the domain and streams for one belief (generators read it and its model scene)."""
 
     def __init__(self, belief: KitchenBelief) -> None:
         self.b = belief
         self._ik: dict[tuple[Any, ...], Conf | None] = {}
+        self._pools: dict[tuple[Any, ...], list[Any]] = {}  # raw samples, kept across beliefs
+        self._memo: dict[tuple[Any, ...], list[Any]] = {}  # belief-dependent results, per version
+        self._pool_version = -1
         self.streams = StreamSet([
             Stream("sample-obs", ("o", "pb"), ("obs",), ("Obs",), lambda b, e, o: None),
             Stream("test-vis", ("o", "obs", "o2", "pb2"), (), ("BVis",), lambda b, e, *a: None),
@@ -87,6 +130,7 @@ class KitchenModel:
                    expensive=True, likely=True),
         ])
         belief.streams = self.streams
+        belief.planning_heuristic = estimate
         self.domain = self._domain()
 
     # -- streams ------------------------------------------------------------------
@@ -101,11 +145,46 @@ class KitchenModel:
         path = rrt_connect(belief.scene, start.q, q2.q, belief.prng, ignore=ignore)
         return None if path is None else Traj(tuple(path))
 
-    def ik(self, target: np.ndarray, ignore: tuple[str, ...] = ()) -> Conf | None:
-        key = (tuple(np.round(target, 3)), ignore, tuple(self.b.drawers.values()), self.b.version)
+    def _fresh(self) -> None:
+        """Drop the memoised belief-dependent results when the belief has changed."""
+        if self._pool_version != self.b.version:
+            self._memo.clear()
+            self._pool_version = self.b.version
+
+    def _pool(self, key: tuple[Any, ...], size: int, draw: Any) -> list[Any]:
+        """A persistent pool of samples for ``key``, grown to at least ``size`` draws.
+
+        ``draw()`` returns one new sample (seeded by the belief's RNG).  The
+        pool survives belief updates — so a replanning call sees the previous
+        plan's placements again and can keep them — and the search sees the
+        same samples at every node; a larger :attr:`StreamSet.level` adds new
+        ones.  Callers filter the samples against the current belief.
+        """
+        pool = self._pools.setdefault(key, [])
+        while len(pool) < size:
+            pool.append(draw())
+        return pool
+
+    def _level(self) -> int:
+        return int(getattr(self.streams, "level", 1))
+
+    def candidates(self, o: str, frame: str | None, k: int) -> list[Pose]:
+        """Up to ``k × level`` sampled poses of ``o`` (best-supported first), fixed within a belief version."""
+        self._fresh()
+        key = ("obs", o, frame, k * self._level())
+        if key not in self._memo:
+            self._memo[key] = self.b.candidate_poses(o, frame, k * self._level())
+        return list(self._memo[key])
+
+    def ik(self, target: np.ndarray, ignore: tuple[str, ...] = (), frame: str | None = None) -> Conf | None:
+        """A configuration reaching ``target`` (cached per belief version); reaching into drawer
+        ``frame``, the scene has that drawer open and the other closed (the action needs it so)."""
+        drawers = {d: (S.DRAWER_OPEN if d == frame else 0.0) for d in S.DRAWERS} if frame in S.DRAWERS else None
+        state = tuple((drawers or self.b.drawers).values())
+        key = (tuple(np.round(target, 3)), ignore, state, self.b.version)
         if key not in self._ik:
             self.streams.calls["inv-kin"] += 1
-            self.b.sync_scene(skip=ignore)
+            self.b.sync_scene(skip=ignore, drawers=drawers)
             q = inverse_kinematics(self.b.scene, target, self.b.prng)
             self._ik[key] = None if q is None else Conf(q)
         return self._ik[key]
@@ -122,60 +201,81 @@ class KitchenModel:
         if P in b:
             poses = [b[P]] if isinstance(b[P], Pose) and b[P].frame != "hand" else []
         else:
-            poses = bel.candidate_poses(o, b.get(F))
+            poses = self.candidates(o, b.get(F), 4)
         for p in poses:
             yield {P: p, F: p.frame, J: others[0], K: others[1]}
 
     def g_pick(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
-        if O not in b:
+        """Grasp poses and IK for picking ``o``; with ``o`` unbound (``Closable(f)``), each object in ``f``."""
+        if O in b:
+            objs = [b[O]]
+        elif F in b:
+            objs = [o for o in bel.objects if bel.particles[o].frame_mass(b[F]) >= 0.05]
+        else:
             return
-        o = b[O]
-        if bel.held == o:
-            return
-        poses = [bel.mode_pose(o)] + [p for p in bel.candidate_poses(o, None, 3)]
-        seen = set()
-        for p in poses:
-            if p in seen:
+        for o in objs:
+            if bel.held == o:
                 continue
-            seen.add(p)
-            q = self.ik(self.grasp_target(o, p), ignore=(o,))
-            if q is not None:
-                yield {P: p, F: p.frame, G: GRASP, Q: q}
+            seen = set()
+            for p in [bel.mode_pose(o)] + self.candidates(o, None, 3):
+                if p in seen or (F in b and p.frame != b[F]):
+                    continue
+                seen.add(p)
+                # an object believed to overlap o at p must have moved away by the time o is picked there
+                q = self.ik(self.grasp_target(o, p), ignore=(o, *self._overlapping(o, p)), frame=p.frame)
+                if q is not None:
+                    yield {O: o, P: p, F: p.frame, G: GRASP, Q: q}
+
+    def _to_free(self, goal: Any, bel: KitchenBelief) -> list[str]:
+        """Which object a ``HandEmpty`` subgoal should put down: the held one, else tall objects that
+        a ``Closable`` subgoal needs out of their drawer, else any object."""
+        if bel.held is not None:
+            return [bel.held]
+        want = [a.args[0] for a in getattr(goal, "atoms", ()) if a.predicate == "Closable" and a.value is True]
+        tall = [o for o in bel.objects if o in S.TALL and any(bel.particles[o].frame_mass(f) >= 0.05 for f in want)]
+        return tall or list(bel.objects)
 
     def _placements(self, o: str, frame: str, n: int = 6) -> list[Pose]:
+        """Collision-free placements of ``o`` in ``frame`` from a pool of ``n × level`` draws."""
         reg = S.regions()[frame]
-        out = []
-        for _ in range(n):
+
+        def draw() -> Pose:
             x = self.b.prng.uniform(reg.lo[0] + 0.03, reg.hi[0] - 0.03)
             y = self.b.prng.uniform(reg.lo[1] + 0.02, reg.hi[1] - 0.02)
-            p = pose_of(frame, np.array([x, y, S.SIZES[o][2]]))
-            if self._free(o, p):
-                out.append(p)
-        return out
+            return pose_of(frame, np.array([x, y, S.SIZES[o][2]]))
 
-    def _free(self, o: str, p: Pose) -> bool:
-        origins = self.b.origins()
-        w = origins[p.frame] + p.rel()
+        self._fresh()
+        key = ("place", o, frame, n * self._level())
+        if key not in self._memo:
+            self._memo[key] = [p for p in self._pool(key[:3], n * self._level(), draw) if self._free(o, p)]
+        return list(self._memo[key])
+
+    def _overlapping(self, o: str, p: Pose, mass: float = OVERLAP_MASS) -> list[str]:
+        """Objects with at least ``mass`` of belief overlapping ``o`` at ``p`` (2 cm margin)."""
+        out = []
         for j in self.b.objects:
             if j == o or j == self.b.held:
                 continue
-            m = self.b.mode_pose(j)
-            if m.frame != p.frame:
-                continue
-            d = np.abs(origins[m.frame] + m.rel() - w)[:2]
-            if np.all(d < np.array(S.SIZES[o][:2]) + np.array(S.SIZES[j][:2]) + 0.02):
-                return False
-        return True
+            pb = self.b.particles[j]
+            reach = np.array(S.SIZES[o][:2]) + np.array(S.SIZES[j][:2]) + 0.02
+            inside = (pb.frames == p.frame) & np.all(np.abs(pb.poses[:, :2] - p.rel()[:2]) < reach, axis=1)
+            if float(pb.weights[inside].sum()) >= mass:
+                out.append(j)
+        return out
+
+    def _free(self, o: str, p: Pose) -> bool:
+        return not self._overlapping(o, p)
 
     def g_place(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
-        if O not in b:
-            return
-        o = b[O]
-        poses = [b[P]] if P in b else self._placements(o, b[F] if F in b else "counter")
-        for p in poses:
-            q = self.ik(self.grasp_target(o, p) + np.array([0, 0, 0.01]), ignore=(o,))
-            if q is not None:
-                yield {P: p, F: p.frame, G: GRASP, Q: q}
+        """Placements and IK for putting ``o`` down; with ``o`` unbound (``HandEmpty``), see :meth:`_to_free`."""
+        for o in [b[O]] if O in b else self._to_free(goal, bel):
+            poses = [b[P]] if P in b else self._placements(o, b[F] if F in b else "counter")
+            if O not in b:
+                poses = poses[: 2 * self._level()]  # a few parking spots each
+            for p in poses:
+                q = self.ik(self.grasp_target(o, p) + np.array([0, 0, 0.01]), ignore=(o,), frame=p.frame)
+                if q is not None:
+                    yield {O: o, P: p, F: p.frame, G: GRASP, Q: q}
 
     def g_aside(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         if O not in b or J not in b:
@@ -183,14 +283,21 @@ class KitchenModel:
         o, target, tpose = b[O], b[J], b[K]
         if not isinstance(tpose, Pose):
             return
-        region = bel.region_of(target, tpose)
-        for p in self._placements(o, "counter", 10):
-            xj = (bel.origins()["counter"] + p.rel())[None, :]
-            if bel.blocks(target, o)(region, xj).any():
-                continue
-            q = self.ik(self.grasp_target(o, p) + np.array([0, 0, 0.01]), ignore=(o,))
-            if q is not None:
-                yield {P: p, G: GRASP, Q: q}
+        self._fresh()
+        key = ("aside", o, target, tpose, self._level())
+        if key not in self._memo:
+            out = []
+            region = bel.region_of(target, tpose)
+            for p in self._placements(o, "counter", 10):
+                xj = (bel.origins()["counter"] + p.rel())[None, :]
+                if bel.blocks(target, o)(region, xj).any():
+                    continue
+                q = self.ik(self.grasp_target(o, p) + np.array([0, 0, 0.01]), ignore=(o,))
+                if q is not None:
+                    out.append({P: p, G: GRASP, Q: q})
+            self._memo[key] = out
+        for vals in self._memo[key]:
+            yield dict(vals)
 
     def _handle(self, d: str, state: float) -> Conf | None:
         """A configuration at the drawer's handle (a few approach points are tried)."""
@@ -278,7 +385,7 @@ class KitchenModel:
                      generators=(Generator("inv-kin", (Q,), self.g_button),)),
         )
         types = {"movable": None, "short": "movable", "tall": "movable", "drawer": None}
-        return Domain("kitchen", _tests(), ops, types=types)
+        return Domain("kitchen", _tests(), ops, types=types, conflicts=CONFLICTS)
 
     def g_button_or_handle(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         if b.get(D) not in S.DRAWERS:
