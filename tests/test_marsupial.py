@@ -282,6 +282,7 @@ def test_reproduction_summaries_pair_runs_and_average():
     both = next(r for r in fig3 if r["regime"] == "both")
     assert both["trials"] == 0 and both["unsolved"] == 1
     assert [s["regime"] for s in summary] == ["single origin, single destination"]
+    assert summary[0]["paper_cost_decrease_pct"] == 30.0  # the paper's number beside ours
 
 
 @pytest.mark.slow
@@ -292,6 +293,9 @@ def test_reproduce_002_quick_prints_both_figures():
     assert res.status is ReproStatus.DONE
     assert any(r.get("figure") == "3" for r in res.rows) and any(r.get("figure") == "4" for r in res.rows)
     assert all(r["solved"] == "both" for r in res.rows if r.get("figure") == "4")
+    ff = {r["planner"]: r for r in res.rows if r.get("figure") == "FF instance"}
+    assert ff["hpn"]["status"] == ff["hpn+peephole"]["status"] == "solved"
+    assert ff["hpn"]["cpu_s"] < 1.0  # the target: the FF instance in under a second
 
 
 @pytest.mark.slow

@@ -40,6 +40,18 @@ GROUPS = {
 }
 
 
+
+def _paper_pct() -> dict[str, float]:
+    from nowplan.experiments.papers import PAPERS
+
+    return {str(r["regime"]): float(r["cost_decrease_pct"]) for r in PAPERS["002"].rows}
+
+
+PAPER_PCT = _paper_pct()
+# the FF instance of seed 002 V-B: FF needed slightly less than 7.5 hours for a plan of 62 steps
+PAPER_FF = {"ff_time_s": 7.5 * 3600, "ff_plan_steps": 62}
+
+
 @dataclass(frozen=True)
 class Plan:
     regimes: tuple[str, ...]
@@ -71,6 +83,33 @@ def run_one(job: tuple[str, int, int, str, float]) -> dict[str, Any]:
         "outcome": m.outcome.value, "goal_holds": reached, "cost": m.execution_cost,
         "actions": m.actions, "planning_cpu_s": m.planning_cpu_s, "cpu_s": cpu, "reason": m.reason,
     }
+
+
+def ff_rows(time_limit: float) -> list[dict[str, Any]]:
+    """The seed's FF instance: our HPN and RCHPN, and Fast Downward lama-first if installed."""
+    import tempfile
+
+    from nowplan.domains.marsupial.flat import flatten, rescore
+    from nowplan.domains.marsupial.flatcmp import run_fd, run_ours
+    from nowplan.domains.marsupial.problems import ff_instance
+    from nowplan.io.pddl_write import write_pddl
+
+    problem, spec = ff_instance(0)
+    rows: list[dict[str, Any]] = []
+    for strategy in STRATEGIES:
+        r = run_ours(problem, spec, strategy, 0, time_limit)
+        rows.append({"figure": "FF instance", "planner": strategy, "status": r["status"],
+                     "cpu_s": _r(r["time_s"], 3), "cost": r["cost"], "steps": r["steps"], **PAPER_FF})
+    with tempfile.TemporaryDirectory(prefix="nowplan-ff-") as tmp:
+        dom, prob = write_pddl(flatten(problem), tmp)
+        r = run_fd(dom, prob, "lama-first", time_limit, Path(tmp))
+    row: dict[str, Any] = {"figure": "FF instance", "planner": "fd lama-first (flat PDDL)", "status": r["status"]}
+    if "time_s" in r:
+        row["cpu_s"] = _r(r["time_s"], 2)
+    if r.get("steps"):
+        row.update(cost=rescore(r["steps"]), steps=len(r["steps"]))
+    rows.append({**row, **PAPER_FF})
+    return rows
 
 
 def _mean_se(xs: list[float]) -> tuple[float, float]:
@@ -123,6 +162,7 @@ def summarize(runs: list[dict[str, Any]]) -> tuple[list[dict[str, Any]], list[di
         if xs:
             mu, se = _mean_se(xs)
             summary.append({"regime": label, "cost_decrease_pct": _r(mu), "se": _r(se),
+                            "paper_cost_decrease_pct": PAPER_PCT.get(label, math.nan),
                             "time_increase_pct": _r(_mean_se(ts)[0]), "problems": len(xs)})
     return fig3, fig4, summary
 
@@ -133,7 +173,9 @@ NOTES = (
     "is our regression A* with a count heuristic, arrange() uses our resource declarations (vehicle and "
     "stop shareable, loader and load region contained) and never combines a step whose refinement is "
     "its last; planning time is the CPU time of the whole run (planner and peephole optimizer). "
-    "The paper's numbers are read from its text (Fig. 3 is only a plot)."
+    "The paper's numbers are read from its text (Fig. 3 is only a plot). The flat-planner comparison "
+    "(FD lama-first, seq-opt-lmcut, pyperplan on exported PDDL) is benchmarks/marsupial_flat.py; here "
+    "only the FF instance is run."
 )
 
 
@@ -152,6 +194,7 @@ def reproduce(options: ReproductionOptions) -> ReproductionResult:
     else:
         runs = [run_one(j) for j in jobs]
     fig3, fig4, summary = summarize(runs)
+    ff = ff_rows(plan.time_limit)
     wall = time.perf_counter() - t0
     notes = (
         f"{len(runs)} runs ({'quick' if options.quick else 'full'}: regimes {', '.join(plan.regimes)}; "
@@ -159,17 +202,17 @@ def reproduce(options: ReproductionOptions) -> ReproductionResult:
         f"on {workers} processes. " + NOTES
     )
     result = ReproductionResult(
-        seed="002", status=ReproStatus.DONE, rows=[*summary, *fig3, *fig4], notes=notes,
+        seed="002", status=ReproStatus.DONE, rows=[*summary, *fig3, *fig4, *ff], notes=notes,
         title="seed 002: % decrease in execution cost of RCHPN vs HPN (Fig. 3) and vs % CPU-time increase (Fig. 4)",
     )
     if options.out_dir is not None:
-        result.outputs = write_outputs(options.out_dir, runs, fig3, fig4, summary)
+        result.outputs = write_outputs(options.out_dir, runs, fig3, fig4, summary, ff)
     return result
 
 
 def write_outputs(
     out: Path, runs: list[dict[str, Any]], fig3: list[dict[str, Any]], fig4: list[dict[str, Any]],
-    summary: list[dict[str, Any]],
+    summary: list[dict[str, Any]], ff_table: list[dict[str, Any]] | None = None,
 ) -> list[Path]:
     import matplotlib
 
@@ -210,6 +253,12 @@ def write_outputs(
     for s in summary:
         lines.append(f"| {s['regime']} | {s['cost_decrease_pct']} ± {s['se']} | {s['time_increase_pct']} | "
                      f"{s['problems']} | {paper.get(s['regime'], '–')} |")
+    ff = [r for r in ff_table or [] if r.get("figure") == "FF instance"]
+    if ff:
+        lines += ["", "FF instance (seed V-B; the paper: FF needed about 7.5 h for a 62-step plan):", "",
+                  "| planner | status | CPU s | cost | steps |", "|---|---|---|---|---|"]
+        lines += [f"| {r['planner']} | {r['status']} | {r.get('cpu_s', '')} | {r.get('cost', '')} | "
+                  f"{r.get('steps', '')} |" for r in ff]
     lines += ["", "![Fig. 3](seed002_fig3.png)", "", "![Fig. 4](seed002_fig4.png)", "", NOTES, ""]
     paths.append(out / "seed002.md")
     paths[-1].write_text("\n".join(lines))
