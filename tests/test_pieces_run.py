@@ -126,6 +126,6 @@ def test_reproduce_003_quick_prints_the_table(capsys: pytest.CaptureFixture[str]
             "seed rule + costs, warm library", "flexible+serendipity (HPN)"} <= strategies
     assert {r["disturbance"] for r in doc["rows"]} == {0.0, 0.1, 0.2, 0.3}
     assert all(r["success_pct"] == 100.0 for r in doc["rows"])
-    assert "target" in doc["notes"]
+    assert "target" in doc["notes"] and "thr=1: extra travel" in doc["notes"]
     assert all(r["extra_travel"].startswith("0 ") for r in doc["rows"] if r["disturbance"] == 0.0)
     assert (tmp_path / "table_003.md").exists()

@@ -72,6 +72,7 @@ BASELINE = "replan to goal"
 WARM_BASELINE = "replan to goal, warm library"  # the planning-time check of warm rows
 RULE_ROWS = ("seed rule, cold library", "seed rule, warm library", "seed rule + costs, warm library")
 TARGET_REDUCTION = 0.25
+SWEEP_THR = (1.0, 2.0, 3.0)  # the seed gives no thr; the main rows use MonitorConfig's default
 
 
 def run_episode_003(task: PiecesProblem, rate: float, seed: int, strategy_name: str, rec: Recognizer,
@@ -129,7 +130,7 @@ def reproduce_003(options: ReproductionOptions) -> ReproductionResult:
     lib_path = lib_dir / "plan_library_003.sqlite"
     if lib_path.exists():
         lib_path.unlink()  # a fresh warm-up, so the table does not depend on earlier invocations
-    total = len(tasks) * len(RATES) * (len(STRATEGIES) + warmups)
+    total = len(tasks) * len(RATES) * (len(STRATEGIES) + warmups + len(SWEEP_THR))
     bar = _progress(total)
     warm_cfg = MonitorConfig(library_path=str(lib_path), library_write=True)
     for t in tasks:  # warm-up runs of the seed's rule, with other camera and person seeds
@@ -150,15 +151,54 @@ def reproduce_003(options: ReproductionOptions) -> ReproductionResult:
                 out.append(r)
                 bar.update(1)
             runs[(rate, label)] = out
+    sweep = _threshold_sweep(tasks, rec, runs, bar)
     bar.close()
     rows = [_row(rate, label, runs) for rate in RATES for label, _, _ in STRATEGIES]
     planners = _planner_comparison(options.quick)
-    notes = _notes(rows, runs, rec, problems, warmups, planners)
+    notes = _notes(rows, runs, rec, problems, warmups, planners) + " Seed rule by threshold " \
+        "(cold library, pooled over p > 0): " + "; ".join(
+            f"thr={x['thr']:g}: extra travel {x['extra_travel']} ({x['extra_vs_goal_pct']:+.1f}% vs goal), "
+            f"planning {x['planning_ms']} ms, {x['choices']}" for x in sweep) + "."
     result = ReproductionResult("003", ReproStatus.DONE, rows=rows, notes=notes)
     if options.out_dir is not None:
-        result.outputs.append(_write(options.out_dir, rows, planners, notes))
+        result.outputs.append(_write(options.out_dir, rows, planners, notes, sweep))
     tmp.cleanup()
     return result
+
+
+def _threshold_sweep(tasks: list[PiecesProblem], rec: Recognizer,
+                     runs: dict[tuple[float, str], list[dict[str, Any]]], bar: Any) -> list[dict[str, Any]]:
+    """The seed's rule (cold library) at other thresholds, pooled over the disturbed rates."""
+    out = []
+    base = pooled(runs, BASELINE)
+    settings = [(thr, None) for thr in SWEEP_THR] + [(MonitorConfig().thr, "seed rule, cold library")]
+    for thr, label in settings:
+        if label is not None:
+            found = [r for rate in RATES[1:] for r in runs[(rate, label)]]
+        else:
+            cfg = MonitorConfig(thr=thr)
+            undisturbed: dict[int, float] = {}
+            found = []
+            for rate in RATES:
+                for i, t in enumerate(tasks):
+                    r = run_episode_003(t, rate, 11 + i, "hpn+monitor+domain-planner", rec, cfg)
+                    if rate == 0:
+                        undisturbed[i] = r["travel"]
+                    else:
+                        r["extra"] = r["travel"] - undisturbed[i]
+                        found.append(r)
+                    bar.update(1)
+        extra = sum(r["extra"] for r in found) / len(found)
+        decisions: Counter[str] = Counter()
+        for r in found:
+            decisions.update(r["decisions"])
+        out.append({
+            "thr": thr, "extra_travel": round(extra, 3),
+            "extra_vs_goal_pct": round(100.0 * (extra / base - 1.0), 1) if base > 0 else 0.0,
+            "planning_ms": round(1000 * sum(r["planning_s"] for r in found) / len(found), 2),
+            "choices": ", ".join(f"{k} {v}" for k, v in sorted(decisions.items())) or "–",
+        })
+    return out
 
 
 def _progress(total: int) -> Any:
@@ -277,11 +317,14 @@ def _mean(xs: list[float]) -> str:
     return f"{sum(xs) / len(xs):.3g}" if xs else "–"
 
 
-def _write(out_dir: Path, rows: list[dict[str, Any]], planners: list[dict[str, Any]], notes: str) -> Path:
+def _write(out_dir: Path, rows: list[dict[str, Any]], planners: list[dict[str, Any]], notes: str,
+           sweep: list[dict[str, Any]]) -> Path:
     out_dir.mkdir(parents=True, exist_ok=True)
     cols = list(rows[0])
     text = ["# Seed 003: replanning after disturbances on shuffled pieces", "",
             markdown_table(cols, [[str(r[c]) for c in cols] for r in rows]), "",
+            "## The seed's rule by threshold (cold library, pooled over p > 0)", "",
+            markdown_table(list(sweep[0]), [[str(x[c]) for c in sweep[0]] for x in sweep]), "",
             "## Planners on the same problems", "",
             markdown_table(list(planners[0]), [[str(p[c]) for c in planners[0]] for p in planners]), "",
             notes, ""]
