@@ -161,3 +161,23 @@ def test_segment_cost_charges_only_objects_the_move_really_enters():
     b._detect("inway", 1.3 - 0.5, 0.0, 0.001, (0.4, 0.4))
     pp = PathPlanner.of(b, False)
     assert pp.segment_cost(a, c) >= a.dist(c) + b.params.clear_cost
+
+
+def test_a_look_that_did_not_localise_is_not_offered_again_from_there():
+    from nowplan.core.atoms import Goal
+    from nowplan.domains.namo.generators import gen_look_obj
+    from nowplan.worlds.base import Observation
+
+    geom = MapGeometry(6.0, 3.0, ())
+    b = NamoBelief(geom, np.array([0.5, 1.5]))
+    b._detect("box", 1.5, 0.0, 0.2, (0.4, 0.4))  # seen badly from afar
+    here = b.nominal()
+    binds = {Var("o"): "box", Var("e"): 0.06}
+    assert list(gen_look_obj(binds, Goal(()), b, None))  # a look from here should localise it
+    look_op = build_domain(b.params).operator_map["LookObj"]
+    look = look_op.instantiate({Var("v"): here, Var("o"): "box", Var("at"): b.objects["box"].center,
+                                Var("e"): 0.06})
+    b.update(look, Observation(success=True, data={}))  # occluded: nothing seen
+    assert not list(gen_look_obj(binds, Goal(()), b, None))
+    b._bump(percept=True)  # something new was seen: worth another try
+    assert list(gen_look_obj(binds, Goal(()), b, None))

@@ -84,6 +84,9 @@ class NamoBelief:
     bumps: set[int] = field(default_factory=set)  # cells where the robot bumped into a wall
     unmovable: dict[str, int] = field(default_factory=dict)  # object -> percept when no placement was found
     route_memo: dict[Pt, set[Pt]] = field(default_factory=dict)  # target -> starts a path chose (gen_move)
+    # (view point, object) -> percept when a look from there did not localise the object (occluded, out
+    # of view): not offered again from there until something new is seen
+    futile_looks: dict[tuple[Pt, str], int] = field(default_factory=dict)
     _cache: dict[Any, Any] = field(default_factory=dict, repr=False)
     _cache_version: int = -1
     _cells: dict[Region, np.ndarray] = field(default_factory=dict, repr=False)
@@ -225,6 +228,8 @@ class NamoBelief:
     def update(self, action: Action, obs: Observation) -> None:
         data: dict[str, Any] = obs.data if isinstance(obs.data, dict) else {}
         name = action.name
+        looked = self.objects.get(str(action.args[1])) if name == "LookObj" else None
+        before = looked.sigma if looked is not None else None
         if name == "Move":
             region = action.args[2]
             assert isinstance(region, Region)
@@ -238,6 +243,10 @@ class NamoBelief:
         elif name == "Place":
             self._update_place(action, data)
         self._sense(data)
+        if before is not None and looked is not None and looked.sigma > 0.9 * before:
+            v = action.args[0]
+            if isinstance(v, Pt):
+                self.futile_looks[(v, looked.name)] = self.percept
         self._bump()
 
     def _drive(self, path: tuple[Pt, ...], traveled: float) -> None:
