@@ -128,7 +128,7 @@ def gen_look_obj(bindings: Bindings, goal: Goal, belief: NamoBelief, context: An
     want = float(bindings.get(E, belief.params.eps_pick))
     v = robot_at_in(goal) or belief.nominal()
     d = v.dist(est.center)
-    if d > belief.sensor.range - 0.2 or belief.futile_looks.get((v, name)) == belief.percept:
+    if d > belief.sensor.range - 0.2 or belief.futile_looks.get((v, str(name))) == belief.percept:
         return
     meas = math.hypot(belief.sensor.sigma_at(d), belief.robot_sigma)
     if _posterior(est.sigma, meas) > want:
