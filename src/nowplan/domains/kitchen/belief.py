@@ -22,7 +22,6 @@ import numpy as np
 
 from nowplan.belief.determinize import worst_case_visibility
 from nowplan.belief.particles import DEFAULT_PARTICLES, PoseParticles, Region, SensorModel
-from nowplan.belief.raycast import segment_blocked
 from nowplan.core.operators import Action
 from nowplan.domains.kitchen import scene as S
 from nowplan.worlds.base import Observation
@@ -73,6 +72,32 @@ def pose_of(frame: str, rel: np.ndarray) -> Pose:
     return Pose(frame, round(float(rel[0]), 4), round(float(rel[1]), 4), round(float(rel[2]), 4))
 
 
+def segments_blocked(a: np.ndarray, ends: np.ndarray, centres: np.ndarray, half: np.ndarray,
+                     eps: float = 1e-6) -> np.ndarray:
+    """``out[k, m]``: does the segment ``a → ends[k]`` (less its last ``eps``) cross box ``m``?
+
+    :func:`nowplan.belief.raycast.segment_blocked`'s slab test, vectorised over
+    the segments as well as the boxes (the same answers, one numpy pass).
+    """
+    a = np.asarray(a, dtype=float)
+    d = np.asarray(ends, dtype=float) - a  # (K, 3)
+    lo = np.asarray(centres, dtype=float) - half  # (M, 3)
+    hi = np.asarray(centres, dtype=float) + half
+    par = np.abs(d) <= 1e-12
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv = np.where(par, np.inf, 1.0 / np.where(par, 1.0, d))
+        t1 = (lo[None, :, :] - a) * inv[:, None, :]
+        t2 = (hi[None, :, :] - a) * inv[:, None, :]
+    tmin, tmax = np.minimum(t1, t2), np.maximum(t1, t2)
+    inside = (a >= lo) & (a <= hi)  # (M, 3)
+    parb = par[:, None, :]
+    tmin = np.where(parb, np.where(inside[None], -np.inf, np.inf), tmin)
+    tmax = np.where(parb, np.where(inside[None], np.inf, -np.inf), tmax)
+    enter, leave = tmin.max(axis=2), tmax.min(axis=2)
+    end = 1.0 - eps / np.maximum(np.linalg.norm(d, axis=1), 1e-12)
+    return (enter <= leave) & (leave > 0.0) & (enter < end[:, None])
+
+
 class KitchenBelief:
     def __init__(self, priors: dict[str, list[Region]], seed: int, sensor: SensorModel = SensorModel(),
                  n: int = DEFAULT_PARTICLES, scene: S.Scene | None = None) -> None:
@@ -94,6 +119,7 @@ class KitchenBelief:
         self.planning_heuristic: Any = None  # likewise (nowplan.domains.kitchen.heuristic.estimate)
         self.version = 0
         self._modes: dict[tuple[str, int], Pose] = {}
+        self._queries: dict[tuple[Any, ...], Any] = {}  # memoised tests, keyed with the version
 
     # -- geometry ------------------------------------------------------------------
     def origins(self) -> dict[str, np.ndarray]:
@@ -116,10 +142,8 @@ class KitchenBelief:
         half = np.array(S.SIZES[blocker])
 
         def fn(xi: np.ndarray, xj: np.ndarray) -> np.ndarray:
-            out = np.zeros((len(xi), len(xj)), dtype=bool)
-            for k, x in enumerate(xi):
-                out[k] = segment_blocked(S.CAMERA, self._top_point(target, x), xj, half)
-            return out
+            return segments_blocked(S.CAMERA, np.atleast_2d(xi) + self._top_point(target, np.zeros(3)),
+                                    np.atleast_2d(xj), half)
 
         return fn
 
@@ -149,15 +173,19 @@ class KitchenBelief:
                                                                  + pose.rel())[None, :]
 
     def not_blocks(self, blocker: str, target: str, pose: Pose) -> bool:
-        """``L_j(𝒳_i) ≥ 1 − ε`` for blocker j and the δ-neighbourhood of ``pose``."""
+        """``L_j(𝒳_i) ≥ 1 − ε`` for blocker j and the δ-neighbourhood of ``pose`` (memoised per version)."""
         if blocker == self.held or blocker == target:
             return True
-        pj = self.particles[blocker]
         if pose.frame == "hand":
             return True
-        region = self.region_of(target, pose)
-        lj = worst_case_visibility(region, self.world_of(blocker), pj.weights, self.blocks(target, blocker))
-        return lj >= 1.0 - EPSILON
+        key = ("nb", blocker, target, pose, self.version)
+        got = self._queries.get(key)
+        if got is None:
+            pj = self.particles[blocker]
+            region = self.region_of(target, pose)
+            lj = worst_case_visibility(region, self.world_of(blocker), pj.weights, self.blocks(target, blocker))
+            got = self._queries[key] = lj >= 1.0 - EPSILON
+        return bool(got)
 
     def localized_at(self, o: str, pose: Pose) -> bool:
         if pose.frame == "hand":
@@ -211,6 +239,7 @@ class KitchenBelief:
         """Bayesian update after ``action``; bumps :attr:`version` (memoised queries are keyed by it)."""
         self.version += 1
         self._modes.clear()
+        self._queries.clear()
         name, args = action.name, action.args
         info = obs.info or {}
         if "drawers" in info:

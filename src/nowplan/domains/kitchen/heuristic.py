@@ -68,8 +68,9 @@ def atom_estimate(a: Atom, belief: Any) -> float:
         return 1.0 if belief.held != args[0] else MOVE_ACT
     if name == "NotBlocks":
         return 2 * MOVE_ACT
-    if name == "Closable":
-        return 2 * MOVE_ACT * max(_tall_inside(belief, args[0]), 1)
+    if name == "Closable":  # each tall object inside is picked (drawer open) and put down elsewhere
+        inside = [o for o in S.TALL if o in belief.particles and belief.particles[o].frame_mass(args[0]) >= 0.05]
+        return sum(_pick_cost(belief, o) + MOVE_ACT for o in inside) or 2 * MOVE_ACT
     if name == "Cooked":
         return _pick_cost(belief, args[0]) + 3 * MOVE_ACT
     return 1.0
@@ -79,6 +80,8 @@ def _needs_open(a: Atom, belief: Any) -> str | None:
     """The drawer an unmet atom will have to open (to put something in or take it out)."""
     if a.predicate == "In" and a.value is True and a.args[1] in S.DRAWERS:
         return str(a.args[1])
+    if a.predicate == "Closable" and a.value is True and a.args[0] in S.DRAWERS:
+        return str(a.args[0])
     if a.predicate in ("Holding", "Cooked") and a.value is True and belief.held != a.args[0]:
         f = _frame_of(belief, str(a.args[0]))
         return f if f in S.DRAWERS else None

@@ -11,7 +11,7 @@ Fluents (each a test on :class:`~nowplan.domains.kitchen.belief.KitchenBelief`):
 self-loop cost ``c + c'/p − c'`` with p the ε-form of eq. (2).  ``pick``
 has a declared success probability.  Continuous values come from streams:
 ``sample-obs`` (candidate poses from the particles), ``test-vis`` (the
-NotBlocks test), ``placement``, ``grasp`` (one top grasp), ``inv-kin`` (IK;
+NotBlocks test), ``placement``, ``grasp`` (two top-down grasps 90° apart), ``inv-kin`` (IK;
 may fail, so never deferred) and ``motion`` (RRT-Connect; expensive and
 likely, so deferrable — moves carry an optimistic trajectory until bound).
 """
@@ -30,12 +30,12 @@ from nowplan.core.operators import Action, Generator, Operator, Precondition
 from nowplan.domains.kitchen import scene as S
 from nowplan.domains.kitchen.heuristic import estimate
 from nowplan.domains.kitchen.belief import DELTA, EPSILON, Conf, KitchenBelief, Pose, Traj, pose_of
-from nowplan.domains.kitchen.motion import inverse_kinematics, rrt_connect
+from nowplan.domains.kitchen.motion import DOWN, DOWN_TURNED, inverse_kinematics, rrt_connect
 from nowplan.planning.streams import Stream, StreamSet
 
 O, P, F, G, Q, T, D, E, J, K = (Var(n) for n in ("o", "p", "f", "g", "q", "t", "d", "e", "j", "k"))
 PICK = StochasticCost(cost=1.0, recovery=1.0, success=0.95)
-GRASP = "top"
+GRASPS = {"top": DOWN, "top90": DOWN_TURNED}  # top-down grasps, the second turned 90° about the vertical
 OVERLAP_MASS = 0.5  # belief mass of another object at a placement that makes it taken
 
 
@@ -94,6 +94,17 @@ class _OnePlace:
         return bool(ka) and ka == self.group_keys(b) and a != b
 
 
+class _OneDrawerOpen:
+    """Keyed conflict: at most one drawer is open (``pull`` needs the other one closed)."""
+
+    def group_keys(self, a: Atom) -> list[Any]:
+        return [("drawer",)] if a.value is True and a.predicate == "Open" and a.args[0] in S.DRAWERS else []
+
+    def __call__(self, a: Atom, b: Atom) -> bool:
+        ka = self.group_keys(a)
+        return bool(ka) and ka == self.group_keys(b) and a != b
+
+
 def _pose_clash(a: Atom, b: Atom) -> bool:
     """``AtPose(o) = p`` against ``Holding(o)`` / ``In(o, f)`` elsewhere; ``Closable(f)`` against a tall
     object in f."""
@@ -107,7 +118,7 @@ def _pose_clash(a: Atom, b: Atom) -> bool:
     return False
 
 
-CONFLICTS = (_OneInHand(), _OnePlace(), _pose_clash)
+CONFLICTS = (_OneInHand(), _OnePlace(), _OneDrawerOpen(), _pose_clash)
 
 
 class KitchenModel:
@@ -176,16 +187,17 @@ class KitchenModel:
             self._memo[key] = self.b.candidate_poses(o, frame, k * self._level())
         return list(self._memo[key])
 
-    def ik(self, target: np.ndarray, ignore: tuple[str, ...] = (), frame: str | None = None) -> Conf | None:
-        """A configuration reaching ``target`` (cached per belief version); reaching into drawer
-        ``frame``, the scene has that drawer open and the other closed (the action needs it so)."""
+    def ik(self, target: np.ndarray, ignore: tuple[str, ...] = (), frame: str | None = None,
+           grasp: str = "top") -> Conf | None:
+        """A configuration reaching ``target`` with ``grasp`` (cached per belief version); reaching into
+        drawer ``frame``, the scene has that drawer open and the other closed (the action needs it so)."""
         drawers = {d: (S.DRAWER_OPEN if d == frame else 0.0) for d in S.DRAWERS} if frame in S.DRAWERS else None
         state = tuple((drawers or self.b.drawers).values())
-        key = (tuple(np.round(target, 3)), ignore, state, self.b.version)
+        key = (tuple(np.round(target, 3)), ignore, state, grasp, self.b.version)
         if key not in self._ik:
             self.streams.calls["inv-kin"] += 1
             self.b.sync_scene(skip=ignore, drawers=drawers)
-            q = inverse_kinematics(self.b.scene, target, self.b.prng)
+            q = inverse_kinematics(self.b.scene, target, self.b.prng, orientation=GRASPS[grasp])
             self._ik[key] = None if q is None else Conf(q)
         return self._ik[key]
 
@@ -222,9 +234,12 @@ class KitchenModel:
                     continue
                 seen.add(p)
                 # an object believed to overlap o at p must have moved away by the time o is picked there
-                q = self.ik(self.grasp_target(o, p), ignore=(o, *self._overlapping(o, p)), frame=p.frame)
-                if q is not None:
-                    yield {O: o, P: p, F: p.frame, G: GRASP, Q: q}
+                away = (o, *self._overlapping(o, p))
+                for g in GRASPS:
+                    q = self.ik(self.grasp_target(o, p), ignore=away, frame=p.frame, grasp=g)
+                    if q is not None:
+                        yield {O: o, P: p, F: p.frame, G: g, Q: q}
+                        break
 
     def _to_free(self, goal: Any, bel: KitchenBelief) -> list[str]:
         """Which object a ``HandEmpty`` subgoal should put down: the held one, else tall objects that
@@ -235,8 +250,16 @@ class KitchenModel:
         tall = [o for o in bel.objects if o in S.TALL and any(bel.particles[o].frame_mass(f) >= 0.05 for f in want)]
         return tall or list(bel.objects)
 
-    def _placements(self, o: str, frame: str, n: int = 6) -> list[Pose]:
-        """Collision-free placements of ``o`` in ``frame`` from a pool of ``n × level`` draws."""
+    def _gone(self, goal: Any, frame: str) -> tuple[str, ...]:
+        """Objects that will have left ``frame`` when a subgoal wants it ``Closable`` (tall ones in it)."""
+        if not any(a.predicate == "Closable" and a.args == (frame,) and a.value is True
+                   for a in getattr(goal, "atoms", ())):
+            return ()
+        return tuple(o for o in self.b.objects if o in S.TALL and self.b.particles[o].frame_mass(frame) >= 0.05)
+
+    def _placements(self, o: str, frame: str, n: int = 6, gone: tuple[str, ...] = ()) -> list[Pose]:
+        """Placements of ``o`` in ``frame`` from a pool of ``n × level`` draws, free of the objects
+        believed there (except those ``gone`` by then)."""
         reg = S.regions()[frame]
 
         def draw() -> Pose:
@@ -245,9 +268,10 @@ class KitchenModel:
             return pose_of(frame, np.array([x, y, S.SIZES[o][2]]))
 
         self._fresh()
-        key = ("place", o, frame, n * self._level())
+        key = ("place", o, frame, n * self._level(), gone)
         if key not in self._memo:
-            self._memo[key] = [p for p in self._pool(key[:3], n * self._level(), draw) if self._free(o, p)]
+            pool = self._pool(key[:3], n * self._level(), draw)
+            self._memo[key] = [p for p in pool if not set(self._overlapping(o, p)) - set(gone)]
         return list(self._memo[key])
 
     def _overlapping(self, o: str, p: Pose, mass: float = OVERLAP_MASS) -> list[str]:
@@ -263,19 +287,21 @@ class KitchenModel:
                 out.append(j)
         return out
 
-    def _free(self, o: str, p: Pose) -> bool:
-        return not self._overlapping(o, p)
-
     def g_place(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         """Placements and IK for putting ``o`` down; with ``o`` unbound (``HandEmpty``), see :meth:`_to_free`."""
         for o in [b[O]] if O in b else self._to_free(goal, bel):
-            poses = [b[P]] if P in b else self._placements(o, b[F] if F in b else "counter")
+            frame = b[F] if F in b else "counter"
+            gone = self._gone(goal, frame)
+            poses = [b[P]] if P in b else self._placements(o, frame, gone=gone)
             if O not in b:
                 poses = poses[: 2 * self._level()]  # a few parking spots each
             for p in poses:
-                q = self.ik(self.grasp_target(o, p) + np.array([0, 0, 0.01]), ignore=(o,), frame=p.frame)
-                if q is not None:
-                    yield {O: o, P: p, F: p.frame, G: GRASP, Q: q}
+                for g in GRASPS:
+                    q = self.ik(self.grasp_target(o, p) + np.array([0, 0, 0.01]), ignore=(o, *gone), frame=p.frame,
+                                grasp=g)
+                    if q is not None:
+                        yield {O: o, P: p, F: p.frame, G: g, Q: q}
+                        break
 
     def g_aside(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         if O not in b or J not in b:
@@ -292,9 +318,11 @@ class KitchenModel:
                 xj = (bel.origins()["counter"] + p.rel())[None, :]
                 if bel.blocks(target, o)(region, xj).any():
                     continue
-                q = self.ik(self.grasp_target(o, p) + np.array([0, 0, 0.01]), ignore=(o,))
-                if q is not None:
-                    out.append({P: p, G: GRASP, Q: q})
+                for g in GRASPS:
+                    q = self.ik(self.grasp_target(o, p) + np.array([0, 0, 0.01]), ignore=(o,), grasp=g)
+                    if q is not None:
+                        out.append({P: p, G: g, Q: q})
+                        break
             self._memo[key] = out
         for vals in self._memo[key]:
             yield dict(vals)

@@ -21,6 +21,7 @@ from nowplan.domains.kitchen.scene import ARM_JOINTS, EE_LINK, RAIL, Scene, ee_p
 
 Conf = tuple[float, ...]
 DOWN = (1.0, 0.0, 0.0, 0.0)  # gripper pointing down (quaternion x, y, z, w)
+DOWN_TURNED = (0.7071068, 0.7071068, 0.0, 0.0)  # pointing down, turned 90° about the vertical
 
 
 def limits(sc: Scene) -> tuple[np.ndarray, np.ndarray]:
@@ -44,7 +45,8 @@ def in_collision(sc: Scene, q: Conf, ignore: Sequence[int] = ()) -> bool:
 
 
 def inverse_kinematics(
-    sc: Scene, target: np.ndarray, rng: random.Random, ignore: Sequence[int] = (), attempts: int = 4
+    sc: Scene, target: np.ndarray, rng: random.Random, ignore: Sequence[int] = (), attempts: int = 4,
+    orientation: tuple[float, float, float, float] = DOWN,
 ) -> Conf | None:
     p = sc.p
     lo, hi = limits(sc)
@@ -53,7 +55,7 @@ def inverse_kinematics(
         rest = [0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8]
         set_conf(sc, (bx, *rest))
         sol = p.calculateInverseKinematics(
-            sc.robot, EE_LINK, tuple(float(v) for v in target), DOWN, lowerLimits=list(lo[1:]),
+            sc.robot, EE_LINK, tuple(float(v) for v in target), orientation, lowerLimits=list(lo[1:]),
             upperLimits=list(hi[1:]), jointRanges=list(hi[1:] - lo[1:]), restPoses=rest,
             maxNumIterations=200, residualThreshold=1e-4, physicsClientId=sc.client,
         )

@@ -52,7 +52,7 @@ def kitchen_strategy(switches: str, cap: float, max_actions: int = 40) -> Any:
 
     strategy = parse_strategy(switches, time_limit=cap, max_actions=max_actions)
     planner = replace(strategy.planner, time_limit=cap, max_nodes=MAX_NODES, max_generator_values=GENERATOR_VALUES,
-                      weight=SEARCH_WEIGHT)
+                      weight=SEARCH_WEIGHT, serialization=False, monotonic=False)
     return replace(strategy, planner=planner)
 
 
