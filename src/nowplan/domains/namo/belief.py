@@ -84,8 +84,8 @@ class NamoBelief:
     bumps: set[int] = field(default_factory=set)  # cells where the robot bumped into a wall
     unmovable: dict[str, int] = field(default_factory=dict)  # object -> percept when no placement was found
     route_memo: dict[Pt, set[Pt]] = field(default_factory=dict)  # target -> starts a path chose (gen_move)
-    # (view point, object) -> percept when a look from there did not localise the object (occluded, out
-    # of view): not offered again from there until something new is seen
+    # (view point, object or "look:<region>") -> percept when a look from there did not localise the
+    # object or reveal the region (occluded, out of view): not relied on again until something new is seen
     futile_looks: dict[tuple[Pt, str], int] = field(default_factory=dict)
     _cache: dict[Any, Any] = field(default_factory=dict, repr=False)
     _cache_version: int = -1
@@ -247,6 +247,9 @@ class NamoBelief:
             v = action.args[0]
             if isinstance(v, Pt):
                 self.futile_looks[(v, looked.name)] = self.percept
+        if name == "Look" and isinstance(action.args[0], Pt) and isinstance(action.args[1], Region):
+            if not self.is_observed(action.args[1]):  # (fog hidden behind something: not from here)
+                self.futile_looks[(action.args[0], f"look:{action.args[1]}")] = self.percept
         self._bump()
 
     def _drive(self, path: tuple[Pt, ...], traveled: float) -> None:

@@ -99,12 +99,16 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
         size = belief.objects[held].size
         options = [m]
         spot = _spot(m, held, size)
-        if not (belief.clear(spot[SPOT], spot[ONLY], belief.params.eps_clear)
-                and belief.clear(m.survey or spot[SPOT], spot[ONLY], belief.params.eps_clear)):
-            # the planned placement is no longer possible: place it elsewhere from here
-            pc = belief.nominal()
-            grip = belief.grip[0] if belief.grip is not None else np.array(m.offset)
-            at = Pt.of(belief.robot_mean[0] + grip[0], belief.robot_mean[1] + grip[1])
+        pc = belief.nominal()
+        grip = belief.grip[0] if belief.grip is not None else np.array(m.offset)
+        at = Pt.of(belief.robot_mean[0] + grip[0], belief.robot_mean[1] + grip[1])
+        unseeable = (m.survey is not None and not belief.is_observed(m.survey)
+                     and belief.futile_looks.get((m.pick_conf, f"look:{m.survey}")) == belief.percept)
+        away = not belief.at(m.pick_conf)  # the grasp pushed the robot off its pick configuration
+        if unseeable or away or not (belief.clear(spot[SPOT], spot[ONLY], belief.params.eps_clear)
+                             and belief.clear(m.survey or spot[SPOT], spot[ONLY], belief.params.eps_clear)):
+            # the planned placement is no longer possible (something is there now, or its carry volume
+            # cannot be observed from here): place it elsewhere from here
             hard: tuple[Region, ...] = tuple(hard_regions(goal, held, region)) if region.radius > 0 else ()
             options = []
             for fog_ok, through in ((False, False), (True, False), (True, True)):
