@@ -9,7 +9,9 @@ with several seeded runs each.  Per domain and algorithm: mean picks/places
 domain, both as planning CPU time and as the run's total CPU time (planning,
 triggers, simulated perception and belief updates).  The office run follows.
 Runs go to worker processes (``--jobs``), each seeded, so results do not
-depend on the number of workers.
+depend on the number of workers.  Each run is timed ``TIMING_REPEATS``
+times and the fastest counts: the machine is shared, and other processes
+only ever add time.
 """
 
 from __future__ import annotations
@@ -57,8 +59,10 @@ class RunSpec:
     seed: int
 
 
-def run_one(spec: RunSpec) -> dict[str, Any]:
-    """One seeded run in this process; returns a JSON-able record."""
+TIMING_REPEATS = 3  # each run is repeated and timed this often; the fastest counts (see run_one)
+
+
+def _once(spec: RunSpec) -> tuple[dict[str, Any], tuple[Any, ...]]:
     from nowplan.acting.run import run_episode
     from nowplan.domains.namo.scenarios import SCENARIOS, episode
 
@@ -72,7 +76,7 @@ def run_one(spec: RunSpec) -> dict[str, Any]:
     m = run_episode(ep, strategy, seed=spec.seed)
     cpu = time.process_time() - cpu0
     c = m.action_counts
-    return {
+    record = {
         "domain": spec.domain, "algorithm": spec.algorithm, "seed": spec.seed,
         "outcome": m.outcome.value, "reason": m.reason,
         "picks_places": c["Pick"] + c["Place"],
@@ -81,6 +85,32 @@ def run_one(spec: RunSpec) -> dict[str, Any]:
         "planning_cpu_s": m.planning_cpu_s, "run_cpu_s": cpu, "plans": m.plans_made, "replans": m.replans,
         "objects": len(ep.world.objects),
     }
+    return record, (m.outcome.value, m.actions, tuple(sorted(c.items())), m.plans_made)
+
+
+def run_one(spec: RunSpec, repeats: int = TIMING_REPEATS) -> dict[str, Any]:
+    """One seeded run in this process; returns a JSON-able record.
+
+    A run is deterministic given its seed, so it is repeated ``repeats``
+    times and the smallest CPU times are kept (the usual defence against
+    other processes on a shared machine, which only ever add time); the
+    record says how far the repeats' planning times spread.  If a repeat
+    behaved differently the first run's record is kept as it is.
+    """
+    record, behaviour = _once(spec)
+    plans = [record["planning_cpu_s"]]
+    runs = [record["run_cpu_s"]]
+    for _ in range(max(repeats, 1) - 1):
+        again, same = _once(spec)
+        if same != behaviour:
+            log.warning("run %s behaved differently when repeated; keeping the first", spec)
+            record["repeat_mismatch"] = True
+            return record
+        plans.append(again["planning_cpu_s"])
+        runs.append(again["run_cpu_s"])
+    record["planning_cpu_s"], record["run_cpu_s"] = min(plans), min(runs)
+    record["planning_cpu_spread"] = round(max(plans) / min(plans), 3) if min(plans) > 0 else None
+    return record
 
 
 def _runs(options: ReproductionOptions) -> list[RunSpec]:
@@ -174,6 +204,7 @@ def reproduce_000(options: ReproductionOptions) -> ReproductionResult:
     notes = [
         f"{len(records)} runs ({'quick' if options.quick else 'full'}: seeds "
         f"{'0-2' if options.quick else '0-9'} per domain and algorithm), {elapsed:.0f} s wall on {jobs} worker(s).",
+        f"Each run is deterministic given its seed and was timed {TIMING_REPEATS} times; the fastest counts. "
         "Means over runs that reached the goal; time ratios over all runs, relative to the original BHPN on "
         "the same domain: time_ratio = the whole run's CPU time (planning, triggers, simulated perception, "
         "belief updates), planning_ratio = the planner's CPU time only. The paper's time is total simulated "
