@@ -89,19 +89,24 @@ def _needs_open(a: Atom, belief: Any) -> str | None:
 
 
 def estimate(goal: Goal, belief: Any, holds: Callable[[Atom], bool]) -> float:
-    """Σ over unmet atoms of :func:`atom_estimate`, plus closing again a drawer that an unmet atom
-    needs opened while the subgoal wants it closed."""
+    """Σ over unmet atoms of :func:`atom_estimate`, plus the drawer interactions additive estimates
+    miss: closing again a drawer an unmet atom needs opened while the subgoal wants it closed, and,
+    when the subgoal wants the *other* drawer open, closing the first one (and, for an object to be
+    held across the switch, setting it down and picking it up again: push needs a free hand)."""
     total = 0.0
-    reopen: set[str] = set()
+    reopen: dict[str, bool] = {}  # drawer -> needed by a Holding atom
     for a in goal.atoms:
         if holds(a):
             continue
         total += atom_estimate(a, belief)
         d = _needs_open(a, belief)
         if d is not None:
-            reopen.add(d)
-    for d in reopen:
+            reopen[d] = reopen.get(d, False) or a.predicate == "Holding"
+    for d, held in reopen.items():
         closed = next((a for a in goal.atoms if a.predicate == "Open" and a.args == (d,) and a.value is False), None)
         if closed is not None and holds(closed):
             total += atom_estimate(closed, belief)
+        if any(a.predicate == "Open" and a.value is True and a.args[0] in S.DRAWERS and a.args[0] != d
+               for a in goal.atoms):
+            total += 2 * MOVE_ACT + (2 * MOVE_ACT if held else 0.0)
     return total

@@ -188,10 +188,12 @@ class KitchenModel:
         return list(self._memo[key])
 
     def ik(self, target: np.ndarray, ignore: tuple[str, ...] = (), frame: str | None = None,
-           grasp: str = "top") -> Conf | None:
+           grasp: str = "top", drawers: dict[str, float] | None = None) -> Conf | None:
         """A configuration reaching ``target`` with ``grasp`` (cached per belief version); reaching into
-        drawer ``frame``, the scene has that drawer open and the other closed (the action needs it so)."""
-        drawers = {d: (S.DRAWER_OPEN if d == frame else 0.0) for d in S.DRAWERS} if frame in S.DRAWERS else None
+        drawer ``frame``, the scene has that drawer open and the other closed (the action needs it so);
+        ``drawers`` sets the drawers' state outright."""
+        if drawers is None and frame in S.DRAWERS:
+            drawers = {d: (S.DRAWER_OPEN if d == frame else 0.0) for d in S.DRAWERS}
         state = tuple((drawers or self.b.drawers).values())
         key = (tuple(np.round(target, 3)), ignore, state, grasp, self.b.version)
         if key not in self._ik:
@@ -226,10 +228,12 @@ class KitchenModel:
         else:
             return
         for o in objs:
-            if bel.held == o:
-                continue
             seen = set()
-            for p in [bel.mode_pose(o)] + self.candidates(o, None, 3):
+            poses = [] if bel.held == o else [bel.mode_pose(o)] + self.candidates(o, None, 3)
+            if (bel.held == o or poses[0].frame in S.DRAWERS) and b.get(F, "counter") == "counter":
+                # o may be picked where it will have been set down (to switch drawers, say)
+                poses += self._placements(o, "counter")[:2]
+            for p in poses:
                 if p in seen or (F in b and p.frame != b[F]):
                     continue
                 seen.add(p)
@@ -243,12 +247,13 @@ class KitchenModel:
 
     def _to_free(self, goal: Any, bel: KitchenBelief) -> list[str]:
         """Which object a ``HandEmpty`` subgoal should put down: the held one, else tall objects that
-        a ``Closable`` subgoal needs out of their drawer, else any object."""
+        a ``Closable`` subgoal needs out of their drawer (an object put down to be picked up again is
+        placed through the pick's ``AtPose`` subgoal instead)."""
         if bel.held is not None:
             return [bel.held]
         want = [a.args[0] for a in getattr(goal, "atoms", ()) if a.predicate == "Closable" and a.value is True]
         tall = [o for o in bel.objects if o in S.TALL and any(bel.particles[o].frame_mass(f) >= 0.05 for f in want)]
-        return tall or list(bel.objects)
+        return tall
 
     def _gone(self, goal: Any, frame: str) -> tuple[str, ...]:
         """Objects that will have left ``frame`` when a subgoal wants it ``Closable`` (tall ones in it)."""
@@ -330,7 +335,8 @@ class KitchenModel:
     def _handle(self, d: str, state: float) -> Conf | None:
         """A configuration at the drawer's handle (a few approach points are tried)."""
         for dy, dz in ((0.1, 0.22), (0.15, 0.2), (0.0, 0.2), (-0.05, 0.25), (0.05, 0.3), (-0.1, 0.3)):
-            q = self.ik(np.array([0.0, S.FRONT_Y - state - dy, S.DRAWER_FLOOR[d] + dz]))
+            q = self.ik(np.array([0.0, S.FRONT_Y - state - dy, S.DRAWER_FLOOR[d] + dz]),
+                        drawers={e: (state if e == d else 0.0) for e in S.DRAWERS})
             if q is not None:
                 return q
         return None
