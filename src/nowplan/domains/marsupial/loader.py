@@ -114,12 +114,12 @@ def successors(conf: Config) -> list[tuple[Transition, float]]:
             if door is not None and q == door[0]:
                 after: Config = (replace(hold, held=q, held_shape=door[1]), None)
             else:
-                shape = next(s for n, s, _ in hold.items if n == q)
-                after = (replace(hold.with_items(i for i in hold.items if i[0] != q), held=q, held_shape=shape), door)
+                q_shape = next(s for n, s, _ in hold.items if n == q)
+                after = (replace(hold.with_items(i for i in hold.items if i[0] != q), held=q, held_shape=q_shape), door)
             out.append((Transition("grasp", q, conf, after), 1.0))
         # walk next to a package, or out of the load region
         near = {(r + dr, c + dc) for (r, c) in occ for dr, dc in STEPS}
-        targets = {x for x in dist if x in near and x != hold.loader}
+        targets: set[Cell] = {x for x in dist if x in near and x != hold.loader}
         parking = [x for x in dist if in_storage(x, rows, cols)]
         if not in_storage(hold.loader, rows, cols) and parking:
             targets.add(min(parking, key=lambda x: (dist[x], x)))
@@ -135,7 +135,7 @@ def successors(conf: Config) -> list[tuple[Transition, float]]:
     # walk towards the best spots (each from its nearest neighbouring cell)
     stores = [a for p, a in ranked if p < 10.0 * cols][:MAX_PLACEMENTS]
     buffers = [a for p, a in ranked if p >= 10.0 * cols][:MAX_BUFFER]
-    targets: set[Cell] = set()
+    targets = set()
     for a in stores + buffers:
         cs = set(cells(shape, a))
         stand = [x for x in dist if x not in cs and any(adjacent(x, y) for y in cs)]
