@@ -30,7 +30,7 @@ from nowplan.core.operators import Action, Generator, Operator, Precondition
 from nowplan.domains.kitchen import scene as S
 from nowplan.domains.kitchen.heuristic import estimate
 from nowplan.domains.kitchen.belief import DELTA, EPSILON, Conf, KitchenBelief, Pose, Traj, pose_of
-from nowplan.domains.kitchen.motion import DOWN, DOWN_TURNED, inverse_kinematics, rrt_connect
+from nowplan.domains.kitchen.motion import DOWN, DOWN_TURNED, inverse_kinematics, rrt_connect, touching
 from nowplan.planning.streams import Stream, StreamSet
 
 O, P, F, G, Q, T, D, E, J, K = (Var(n) for n in ("o", "p", "f", "g", "q", "t", "d", "e", "j", "k"))
@@ -152,8 +152,12 @@ class KitchenModel:
                 start = a.args[0]
                 break
         belief.sync_scene()
-        ignore = [belief.scene.objects[belief.held]] if belief.held else []
-        path = rrt_connect(belief.scene, start.q, q2.q, belief.prng, ignore=ignore)
+        sc = belief.scene
+        ignore = [sc.objects[belief.held]] if belief.held else []
+        # the ends of a move grasp or release an object: the gripper may touch it there
+        movable = [sc.objects[o] for o in belief.objects if o != belief.held]
+        ignore += touching(sc, start.q, movable) + touching(sc, q2.q, movable)
+        path = rrt_connect(sc, start.q, q2.q, belief.prng, ignore=ignore)
         return None if path is None else Traj(tuple(path))
 
     def _fresh(self) -> None:
@@ -203,6 +207,14 @@ class KitchenModel:
             self._ik[key] = None if q is None else Conf(q)
         return self._ik[key]
 
+    def _reach(self, target: np.ndarray, ignore: tuple[str, ...], frame: str) -> tuple[Conf | None, str]:
+        """The first grasp with an IK solution at ``target``, and that solution."""
+        for g in GRASPS:
+            q = self.ik(target, ignore=ignore, frame=frame, grasp=g)
+            if q is not None:
+                return q, g
+        return None, ""
+
     def grasp_target(self, o: str, pose: Pose) -> np.ndarray:
         origin = S.frame_origin(pose.frame, {d: S.DRAWER_OPEN for d in S.DRAWERS})
         return origin + pose.rel() + np.array([0.0, 0.0, S.SIZES[o][2] - 0.02])
@@ -238,9 +250,10 @@ class KitchenModel:
                     continue
                 seen.add(p)
                 # an object believed to overlap o at p must have moved away by the time o is picked there
-                away = (o, *self._overlapping(o, p))
-                for g in GRASPS:
-                    q = self.ik(self.grasp_target(o, p), ignore=away, frame=p.frame, grasp=g)
+                # (if only neighbouring objects are in the way, the gripper is allowed to brush them:
+                # the planner has no fluent for clearing a reach, and the world checks no arm contacts)
+                for away in ((o, *self._overlapping(o, p)), tuple(bel.objects)):
+                    q, g = self._reach(self.grasp_target(o, p), away, p.frame)
                     if q is not None:
                         yield {O: o, P: p, F: p.frame, G: g, Q: q}
                         break

@@ -44,6 +44,12 @@ def in_collision(sc: Scene, q: Conf, ignore: Sequence[int] = ()) -> bool:
     return False
 
 
+def touching(sc: Scene, q: Conf, bodies: Sequence[int]) -> list[int]:
+    """Which of ``bodies`` the robot touches at ``q`` (an object being grasped or just released)."""
+    set_conf(sc, q)
+    return [b for b in bodies if sc.p.getClosestPoints(sc.robot, b, 0.0, physicsClientId=sc.client)]
+
+
 def inverse_kinematics(
     sc: Scene, target: np.ndarray, rng: random.Random, ignore: Sequence[int] = (), attempts: int = 4,
     orientation: tuple[float, float, float, float] = DOWN,
