@@ -45,3 +45,70 @@ def test_unreachable_goal_ends_with_a_reason() -> None:
     m = OnlinePolicy(prob, ep.world, ep.belief, strategy).run()
     assert m.outcome.value in ("failed", "limit") and m.reason
     assert time.perf_counter() - t0 < 60
+
+
+def test_vectorised_ray_casts_agree_with_the_per_segment_slab_test() -> None:
+    import numpy as np
+
+    from nowplan.belief.raycast import segment_blocked
+    from nowplan.domains.kitchen.belief import segments_blocked
+
+    rng = np.random.default_rng(3)
+    half = np.array([0.07, 0.025, 0.1])
+    for k in range(50):
+        ends = rng.uniform(-0.5, 1.0, size=(6, 3))
+        if k % 2:
+            ends[:, 0] = S.CAMERA[0]  # segments parallel to a slab
+        boxes = rng.uniform(-0.5, 1.0, size=(4, 3))
+        want = np.array([segment_blocked(S.CAMERA, e, boxes, half) for e in ends])
+        assert (segments_blocked(S.CAMERA, ends, boxes, half) == want).all()
+
+
+def test_sample_pools_persist_and_grow() -> None:
+    from nowplan.domains.kitchen.model import KitchenModel
+
+    ep = make("stow", 0)
+    model = KitchenModel(ep.belief)
+    first = model._placements("green", "counter")
+    assert first == model._placements("green", "counter")  # the same samples at every search node
+    ep.belief.version += 1  # a belief update keeps the drawn samples (so a replan can reuse them)
+    assert model._placements("green", "counter") == first
+    assert model.streams.grow() and model.streams.level == 2
+    grown = model._placements("green", "counter")
+    assert grown[: len(first)] == first and len(model._pools[("place", "green", "counter")]) == 12
+    model.streams.reset_level()
+    assert model.streams.level == 1
+
+
+def test_kitchen_conflicts_prune_impossible_subgoals() -> None:
+    from nowplan.core.atoms import conjoin
+
+    dom = make("inspect", 0).problem.domain
+    assert conjoin(Goal(), [atom("HandEmpty"), atom("Holding", "green")], dom.rules) is None
+    assert conjoin(Goal(), [atom("Holding", "sugar"), atom("Holding", "green")], dom.rules) is None
+    assert conjoin(Goal(), [atom("Open", "top"), atom("Open", "bottom")], dom.rules) is None
+    assert conjoin(Goal(), [atom("Holding", "green"), atom("In", "green", "top")], dom.rules) is None
+    assert conjoin(Goal(), [atom("Closable", "top"), atom("In", "sugar", "top")], dom.rules) is None
+    assert conjoin(Goal(), [atom("Open", "top"), atom("HandEmpty"), atom("In", "green", "top")], dom.rules)
+
+
+def test_heuristic_is_zero_on_a_satisfied_goal_and_counts_drawer_work() -> None:
+    from nowplan.domains.kitchen.heuristic import estimate
+
+    ep = make("stow", 0)
+    dom, b = ep.problem.domain, ep.belief
+    holds = lambda a: dom.holds(a, b)  # noqa: E731
+    assert estimate(Goal.of([atom("HandEmpty")]), b, holds) == 0.0
+    into = estimate(Goal.of([atom("In", "green", "top")]), b, holds)
+    # putting the block into the top drawer and closing it again also means emptying that drawer
+    assert estimate(ep.problem.goal, b, holds) > into > 0.0
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("task", ["stow", "swap", "cook"])
+def test_both_solves_the_harder_tasks_on_a_seeded_problem(task: str) -> None:
+    from nowplan.domains.kitchen.repro import QUICK_CAP_S, trial
+
+    r = trial(task, 0, "both", QUICK_CAP_S)
+    assert r["outcome"] == "reached", r["reason"]
+    assert r["planning_s"] <= QUICK_CAP_S

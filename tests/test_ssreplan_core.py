@@ -192,3 +192,28 @@ def test_stream_declarations() -> None:
     assert ss.evaluate("x", None, (), 3) is None and ss.has_failed("x", 3)
     with pytest.raises(Exception, match="unknown stream"):
         ss.optimistic("y")
+
+
+def test_stream_levels_grow_to_a_maximum_and_reset() -> None:
+    ss = StreamSet([])
+    assert ss.level == 1
+    grown = [ss.grow() for _ in range(ss.max_level + 1)]
+    assert grown.count(True) == ss.max_level - 1 and ss.level == ss.max_level
+    ss.reset_level()
+    assert ss.level == 1
+
+
+def test_regression_uses_a_heuristic_given_through_the_context() -> None:
+    from nowplan.core.levels import flat_levels
+    from nowplan.planning.context import PlanningContext
+    from nowplan.planning.regression import plan
+
+    prob, _, belief, _ = setup()
+    calls: list[int] = []
+
+    def h(goal: Any, b: Any, holds: Any) -> float:
+        calls.append(1)
+        return float(sum(1 for a in goal.atoms if not holds(a)))
+
+    res = plan(prob.domain, prob.objects, belief, prob.goal, flat_levels(), None, PlanningContext((), {"heuristic": h}))
+    assert res.solved and calls
