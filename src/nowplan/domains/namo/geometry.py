@@ -140,8 +140,10 @@ class Region:
         """Does the box (grown by ``grow``) meet the volume swept after leaving the start?
 
         The robot already stands at the start, so what touches only its
-        starting footprint is not in the way of the move (and moving away
-        from something it stands next to stays possible).
+        starting footprint is not in the way of the move: moving away from, or
+        along, something it stands next to stays possible.  Moving closer to
+        something it already touches is not (it would push into it; the
+        world's contact test says the same).
         """
         L = self.length
         reach = self.radius + grow - GRAZE_OK
@@ -149,7 +151,10 @@ class Region:
             return box.distance_to_segment(self.start, self.end) < reach
         t = min(self.radius, L / 2) / L
         a = Pt(self.start.x + (self.end.x - self.start.x) * t, self.start.y + (self.end.y - self.start.y) * t)
-        return box.distance_to_segment(a, self.end) < reach
+        if box.distance_to_segment(a, self.end) < reach:
+            return True
+        d0 = box.distance_to_segment(self.start, self.start)
+        return d0 < self.radius - GRAZE_OK and box.distance_to_segment(self.start, self.end) < d0 - 1e-3
 
     def shape(self) -> Any:
         sh = shapely()
