@@ -150,11 +150,27 @@ class KitchenBelief:
     def world_of(self, o: str) -> np.ndarray:
         return self.particles[o].world(self.origins())
 
+    def statically_hidden(self, target: str, world: np.ndarray, drawers: dict[str, float] | None = None) -> Any:
+        """Per row of ``world``: is the camera's ray to ``target``'s top there cut by the kitchen itself
+        (a drawer's front panel, the counter top)?  Near the front of an open drawer an object hides
+        behind the drawer's front panel."""
+        state = drawers if drawers is not None else self.drawers
+        centres = [np.array([0.0, S.FRONT_Y - 0.01 - state[d], S.DRAWER_FLOOR[d] + 0.08]) for d in S.DRAWERS]
+        halves = [np.array([0.22, 0.01, 0.12])] * len(S.DRAWERS)
+        centres.append(np.array([0.0, 0.725, S.COUNTER_TOP - 0.02]))
+        halves.append(np.array([0.25, 0.275, 0.02]))
+        ends = np.atleast_2d(world) + self._top_point(target, np.zeros(3))
+        hidden = np.zeros(len(ends), dtype=bool)
+        for c, h in zip(centres, halves, strict=True):
+            hidden |= segments_blocked(S.CAMERA, ends, c[None, :], h)[:, 0]
+        return hidden
+
     def visibility(self, target: str) -> Any:
         """P(visible | particle) for the filter: frame visibility times Π_j P(j does not block)."""
 
         def fn(frames: np.ndarray, world: np.ndarray) -> np.ndarray:
             v = np.array([1.0 if self.frame_visible(str(f)) else 0.0 for f in frames])
+            v *= ~self.statically_hidden(target, world)
             for j in self.objects:
                 if j == target or j == self.held:
                     continue

@@ -36,6 +36,7 @@ from nowplan.planning.streams import Stream, StreamSet
 O, P, F, G, Q, T, D, E, J, K = (Var(n) for n in ("o", "p", "f", "g", "q", "t", "d", "e", "j", "k"))
 PICK = StochasticCost(cost=1.0, recovery=1.0, success=0.95)
 GRASPS = {"top": DOWN, "top90": DOWN_TURNED}  # top-down grasps, the second turned 90° about the vertical
+MIN_DETECT_P = 0.01  # detections less likely than this to succeed cost infinity
 OVERLAP_MASS = 0.5  # belief mass of another object at a placement that makes it taken
 
 
@@ -229,6 +230,10 @@ class KitchenModel:
         else:
             poses = self.candidates(o, b.get(F), 4)
         for p in poses:
+            if p.frame in S.DRAWERS:  # looking into a drawer needs it open; skip spots its front hides
+                state = {d: (S.DRAWER_OPEN if d == p.frame else 0.0) for d in S.DRAWERS}
+                if bel.statically_hidden(o, (S.frame_origin(p.frame, state) + p.rel())[None, :], state)[0]:
+                    continue
             yield {P: p, F: p.frame, J: others[0], K: others[1]}
 
     def g_pick(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
@@ -241,10 +246,12 @@ class KitchenModel:
             return
         for o in objs:
             seen = set()
-            poses = [] if bel.held == o else [bel.mode_pose(o)] + self.candidates(o, None, 3)
+            poses = [] if bel.held == o else [bel.mode_pose(o)]
             if (bel.held == o or poses[0].frame in S.DRAWERS) and b.get(F, "counter") == "counter":
                 # o may be picked where it will have been set down (to switch drawers, say)
                 poses += self._placements(o, "counter")[:2]
+            if bel.held != o:
+                poses += self.candidates(o, None, 3)
             for p in poses:
                 if p in seen or (F in b and p.frame != b[F]):
                     continue
@@ -377,7 +384,8 @@ class KitchenModel:
         mass = bel.particles[o].mass_near(p.frame, p.rel(), DELTA)
         n = len(bel.objects)
         prob = epsilon_lower_bound(bel.sensor.p_fn, mass, EPSILON, n)
-        return self_loop_cost(1.0, 1.0, prob) if prob > 0 else math.inf
+        # a look with almost no chance of success is pruned (the cost bound c*, applied per action)
+        return self_loop_cost(1.0, 1.0, prob) if prob >= MIN_DETECT_P else math.inf
 
     def _domain(self) -> Domain:
         pre = Precondition

@@ -12,6 +12,10 @@
 
 Problem ``k`` of a task draws the latent positions from ``seed`` and ``k``;
 objects a task does not mention start on the counter at known positions.
+A block hidden in a drawer is drawn from the part of the tray the camera
+can see once the drawer is open (the front of the tray is behind the
+drawer's front panel: no observation could ever find the block there); the
+agent's prior still covers the whole tray.
 """
 
 from __future__ import annotations
@@ -32,10 +36,17 @@ from nowplan.errors import ScenarioError
 
 TASKS = ("inspect", "stow", "swap", "cook")
 PROBLEMS_PER_TASK = 25
+SEEN_FROM_Y = 0.1  # tray y (m) beyond which a block in an open drawer is visible (measured with the world's rays)
 
 
 def _in(reg: Region, rng: random.Random, margin: float = 0.03) -> tuple[float, float]:
     return (rng.uniform(reg.lo[0] + margin, reg.hi[0] - margin), rng.uniform(reg.lo[1] + margin, reg.hi[1] - margin))
+
+
+def _seen_part(reg: Region) -> Region:
+    """The back of a drawer's tray, which the camera sees over the drawer's front panel when the
+    drawer is open (the front ``SEEN_FROM_Y`` of the tray is hidden for the small block)."""
+    return Region(reg.frame, (reg.lo[0], SEEN_FROM_Y), reg.hi)
 
 
 def _known(o: str, frame: str, xy: tuple[float, float]) -> list[Region]:
@@ -52,7 +63,7 @@ def make(task: str, index: int, seed: int = 0) -> Episode:
     prior: dict[str, list[Region]] = {}
     if task in ("inspect", "swap"):
         where = "bottom" if task == "inspect" else "top"
-        truth["green"] = (where, _in(regs[where], rng))
+        truth["green"] = (where, _in(_seen_part(regs[where]), rng))
         prior["green"] = [regs["top"], regs["bottom"]]
         goal = [atom("In", "green", "bottom"), atom("Open", "bottom", value=False)]
     elif task == "stow":
