@@ -21,6 +21,7 @@ import logging
 import math
 import re
 import resource
+import signal
 import subprocess
 import sys
 import tempfile
@@ -107,9 +108,9 @@ def run_pyperplan(dom: Path, prob: Path, limit: float) -> dict[str, Any]:
     dom, prob = without_costs(dom, prob, dom.parent)
     t0, c0 = time.perf_counter(), _child_cpu()
     try:
-        subprocess.run([sys.executable, "-m", "pyperplan", "-H", "hff", "-s", "gbf", str(dom), str(prob)],
-                       capture_output=True, timeout=limit * WALL_SLACK, check=False,
-                       preexec_fn=_cpu_limit(limit))
+        proc = subprocess.run(
+            [sys.executable, "-m", "pyperplan", "-H", "hff", "-s", "gbf", str(dom), str(prob)],
+            capture_output=True, timeout=limit * WALL_SLACK, check=False, preexec_fn=_cpu_limit(limit))
     except subprocess.TimeoutExpired:
         return {"status": "time_limit (wall)", "time_s": _child_cpu() - c0, "wall_s": time.perf_counter() - t0}
     wall, cpu = time.perf_counter() - t0, _child_cpu() - c0
@@ -118,7 +119,11 @@ def run_pyperplan(dom: Path, prob: Path, limit: float) -> dict[str, Any]:
     if soln.exists():
         soln.unlink()
     if not steps:
-        return {"status": "time_limit" if cpu >= 0.95 * limit else "no plan", "time_s": cpu, "wall_s": wall}
+        if proc.returncode in (-signal.SIGXCPU, -signal.SIGKILL) or cpu >= 0.95 * limit:
+            status = "time_limit"
+        else:  # e.g. 1 after a MemoryError
+            status = f"no plan (exit {proc.returncode})"
+        return {"status": status, "time_s": cpu, "wall_s": wall}
     return {"status": "solved", "time_s": cpu, "wall_s": wall, "steps": steps}
 
 
