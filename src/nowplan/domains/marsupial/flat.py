@@ -9,11 +9,11 @@ ordinary core :class:`~nowplan.core.domain.Problem` with boolean atoms and
 constant costs, so :func:`nowplan.io.pddl_write.write_pddl` writes it and
 Fast Downward or pyperplan can solve it.
 
-Differences from the hierarchical model, all in the flat planner's favour:
-Load and Unload only need the package's own cells at the anchor free (not
-the whole load region), and a walk of the loader is several ``move``
-steps — :func:`rescore` charges a run of consecutive moves once, as our
-``loader_move`` does.
+Differences from the hierarchical model: Load and Unload only need the
+package's own cells at the anchor free, not the whole load region (in the
+flat planner's favour); a walk of the loader is several ``move`` steps
+(longer plans for the flat planner) — :func:`rescore` charges a run of
+consecutive moves once, as our ``loader_move`` does, so costs compare.
 """
 
 from __future__ import annotations
