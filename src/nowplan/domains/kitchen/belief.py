@@ -31,6 +31,7 @@ log = logging.getLogger(__name__)
 DELTA = 0.04  # radius of the δ-neighbourhood of a sampled pose (m)
 EPSILON = 0.1  # the ε of the BOccluded test
 LOCALIZED = 0.9  # mass within δ for a pose to be believed
+PICK_MISS_SPREAD = 0.03  # std (m) added to an object's particles when a pick finds it elsewhere
 
 
 @dataclass(frozen=True, order=True)
@@ -273,6 +274,10 @@ class KitchenBelief:
         elif name in ("pick", "pick_tall") and obs.success:
             self.held = str(args[0])
             self.particles[self.held] = PoseParticles.point("hand", (0.0, 0.0, 0.0), len(self.particles[self.held]))
+        elif name in ("pick", "pick_tall") and not obs.success:
+            # the object was not where it was believed to be: spread the belief so that it is looked for again
+            pb = self.particles[str(args[0])]
+            pb.poses = pb.poses + self.rng.normal(0.0, PICK_MISS_SPREAD, size=pb.poses.shape) * np.array([1, 1, 0])
         elif name in ("place", "place_aside") and obs.success:
             o, pose = str(args[0]), args[1]
             self.held = None
