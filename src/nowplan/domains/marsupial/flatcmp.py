@@ -127,6 +127,24 @@ def run_pyperplan(dom: Path, prob: Path, limit: float) -> dict[str, Any]:
     return {"status": "solved", "time_s": cpu, "wall_s": wall, "steps": steps}
 
 
+def timed_run(ep: Any, strategy: str, seed: int, limit: float) -> tuple[Any, float, bool]:
+    """Run an episode under ``strategy`` with the marsupial planner settings: (metrics, CPU s, goal holds).
+
+    ``limit`` is in CPU seconds; the executive's own (wall-clock) budget is ``WALL_SLACK`` times it,
+    so that a loaded machine does not change the results.
+    """
+    from nowplan.acting.run import run_episode
+    from nowplan.acting.strategy import parse_strategy
+    from nowplan.domains.marsupial.model import PLANNER
+
+    st = parse_strategy(strategy, max_actions=20_000, max_plans=50_000, time_limit=limit * WALL_SLACK,
+                        planner=PLANNER)
+    c0 = time.process_time()
+    m = run_episode(ep, st, seed=seed)
+    cpu = time.process_time() - c0
+    return m, cpu, bool(ep.problem.domain.satisfies(ep.world.state, ep.problem.goal))
+
+
 def run_ours(problem: Problem, spec: MapSpec, strategy: str, seed: int, limit: float) -> dict[str, Any]:
     """Solve the hierarchical instance in the simulated world; time = CPU of the whole run.
 
@@ -134,18 +152,9 @@ def run_ours(problem: Problem, spec: MapSpec, strategy: str, seed: int, limit: f
     ``WALL_SLACK`` times that, and a run that reaches the goal after ``limit`` CPU seconds counts as
     a time-out (its cost is kept as ``late_cost``).
     """
-    from nowplan.acting.run import run_episode
-    from nowplan.acting.strategy import parse_strategy
-    from nowplan.domains.marsupial.model import PLANNER
     from nowplan.domains.marsupial.scenarios import make_episode
 
-    ep = make_episode(problem, spec, seed)
-    st = parse_strategy(strategy, max_actions=20_000, max_plans=50_000, time_limit=limit * WALL_SLACK,
-                        planner=PLANNER)
-    c0 = time.process_time()
-    m = run_episode(ep, st, seed=seed)
-    cpu = time.process_time() - c0
-    ok = problem.domain.satisfies(ep.world.state, problem.goal)
+    m, cpu, ok = timed_run(make_episode(problem, spec, seed), strategy, seed, limit)
     out: dict[str, Any] = {"status": "solved" if ok else m.outcome.value, "time_s": cpu,
                            "planning_cpu_s": m.planning_cpu_s, "cost": m.execution_cost if ok else None,
                            "steps": m.actions}

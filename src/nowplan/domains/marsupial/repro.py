@@ -66,24 +66,13 @@ QUICK = Plan(("single", "origins", "dests", "both"), (3, 5), 2, 120.0)
 
 def run_one(job: tuple[str, int, int, str, float]) -> dict[str, Any]:
     """One run (in a worker process): the metrics the figures need."""
-    from nowplan.acting.run import run_episode
-    from nowplan.acting.strategy import parse_strategy
-    from nowplan.domains.marsupial.model import PLANNER
+    from nowplan.domains.marsupial.flatcmp import timed_run
     from nowplan.domains.marsupial.scenarios import episode
 
-    from nowplan.domains.marsupial.flatcmp import WALL_SLACK
-
     regime, n, trial, strategy, limit = job
-    ep = episode(regime, n, trial)
-    # the limit is in CPU seconds, so that a loaded machine does not change the results: the
-    # executive's own (wall-clock) budget is WALL_SLACK times it, and a run that reaches the goal
-    # after `limit` CPU seconds counts as unsolved
-    st = parse_strategy(strategy, max_actions=20_000, max_plans=50_000, time_limit=limit * WALL_SLACK,
-                        planner=PLANNER)
-    cpu0 = time.process_time()
-    m = run_episode(ep, st, seed=trial)
-    cpu = time.process_time() - cpu0
-    reached = ep.problem.domain.satisfies(ep.world.state, ep.problem.goal)
+    # the limit is in CPU seconds, so that a loaded machine does not change the results: a run
+    # that reaches the goal after `limit` CPU seconds counts as unsolved
+    m, cpu, reached = timed_run(episode(regime, n, trial), strategy, trial, limit)
     late = reached and cpu > limit
     return {
         "regime": regime, "packages": n, "trial": trial, "strategy": strategy,
