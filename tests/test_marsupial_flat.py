@@ -6,6 +6,7 @@ import importlib.util
 import random
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -100,17 +101,23 @@ def _tiny() -> Problem:
     return problem_from(spec, rng, [("bar", "c0-l0", "c0-ap")], "tiny")
 
 
-@pytest.mark.skipif(not (HAVE_FD and HAVE_UP), reason="needs the fd and validate extras")
-def test_fd_plan_for_a_small_export_validates(tmp_path: Path) -> None:
+def _fd_validated(problem: Any, tmp_path: Path) -> tuple[Path, Path, list[str]]:
+    """Export ``problem``, solve it with FD lama-first, and check the plan with the validator and our replay."""
     from nowplan.planning.validate import validate_plan
 
-    dom, prob = write_pddl(flatten(_tiny()), tmp_path)
+    dom, prob = write_pddl(flatten(problem), tmp_path)
     r = run_fd(dom, prob, "lama-first", 30.0, tmp_path)
     assert r["status"] == "solved", r
     steps = r["steps"]
     ok, msg = validate_plan(dom, prob, steps)
     assert ok, msg
     assert _replay((dom, prob), steps)
+    return dom, prob, steps
+
+
+@pytest.mark.skipif(not (HAVE_FD and HAVE_UP), reason="needs the fd and validate extras")
+def test_fd_plan_for_a_small_export_validates(tmp_path: Path) -> None:
+    dom, prob, steps = _fd_validated(_tiny(), tmp_path)
     assert not _replay((dom, prob), steps[:-1])  # the last step is needed for the goal
 
 
@@ -119,14 +126,7 @@ def test_fd_plan_for_a_small_export_validates(tmp_path: Path) -> None:
 def test_fd_plan_for_the_ff_instance_validates(tmp_path: Path) -> None:
     from nowplan.planning.validate import validate_plan
 
-    problem, _ = ff_instance(0)
-    dom, prob = write_pddl(flatten(problem), tmp_path)
-    r = run_fd(dom, prob, "lama-first", 30.0, tmp_path)
-    assert r["status"] == "solved", r
-    steps = r["steps"]
-    ok, msg = validate_plan(dom, prob, steps)
-    assert ok, msg
-    assert _replay((dom, prob), steps)
+    dom, prob, steps = _fd_validated(ff_instance(0)[0], tmp_path)
     # the validator rejects the plan without its last step (it no longer reaches the goal) ...
     assert not validate_plan(dom, prob, steps[:-1])[0]
     # ... and without its first loader step (a later step's preconditions fail)

@@ -228,3 +228,8 @@ def test_run_episode_traces_a_rendered_frame_per_action():
     run_episode(Episode(prob, SymbolicWorld(CHAIN, prob.init), SymbolicBelief(prob.init)),
                 parse_strategy("flat"), trace=tr2, render=render, every=2)
     assert [f["n"] for f in tr2.of("frame")] == [0, 2, 3]
+    # the online policy (seed 004) traces frames the same way
+    tr3 = Trace()
+    m3 = run_episode(Episode(prob, SymbolicWorld(CHAIN, prob.init), SymbolicBelief(prob.init)),
+                     parse_strategy("online"), trace=tr3, render=render)
+    assert m3.actions == 3 and [f["n"] for f in tr3.of("frame")] == [0, 1, 2, 3]

@@ -24,6 +24,7 @@ import logging
 import math
 import random
 import time
+from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
 
@@ -34,6 +35,7 @@ from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy
 from nowplan.core.domain import Problem
 from nowplan.core.levels import flat_levels
+from nowplan.core.operators import Action
 from nowplan.errors import ScenarioError
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.plan import PlanResult, PlanStatus
@@ -85,8 +87,10 @@ class OnlinePolicy:
         c_star: float = math.inf,
         reuse_budget: float = 2.0,
         max_resolve_retries: int = 4,
+        on_action: Callable[[Any, Action], None] | None = None,
     ) -> None:
         self.problem = problem
+        self.on_action = on_action  # observers (e.g. a renderer); never change control flow
         self.domain = problem.domain
         self.world = world
         self.belief = belief
@@ -215,6 +219,8 @@ class OnlinePolicy:
             hook = getattr(self.belief, "after_action", None)
             if callable(hook):
                 hook(self.trace, first, obs)
+            if self.on_action is not None:
+                self.on_action(self, first)
             # Alg. 1 line 17: the unexecuted tail constrains the next plan (if it went as planned)
             prev = skeleton(actions[1:]) if obs.success else None
         self.metrics.outcome = outcome

@@ -48,17 +48,19 @@ def run_episode(
         _frame(trace, render, episode, 0, "start")
         step = max(1, every)
 
-        def on_action(ex: Executive, action: Action) -> None:
+        def on_action(ex: Any, action: Action) -> None:  # an Executive or an OnlinePolicy
             if ex.metrics.actions % step == 0:
                 _frame(trace, render, episode, ex.metrics.actions, f"after {action.pddl()}")
 
     if is_online(strategy):  # seed 004's online policy (switches online / reuse / deferred)
-        metrics = OnlinePolicy(p, episode.world, episode.belief, strategy, seed=seed, trace=trace).run()
+        metrics = OnlinePolicy(
+            p, episode.world, episode.belief, strategy, seed=seed, trace=trace, on_action=on_action
+        ).run()
     else:
         metrics = Executive(
             p, episode.world, episode.belief, strategy, seed=seed, trace=trace, on_action=on_action
         ).run()
-    if render is not None and (metrics.actions % max(1, every) != 0 or is_online(strategy)):
+    if render is not None and metrics.actions % max(1, every) != 0:
         _frame(trace, render, episode, metrics.actions, f"end: {metrics.outcome.value}")
     trace.emit("run_end", outcome=metrics.outcome.value, reason=metrics.reason, metrics=metrics.to_dict())
     return metrics

@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 from pathlib import Path
+from typing import TypeVar
 
+N = TypeVar("N", int, float)
 
 
 def existing_file(value: str) -> Path:
@@ -14,42 +17,28 @@ def existing_file(value: str) -> Path:
     return p
 
 
-def nonneg_int(value: str) -> int:
+def _number(value: str, cast: Callable[[str], N], what: str, ok: Callable[[N], bool], bound: str) -> N:
+    """``cast(value)`` if it parses and passes ``ok``; else an argparse error naming what was expected."""
     try:
-        v = int(value)
+        v = cast(value)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got '{value}'") from None
-    if v < 0:
-        raise argparse.ArgumentTypeError(f"expected a number >= 0, got {v}")
+        raise argparse.ArgumentTypeError(f"expected {what}, got '{value}'") from None
+    if not ok(v):
+        raise argparse.ArgumentTypeError(f"expected {bound}, got {v}")
     return v
+
+
+def nonneg_int(value: str) -> int:
+    return _number(value, int, "a whole number", lambda v: v >= 0, "a number >= 0")
 
 
 def positive_int(value: str) -> int:
-    try:
-        v = int(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got '{value}'") from None
-    if v <= 0:
-        raise argparse.ArgumentTypeError(f"expected a number > 0, got {v}")
-    return v
+    return _number(value, int, "a whole number", lambda v: v > 0, "a number > 0")
 
 
 def positive_float(value: str) -> float:
-    try:
-        v = float(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got '{value}'") from None
-    if v <= 0:
-        raise argparse.ArgumentTypeError(f"expected a number > 0, got {v}")
-    return v
+    return _number(value, float, "a number", lambda v: v > 0, "a number > 0")
 
 
 def probability(value: str) -> float:
-    try:
-        v = float(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a probability, got '{value}'") from None
-    if not 0.0 <= v <= 1.0:
-        raise argparse.ArgumentTypeError(f"expected a probability in [0, 1], got {v}")
-    return v
-
+    return _number(value, float, "a probability", lambda v: 0.0 <= v <= 1.0, "a probability in [0, 1]")
