@@ -45,7 +45,8 @@ class Region:
     z: float = 0.0
 
     def contains(self, xy: np.ndarray, margin: float = 1e-9) -> np.ndarray:
-        return np.all((xy >= np.asarray(self.lo) - margin) & (xy <= np.asarray(self.hi) + margin), axis=-1)
+        out: np.ndarray = np.all((xy >= np.asarray(self.lo) - margin) & (xy <= np.asarray(self.hi) + margin), axis=-1)
+        return out
 
     @property
     def area(self) -> float:
@@ -71,7 +72,8 @@ def gaussian_density(z: np.ndarray, x: np.ndarray, sigma: float) -> np.ndarray:
     """Isotropic normal density ``N(z; x, σ² I)`` for each row of ``x``."""
     d = x.shape[-1]
     sq = np.sum((x - z) ** 2, axis=-1)
-    return np.exp(-0.5 * sq / sigma**2) / ((2 * math.pi * sigma**2) ** (d / 2))
+    out: np.ndarray = np.exp(-0.5 * sq / sigma**2) / ((2 * math.pi * sigma**2) ** (d / 2))
+    return out
 
 
 def detection_likelihood(
@@ -81,7 +83,8 @@ def detection_likelihood(
     p_det = visible * (1.0 - sensor.p_fn)
     if z is None:
         return 1.0 - p_det
-    return p_det * gaussian_density(np.asarray(z, dtype=float), world, sensor.sigma)
+    out: np.ndarray = p_det * gaussian_density(np.asarray(z, dtype=float), world, sensor.sigma)
+    return out
 
 
 class PoseParticles:
@@ -129,7 +132,8 @@ class PoseParticles:
     def world(self, origins: Mapping[str, np.ndarray]) -> np.ndarray:
         """World positions given each frame's origin (point estimates)."""
         off = np.array([np.asarray(origins[f], dtype=float) for f in self.frames])
-        return self.poses + off
+        out: np.ndarray = self.poses + off
+        return out
 
     def frame_mass(self, frame: str) -> float:
         return float(self.weights[self.frames == frame].sum())
@@ -140,7 +144,8 @@ class PoseParticles:
     def near(self, frame: str, rel: np.ndarray, delta: float) -> np.ndarray:
         """Mask of particles in ``frame`` within ``delta`` (xy) of ``rel``."""
         d = np.linalg.norm(self.poses[:, :2] - np.asarray(rel, dtype=float)[:2], axis=1)
-        return (self.frames == frame) & (d <= delta)
+        out: np.ndarray = (self.frames == frame) & (d <= delta)
+        return out
 
     def mass_near(self, frame: str, rel: np.ndarray, delta: float) -> float:
         return float(self.weights[self.near(frame, rel, delta)].sum())

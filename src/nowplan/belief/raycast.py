@@ -35,4 +35,5 @@ def segment_blocked(
     enter = np.max(tmin, axis=1)
     leave = np.min(tmax, axis=1)
     end = 1.0 - eps / max(float(np.linalg.norm(d)), 1e-12)
-    return (enter <= leave) & (leave > 0.0) & (enter < end)
+    hit: np.ndarray = (enter <= leave) & (leave > 0.0) & (enter < end)
+    return hit

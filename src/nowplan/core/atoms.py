@@ -34,7 +34,8 @@ Bindings = Mapping[Var, Any]
 def substitute(term: Term, bindings: Bindings) -> Term:
     """The value bound to ``term`` if it is a bound variable, else ``term``."""
     if isinstance(term, Var):
-        return bindings.get(term, term)
+        value: Term = bindings.get(term, term)
+        return value
     return term
 
 

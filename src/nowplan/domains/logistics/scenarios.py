@@ -81,7 +81,7 @@ def move_a_package(packages: frozenset[str], state: State, rng: random.Random) -
         return []
     pkg, loc = rng.choice(lying)
     city = next(a[1] for a in state.facts("in_city") if a[0] == loc)
-    others = sorted(a[0] for a in state.facts("in_city") if a[1] == city and a[0] != loc)
+    others = sorted((a[0] for a in state.facts("in_city") if a[1] == city and a[0] != loc), key=str)
     if not others:
         return []
     return [atom("at", pkg, loc, value=False), atom("at", pkg, rng.choice(others))]
