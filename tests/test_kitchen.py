@@ -112,3 +112,46 @@ def test_both_solves_the_harder_tasks_on_a_seeded_problem(task: str) -> None:
     r = trial(task, 0, "both", QUICK_CAP_S)
     assert r["outcome"] == "reached", r["reason"]
     assert r["planning_s"] <= QUICK_CAP_S
+
+
+def test_a_held_box_is_not_planned_back_where_it_hides_the_target() -> None:
+    """Occlusion regresses through planned placements (the Cook cycle: box in hand → put back in front
+    of the block → detect → pick the box again …)."""
+    import numpy as np
+
+    from nowplan.belief.particles import PoseParticles
+    from nowplan.core.atoms import conjoin
+    from nowplan.domains.kitchen.belief import Pose
+    from nowplan.domains.kitchen.repro import kitchen_strategy
+    from nowplan.planning.context import PlanningContext
+    from nowplan.planning.regression import plan
+    from nowplan.core.levels import flat_levels
+
+    ep = make("cook", 0)
+    b, dom = ep.belief, ep.problem.domain
+    rel = ep.world.rel["green"]
+    pg = Pose("counter", float(rel[0]), float(rel[1]), float(rel[2]))  # where the block truly is
+    hider = next(o for o in ("sugar", "cracker") if not b.not_blocks(o, "green", pg))
+    where = b.mode_pose(hider)
+    # the hider's own spot hides the block: that placement and "the hider does not block" exclude each other
+    assert conjoin(Goal(), [atom("AtPose", hider, value=where), atom("NotBlocks", hider, "green", pg)],
+                   dom.rules) is None
+    far = Pose("counter", where.x, where.y + 0.3, where.z)  # behind the block, seen from the camera
+    assert conjoin(Goal(), [atom("AtPose", hider, value=far), atom("NotBlocks", hider, "green", pg)], dom.rules)
+    # the box in the hand: a plan that puts it down before looking never puts it where it hides the look
+    b.held = hider
+    b.particles[hider] = PoseParticles.point("hand", (0.0, 0.0, 0.0), len(b.particles[hider]))
+    b.version += 1
+    cfg = kitchen_strategy("online+deferred", 20.0).planner
+    ctx = PlanningContext((), {"online": True, "heuristic": b.planning_heuristic})
+    res = plan(dom, ep.problem.objects, b, ep.problem.goal, flat_levels(), cfg, ctx, __import__("random").Random(0))
+    assert res.solved and res.plan is not None, res.reason
+    acts = res.plan.actions
+    put = next(i for i, a in enumerate(acts) if a.name in ("place", "place_aside") and a.args[0] == hider)
+    looks = [a for a in acts[put + 1:] if a.name == "detect" and a.args[0] == "green"]
+    assert looks, [a.pddl() for a in acts]
+    spot = acts[put].args[1]
+    xj = (b.origins()[spot.frame] + spot.rel())[None, :]
+    for look in looks:
+        assert not b.blocks("green", hider)(b.region_of("green", look.args[1]), xj).any()
+    assert np.isfinite(res.plan.cost(b))

@@ -122,6 +122,41 @@ def _pose_clash(a: Atom, b: Atom) -> bool:
 CONFLICTS = (_OneInHand(), _OnePlace(), _OneDrawerOpen(), _pose_clash)
 
 
+class _Occludes:
+    """``AtPose(o) = P`` against ``NotBlocks(o, j, p)`` when ``o`` set down at ``P`` hides ``j`` near ``p``.
+
+    Occlusion then regresses through planned placements: a plan that puts ``o``
+    down and then looks for ``j`` cannot put it where it hides ``j`` (the
+    detection's visibility precondition is otherwise tested against the belief
+    of the moment, in which a held ``o`` hides nothing).  The geometry is the
+    test ``place_aside``'s generator uses: the box of ``o`` at ``P`` cuts the
+    camera's ray to some point of ``j``'s δ-neighbourhood of ``p`` (memoised
+    per belief version).
+    """
+
+    def __init__(self, belief: KitchenBelief) -> None:
+        self.b = belief
+        self._memo: dict[tuple[Any, ...], bool] = {}
+
+    def __call__(self, a: Atom, b: Atom) -> bool:
+        if a.predicate != "AtPose" or b.predicate != "NotBlocks" or b.value is not True:
+            return False
+        place, (blocker, target, tpose) = a.value, b.args
+        if not isinstance(place, Pose) or place.frame == "hand" or not isinstance(tpose, Pose):
+            return False
+        if a.args[0] != blocker or blocker == target or tpose.frame == "hand":
+            return False
+        key = (blocker, place, target, tpose, self.b.version)
+        got = self._memo.get(key)
+        if got is None:
+            if len(self._memo) > 50_000:
+                self._memo.clear()
+            xj = (self.b.origins()[place.frame] + place.rel())[None, :]
+            region = self.b.region_of(str(target), tpose)
+            got = self._memo[key] = bool(self.b.blocks(str(target), str(blocker))(region, xj).any())
+        return got
+
+
 class KitchenModel:
     """Builds the domain and streams for one belief (generators read it and its model scene)."""
 
@@ -185,12 +220,25 @@ class KitchenModel:
         return int(getattr(self.streams, "level", 1))
 
     def candidates(self, o: str, frame: str | None, k: int) -> list[Pose]:
-        """Up to ``k × level`` sampled poses of ``o`` (best-supported first), fixed within a belief version."""
+        """Up to ``k × level`` sampled poses of ``o`` where the camera could see it (best-supported first),
+        fixed within a belief version.
+
+        Spots the kitchen itself hides (the front of a drawer's tray behind its front panel) are left
+        out before the list is cut: an object is looked for before it is picked, and no look can ever
+        find it there, so such spots would crowd out the observable ones once negative evidence has
+        moved the belief's mass into them.
+        """
         self._fresh()
-        key = ("obs", o, frame, k * self._level())
+        n = k * self._level()
+        key = ("obs", o, frame, n)
         if key not in self._memo:
-            self._memo[key] = self.b.candidate_poses(o, frame, k * self._level())
+            self._memo[key] = [p for p in self.b.candidate_poses(o, frame, 3 * n) if not self._hidden(o, p)][:n]
         return list(self._memo[key])
+
+    def _hidden(self, o: str, p: Pose) -> bool:
+        """Is ``o`` at ``p`` hidden from the camera by the kitchen itself (its drawer open, the other closed)?"""
+        state = {d: (S.DRAWER_OPEN if d == p.frame else 0.0) for d in S.DRAWERS}
+        return bool(self.b.statically_hidden(o, (S.frame_origin(p.frame, state) + p.rel())[None, :], state)[0])
 
     def ik(self, target: np.ndarray, ignore: tuple[str, ...] = (), frame: str | None = None,
            grasp: str = "top", drawers: dict[str, float] | None = None) -> Conf | None:
@@ -230,10 +278,8 @@ class KitchenModel:
         else:
             poses = self.candidates(o, b.get(F), 4)
         for p in poses:
-            if p.frame in S.DRAWERS:  # looking into a drawer needs it open; skip spots its front hides
-                state = {d: (S.DRAWER_OPEN if d == p.frame else 0.0) for d in S.DRAWERS}
-                if bel.statically_hidden(o, (S.frame_origin(p.frame, state) + p.rel())[None, :], state)[0]:
-                    continue
+            if p.frame in S.DRAWERS and self._hidden(o, p):  # looking into a drawer needs it open
+                continue
             yield {P: p, F: p.frame, J: others[0], K: others[1]}
 
     def g_pick(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
@@ -440,7 +486,7 @@ class KitchenModel:
                      generators=(Generator("inv-kin", (Q,), self.g_button),)),
         )
         types = {"movable": None, "short": "movable", "tall": "movable", "drawer": None}
-        return Domain("kitchen", _tests(), ops, types=types, conflicts=CONFLICTS)
+        return Domain("kitchen", _tests(), ops, types=types, conflicts=(*CONFLICTS, _Occludes(self.b)))
 
     def g_button_or_handle(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         if b.get(D) not in S.DRAWERS:
