@@ -155,3 +155,32 @@ def test_a_held_box_is_not_planned_back_where_it_hides_the_target() -> None:
     for look in looks:
         assert not b.blocks("green", hider)(b.region_of("green", look.args[1]), xj).any()
     assert np.isfinite(res.plan.cost(b))
+
+
+def test_a_later_move_is_planned_in_the_state_the_plan_predicts() -> None:
+    """Binding all trajectories at once (Neither, Constraints): a move into a drawer after the plan's
+    ``pull`` is checked with that drawer open (it collides with the drawer closed, as it is now)."""
+    import numpy as np
+
+    from nowplan.core.operators import Action
+    from nowplan.domains.kitchen.belief import Conf, pose_of
+    from nowplan.domains.kitchen.model import KitchenModel
+
+    ep = make("swap", 0)
+    b = ep.belief
+    model = KitchenModel(b)
+    ops = ep.problem.domain.operator_map
+    spot = pose_of("top", np.array([0.0, 0.15, S.SIZES["green"][2]]))
+    q = model.ik(model.grasp_target("green", spot), ignore=("green",), frame="top")
+    assert q is not None
+    pull = Action(ops["pull"], ("top", "bottom", Conf(S.HOME)))
+    conf, drawers, held, placed = model.predicted((pull,))
+    assert conf == Conf(S.HOME) and drawers["top"] == S.DRAWER_OPEN and held is None and not placed
+    assert model._motion(b, (pull,), q) is not None
+    from nowplan.domains.kitchen.model import Q as QV
+
+    assert list(model.g_move({QV: q}, None, b, None))
+    assert model._motion(b, (), q) is None  # into the closed drawer
+    assert not list(model.g_move({QV: q}, None, b, None))  # the failed target is not offered again …
+    b.version += 1
+    assert list(model.g_move({QV: q}, None, b, None))  # … until the belief has changed

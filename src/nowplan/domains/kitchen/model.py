@@ -166,6 +166,7 @@ class KitchenModel:
         self._pools: dict[tuple[Any, ...], list[Any]] = {}  # raw samples, kept across beliefs
         self._memo: dict[tuple[Any, ...], list[Any]] = {}  # belief-dependent results, per version
         self._pool_version = -1
+        self._motion_failed: set[tuple[Conf, int]] = set()  # RRT targets that failed, per belief version
         self.streams = StreamSet([
             Stream("sample-obs", ("o", "pb"), ("obs",), ("Obs",), lambda b, e, o: None),
             Stream("test-vis", ("o", "obs", "o2", "pb2"), (), ("BVis",), lambda b, e, *a: None),
@@ -182,19 +183,44 @@ class KitchenModel:
 
     # -- streams ------------------------------------------------------------------
     def _motion(self, belief: KitchenBelief, earlier: tuple[Action, ...], q2: Conf) -> Traj | None:
-        start = belief.conf
-        for a in reversed(earlier):
-            if a.name == "move":
-                start = a.args[0]
-                break
-        belief.sync_scene()
+        """RRT-Connect to ``q2`` in the state the plan predicts after ``earlier`` (its start configuration,
+        drawers, held and placed objects), so a later move of a plan bound all at once is checked in the
+        kitchen it will run in, not in today's.  A failure is remembered for this belief version only."""
+        start, drawers, held, placed = self.predicted(earlier)
+        belief.sync_scene(skip=(held,) if held else (), drawers=drawers)
         sc = belief.scene
-        ignore = [sc.objects[belief.held]] if belief.held else []
+        origins = {f: S.frame_origin(f, drawers) for f in ("counter", "stove", *S.DRAWERS)}
+        for o, p in placed.items():
+            if o != held:
+                S.set_object(sc, o, origins[p.frame] + p.rel())
+        ignore = [sc.objects[held]] if held else []
         # the ends of a move grasp or release an object: the gripper may touch it there
-        movable = [sc.objects[o] for o in belief.objects if o != belief.held]
+        movable = [sc.objects[o] for o in belief.objects if o != held]
         ignore += touching(sc, start.q, movable) + touching(sc, q2.q, movable)
         path = rrt_connect(sc, start.q, q2.q, belief.prng, ignore=ignore)
-        return None if path is None else Traj(tuple(path))
+        if path is None:
+            self._motion_failed.add((q2, belief.version))
+            return None
+        return Traj(tuple(path))
+
+    def predicted(self, earlier: tuple[Action, ...]) -> tuple[Conf, dict[str, float], str | None, dict[str, Pose]]:
+        """The robot configuration, drawer positions, held object and newly placed objects after ``earlier``
+        (executed from the current belief)."""
+        conf, drawers, held = self.b.conf, dict(self.b.drawers), self.b.held
+        placed: dict[str, Pose] = {}
+        for a in earlier:
+            if a.name == "move":
+                conf = a.args[0]
+            elif a.name in ("pull", "push"):
+                drawers[str(a.args[0])] = S.DRAWER_OPEN if a.name == "pull" else 0.0
+                conf = Conf(S.HOME)  # the arm retracts after moving the handle
+            elif a.name in ("pick", "pick_tall"):
+                held = str(a.args[0])
+                placed.pop(held, None)
+            elif a.name in ("place", "place_aside"):
+                held = None
+                placed[str(a.args[0])] = a.args[1]
+        return conf, drawers, held, placed
 
     def _fresh(self) -> None:
         """Drop the memoised belief-dependent results when the belief has changed."""
@@ -420,7 +446,7 @@ class KitchenModel:
             yield {Q: q}
 
     def g_move(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
-        if self.streams.has_failed("motion", b[Q]):
+        if (b[Q], self.b.version) in self._motion_failed:
             return
         yield {T: self.streams.optimistic("motion", b[Q])}
 
