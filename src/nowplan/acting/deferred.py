@@ -87,7 +87,7 @@ def resolve(actions: Sequence[Action], streams: StreamSet, belief: Any, deferred
         for a in act.args:
             b = value(a, earlier)
             if b is None:
-                return Resolution(tuple(out), False, len(bound), n_deferred, a)
+                return Resolution(tuple(out), False, len(bound), n_deferred, a if isinstance(a, Optimistic) else None)
             n_deferred += isinstance(b, Optimistic)
             args.append(b)
         out.append(Action(act.operator, tuple(args)))

@@ -96,7 +96,8 @@ def segments_blocked(a: np.ndarray, ends: np.ndarray, centres: np.ndarray, half:
     tmax = np.where(parb, np.where(inside[None], np.inf, -np.inf), tmax)
     enter, leave = tmin.max(axis=2), tmax.min(axis=2)
     end = 1.0 - eps / np.maximum(np.linalg.norm(d, axis=1), 1e-12)
-    return (enter <= leave) & (leave > 0.0) & (enter < end[:, None])
+    hit: np.ndarray = (enter <= leave) & (leave > 0.0) & (enter < end[:, None])
+    return hit
 
 
 class KitchenBelief:
@@ -136,7 +137,8 @@ class KitchenBelief:
         return not (frame == "bottom" and self.drawers["top"] > 0.05)
 
     def _top_point(self, o: str, world: np.ndarray) -> np.ndarray:
-        return world + np.array([0.0, 0.0, S.SIZES[o][2] - 0.005])
+        top: np.ndarray = world + np.array([0.0, 0.0, S.SIZES[o][2] - 0.005])
+        return top
 
     def blocks(self, target: str, blocker: str) -> Any:
         """``B(x_i rows, x_j rows)``: does ``blocker`` at ``x_j`` hide ``target`` at ``x_i``?"""
@@ -186,8 +188,9 @@ class KitchenBelief:
     def region_of(self, o: str, pose: Pose) -> np.ndarray:
         pb = self.particles[o]
         mask = pb.near(pose.frame, pose.rel(), DELTA)
-        return pb.world(self.origins())[mask] if mask.any() else (S.frame_origin(pose.frame, self.drawers)
-                                                                 + pose.rel())[None, :]
+        out: np.ndarray = (pb.world(self.origins())[mask] if mask.any()
+                           else (S.frame_origin(pose.frame, self.drawers) + pose.rel())[None, :])
+        return out
 
     def not_blocks(self, blocker: str, target: str, pose: Pose) -> bool:
         """``L_j(𝒳_i) ≥ 1 − ε`` for blocker j and the δ-neighbourhood of ``pose`` (memoised per version)."""
@@ -257,7 +260,8 @@ class KitchenBelief:
         self.version += 1
         self._modes.clear()
         self._queries.clear()
-        name, args = action.name, action.args
+        args: tuple[Any, ...] = action.args
+        name = action.name
         info = obs.info or {}
         if "drawers" in info:
             self.drawers = dict(info["drawers"])

@@ -47,17 +47,17 @@ def _tests() -> dict[str, Predicate]:
     def is_open(b: KitchenBelief, args: Any, v: Any) -> bool:
         f = args[0]
         state = (b.drawers[f] > 0.2) if f in S.DRAWERS else True
-        return state == v
+        return bool(state == v)
 
     def in_frame(b: KitchenBelief, args: Any, v: Any) -> bool:
-        return (b.particles[args[0]].frame_mass(args[1]) >= 0.95) == v
+        return bool((b.particles[args[0]].frame_mass(args[1]) >= 0.95) == v)
 
     def at_pose(b: KitchenBelief, args: Any, v: Any) -> bool:
         return b.localized_at(args[0], v)
 
     def closable(b: KitchenBelief, args: Any, v: Any) -> bool:
         ok = all(b.particles[o].frame_mass(args[0]) < 0.05 for o in S.TALL if o in b.particles)
-        return ok == v
+        return bool(ok == v)
 
     return {
         "AtConf": Predicate("AtConf", 0, boolean=False, test=at_conf),
@@ -209,17 +209,18 @@ class KitchenModel:
         conf, drawers, held = self.b.conf, dict(self.b.drawers), self.b.held
         placed: dict[str, Pose] = {}
         for a in earlier:
+            args: tuple[Any, ...] = a.args
             if a.name == "move":
-                conf = a.args[0]
+                conf = args[0]
             elif a.name in ("pull", "push"):
-                drawers[str(a.args[0])] = S.DRAWER_OPEN if a.name == "pull" else 0.0
+                drawers[str(args[0])] = S.DRAWER_OPEN if a.name == "pull" else 0.0
                 conf = Conf(S.HOME)  # the arm retracts after moving the handle
             elif a.name in ("pick", "pick_tall"):
-                held = str(a.args[0])
+                held = str(args[0])
                 placed.pop(held, None)
             elif a.name in ("place", "place_aside"):
                 held = None
-                placed[str(a.args[0])] = a.args[1]
+                placed[str(args[0])] = args[1]
         return conf, drawers, held, placed
 
     def _fresh(self) -> None:
@@ -292,7 +293,8 @@ class KitchenModel:
 
     def grasp_target(self, o: str, pose: Pose) -> np.ndarray:
         origin = S.frame_origin(pose.frame, {d: S.DRAWER_OPEN for d in S.DRAWERS})
-        return origin + pose.rel() + np.array([0.0, 0.0, S.SIZES[o][2] - 0.02])
+        target: np.ndarray = origin + pose.rel() + np.array([0.0, 0.0, S.SIZES[o][2] - 0.02])
+        return target
 
     # -- generators ---------------------------------------------------------------
     def g_obs(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:

@@ -137,7 +137,7 @@ def build(objects: tuple[str, ...] = ("green", "sugar", "cracker")) -> Scene:
         linkJointAxis=[(0, -1, 0)] * n, physicsClientId=c,
     )
     robot = p.loadURDF("franka_panda/panda.urdf", (0.0, 0.0, BASE_Z), useFixedBase=True, physicsClientId=c)
-    objs = {}
+    objs: dict[str, int] = {}
     for o in objects:
         objs[o] = _box(p, c, SIZES[o], (0.0, 0.0, -1.0 - len(objs)), COLOURS[o])
     sc = Scene(c, int(robot), int(drawers), tuple(statics), objs)

@@ -44,8 +44,10 @@ class KitchenWorld:
     def world_pos(self, o: str) -> np.ndarray:
         if self.frames[o] == "hand":
             S.set_conf(self.scene, self.conf)
-            return S.ee_position(self.scene) - np.array([0.0, 0.0, S.SIZES[o][2] - 0.02])
-        return S.frame_origin(self.frames[o], self.drawers) + self.rel[o]
+            held: np.ndarray = S.ee_position(self.scene) - np.array([0.0, 0.0, S.SIZES[o][2] - 0.02])
+            return held
+        at: np.ndarray = S.frame_origin(self.frames[o], self.drawers) + self.rel[o]
+        return at
 
     def sync(self) -> None:
         S.set_conf(self.scene, self.conf)
@@ -95,7 +97,8 @@ class KitchenWorld:
         return res
 
     def execute(self, action: Action) -> Observation:
-        name, a = action.name, action.args
+        a: tuple[Any, ...] = action.args
+        name = action.name
         ok, reason = True, ""
         info: dict[str, Any] = {}
         if name == "move":
