@@ -24,10 +24,11 @@ from typing import Any
 import numpy as np
 
 from nowplan.belief.determinize import StochasticCost, epsilon_lower_bound, self_loop_cost
-from nowplan.core.atoms import Atom, Var, atom
+from nowplan.core.atoms import Var, atom
 from nowplan.core.domain import Domain, Predicate
 from nowplan.core.operators import Action, Generator, Operator, Precondition
 from nowplan.domains.kitchen import scene as S
+from nowplan.domains.kitchen.conflicts import CONFLICTS, Occludes
 from nowplan.domains.kitchen.heuristic import estimate
 from nowplan.domains.kitchen.belief import DELTA, EPSILON, Conf, KitchenBelief, Pose, Traj, pose_of
 from nowplan.domains.kitchen.motion import DOWN, DOWN_TURNED, inverse_kinematics, rrt_connect, touching
@@ -71,90 +72,6 @@ def _tests() -> dict[str, Predicate]:
         "StoveOn": Predicate("StoveOn", 0, test=lambda b, a, v: b.stove_on == v),
         "Cooked": Predicate("Cooked", 1, test=lambda b, a, v: (a[0] in b.cooked) == v),
     }
-
-
-class _OneInHand:
-    """Keyed conflict: at most one of ``HandEmpty`` and ``Holding(o)`` (any o) is true."""
-
-    def group_keys(self, a: Atom) -> list[Any]:
-        return [("hand",)] if a.value is True and a.predicate in ("HandEmpty", "Holding") else []
-
-    def __call__(self, a: Atom, b: Atom) -> bool:
-        ka = self.group_keys(a)
-        return bool(ka) and ka == self.group_keys(b) and a != b
-
-
-class _OnePlace:
-    """Keyed conflict: an object is held or in one frame (``Holding(o)``, ``In(o, f)``)."""
-
-    def group_keys(self, a: Atom) -> list[Any]:
-        return [("place", a.args[0])] if a.value is True and a.predicate in ("Holding", "In") else []
-
-    def __call__(self, a: Atom, b: Atom) -> bool:
-        ka = self.group_keys(a)
-        return bool(ka) and ka == self.group_keys(b) and a != b
-
-
-class _OneDrawerOpen:
-    """Keyed conflict: at most one drawer is open (``pull`` needs the other one closed)."""
-
-    def group_keys(self, a: Atom) -> list[Any]:
-        return [("drawer",)] if a.value is True and a.predicate == "Open" and a.args[0] in S.DRAWERS else []
-
-    def __call__(self, a: Atom, b: Atom) -> bool:
-        ka = self.group_keys(a)
-        return bool(ka) and ka == self.group_keys(b) and a != b
-
-
-def _pose_clash(a: Atom, b: Atom) -> bool:
-    """``AtPose(o) = p`` against ``Holding(o)`` / ``In(o, f)`` elsewhere; ``Closable(f)`` against a tall
-    object in f."""
-    if a.predicate == "AtPose" and isinstance(a.value, Pose) and b.value is True and b.args[:1] == a.args[:1]:
-        if b.predicate == "Holding":
-            return a.value.frame != "hand"
-        if b.predicate == "In":
-            return a.value.frame != b.args[1]
-    if a.predicate == "Closable" and a.value is True and b.predicate == "In" and b.value is True:
-        return b.args[0] in S.TALL and b.args[1] == a.args[0]
-    return False
-
-
-CONFLICTS = (_OneInHand(), _OnePlace(), _OneDrawerOpen(), _pose_clash)
-
-
-class _Occludes:
-    """``AtPose(o) = P`` against ``NotBlocks(o, j, p)`` when ``o`` set down at ``P`` hides ``j`` near ``p``.
-
-    Occlusion then regresses through planned placements: a plan that puts ``o``
-    down and then looks for ``j`` cannot put it where it hides ``j`` (the
-    detection's visibility precondition is otherwise tested against the belief
-    of the moment, in which a held ``o`` hides nothing).  The geometry is the
-    test ``place_aside``'s generator uses: the box of ``o`` at ``P`` cuts the
-    camera's ray to some point of ``j``'s δ-neighbourhood of ``p`` (memoised
-    per belief version).
-    """
-
-    def __init__(self, belief: KitchenBelief) -> None:
-        self.b = belief
-        self._memo: dict[tuple[Any, ...], bool] = {}
-
-    def __call__(self, a: Atom, b: Atom) -> bool:
-        if a.predicate != "AtPose" or b.predicate != "NotBlocks" or b.value is not True:
-            return False
-        place, (blocker, target, tpose) = a.value, b.args
-        if not isinstance(place, Pose) or place.frame == "hand" or not isinstance(tpose, Pose):
-            return False
-        if a.args[0] != blocker or blocker == target or tpose.frame == "hand":
-            return False
-        key = (blocker, place, target, tpose, self.b.version)
-        got = self._memo.get(key)
-        if got is None:
-            if len(self._memo) > 50_000:
-                self._memo.clear()
-            xj = (self.b.origins()[place.frame] + place.rel())[None, :]
-            region = self.b.region_of(str(target), tpose)
-            got = self._memo[key] = bool(self.b.blocks(str(target), str(blocker))(region, xj).any())
-        return got
 
 
 class KitchenModel:
@@ -514,7 +431,7 @@ class KitchenModel:
                      generators=(Generator("inv-kin", (Q,), self.g_button),)),
         )
         types = {"movable": None, "short": "movable", "tall": "movable", "drawer": None}
-        return Domain("kitchen", _tests(), ops, types=types, conflicts=(*CONFLICTS, _Occludes(self.b)))
+        return Domain("kitchen", _tests(), ops, types=types, conflicts=(*CONFLICTS, Occludes(self.b)))
 
     def g_button_or_handle(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         if b.get(D) not in S.DRAWERS:
