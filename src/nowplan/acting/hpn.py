@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.acting.metrics import Metrics, Outcome
-from nowplan.acting.strategy import Strategy
+from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap, flat_levels
@@ -90,6 +90,7 @@ class Executive:
         # refinements of each (plan, step) since the last action: the bound on re-planning a
         # step that keeps failing while the belief does not change
         self._refinements: Counter[tuple[int, int]] = Counter()
+        check_supported(self.domain, strategy)
         if strategy.domain_planner and self.domain.planner is None:
             raise ScenarioError(
                 f"domain {self.domain.name} has no planner of its own; "

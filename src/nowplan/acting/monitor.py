@@ -54,6 +54,7 @@ from nowplan.acting.plan_library import PlanLibrary, StoredPlan, goal_key, state
 from nowplan.core.atoms import Goal, entails
 from nowplan.core.levels import flat_levels
 from nowplan.core.state import State
+from nowplan.errors import ModelError, ScenarioError
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus
 from nowplan.planning.regression import plan as regression_plan
 
@@ -171,6 +172,14 @@ class Monitor(Mechanism):
 
     # -- set-up and the library ----------------------------------------------------------
     def _setup(self, ex: Executive) -> None:
+        try:
+            state_of(ex.belief)
+        except ModelError as err:
+            raise ScenarioError(
+                "the monitor strategies compare an expected and an observed symbolic world model "
+                f"(seed 003), but domain {ex.domain.name}'s belief is a {type(ex.belief).__name__}, "
+                "not a point state; drop the monitor switch from the strategy"
+            ) from err
         self.support = support_for(ex.domain.name)
         self._goal_key = goal_key(ex.problem.goal)
         if self.config.library_path is not None:

@@ -32,7 +32,7 @@ from nowplan.acting.deferred import resolve
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
-from nowplan.acting.strategy import Strategy
+from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.core.domain import Problem
 from nowplan.core.levels import flat_levels
 from nowplan.core.operators import Action
@@ -89,6 +89,7 @@ class OnlinePolicy:
         max_resolve_retries: int = 4,
         on_action: Callable[[Any, Action], None] | None = None,
     ) -> None:
+        check_supported(problem.domain, strategy)
         self.problem = problem
         self.on_action = on_action  # observers (e.g. a renderer); never change control flow
         self.domain = problem.domain

@@ -92,6 +92,17 @@ register_switch(
            {"domain_planner": True})
 )
 
+def check_supported(domain: Any, strategy: Strategy) -> None:
+    """Refuse, before a run starts, a switch the domain declares it cannot support (and why)."""
+    unsupported = getattr(domain, "unsupported", None) or {}
+    for switch in strategy.switches:
+        why = unsupported.get(switch)
+        if why is not None:
+            fix = (f"drop '{switch}' from the strategy '{strategy.name}'" if len(strategy.switches) > 1
+                   else "choose another strategy (e.g. hpn)")
+            raise ScenarioError(f"strategy switch '{switch}' does not apply to domain {domain.name}: {why}; {fix}")
+
+
 # switches whose mechanisms arrive with later work; named so users are told plainly
 PLANNED: dict[str, str] = {}
 

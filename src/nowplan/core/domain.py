@@ -44,6 +44,9 @@ class Domain:
     # the domain's own planner, used by the executive under the ``domain-planner`` switch; it has
     # the signature of nowplan.planning.regression.plan and returns a PlanResult
     planner: Callable[..., Any] | None = field(default=None, hash=False, compare=False)
+    # strategy switches that cannot work on this domain, each with the reason and what to use
+    # instead; a strategy naming one is refused before the run starts
+    unsupported: Mapping[str, str] = field(default_factory=dict, hash=False, compare=False)
 
     def __post_init__(self) -> None:
         names = [o.name for o in self.operators]

@@ -290,8 +290,15 @@ class CityRule:
     def __init__(self, reach: Mapping[str, frozenset[str]]) -> None:
         self.reach = reach
         self.vehicles = tuple(sorted(reach))
+        self._keys: dict[Atom, list[Any]] = {}  # per atom: the planner asks at every node
 
     def group_keys(self, a: Atom) -> list[Any]:
+        keys = self._keys.get(a)
+        if keys is None:
+            keys = self._keys[a] = self._group_keys(a)
+        return keys
+
+    def _group_keys(self, a: Atom) -> list[Any]:
         if a.value is not True or not a.args or a.args[0] in self.reach:
             return []
         pkg = a.args[0]
@@ -314,7 +321,20 @@ def make_domain(reach: Mapping[str, frozenset[str]], plane: str = "plane") -> Do
     """The domain for one map: ``reach[v]`` are the locations vehicle ``v`` can visit."""
 
     conflicts = (AtMostOne(("at", "in")), CityRule(reach))
-    return Domain(NAME, PREDICATES, operators(Where(reach, plane)), TYPES, conflicts=conflicts)
+    return Domain(NAME, PREDICATES, operators(Where(reach, plane)), TYPES, conflicts=conflicts,
+                  unsupported=UNSUPPORTED)
+
+
+_FLAT_WHY = (
+    "the loader's work in a cargo bay is planned in the now by A* from the bay's current state "
+    "(seed 002 appendix), so a plan that is flat {how} cannot bind it ahead; for flat planners "
+    "export the instance to PDDL (benchmarks/marsupial_flat.py)"
+)
+UNSUPPORTED = {
+    "flat": _FLAT_WHY.format(how="from the start"),
+    **{s: _FLAT_WHY.format(how="(seed 004's online policy plans flat)")
+       for s in ("online", "reuse", "deferred")},
+}
 
 
 # -- the ordering preference's resources ---------------------------------------------------------
