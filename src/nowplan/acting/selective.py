@@ -60,6 +60,12 @@ class Selective(Mechanism):
         return cost_increase(ex, frame, self.threshold)
 
     def after_action(self, ex: Executive) -> None:
+        top = ex.stack[-1] if ex.stack else None
+        if top is not None and not top.root and not ex.domain.satisfies(ex.belief, top.plan.preimage(top.i)):
+            # the step just taken did not have its intended result: the executive handles that
+            # failure (pops the plan and replans from the belief as it is now), so replanning the
+            # failing plans here first would plan the same goals twice
+            return
         for idx in range(1, len(ex.stack)):
             frame = ex.stack[idx]
             reason = self.trigger(ex, frame)

@@ -224,6 +224,26 @@ class NamoBelief:
     def is_observed(self, region: Region) -> bool:
         return int(self.visible_fog(region).size) <= self.params.fog_observed_slack
 
+    def fog_behind(self, region: Region, obj: str) -> bool:
+        """Would ``region`` stop counting as observed once ``obj`` is picked up (fog hidden only by it)?"""
+        key = ("fog_behind", region, obj)
+        c = self.cache()
+        if key not in c:
+            cells = self.region_cells(region)
+            fog = cells[~self.observed[cells]]
+            c[key] = False
+            if fog.size > self.params.fog_observed_slack:
+                g = self.geom.grid
+                m = self.geom.wall_mask.copy()
+                k = k_of(self.params.eps_clear)
+                for o in self.free_objects():
+                    if o.name != obj:
+                        m |= g.box_mask(o.box, k * o.sigma)
+                seen = g.visible(region.view, fog, m, self.sensor.range, heading_to(region.view, region.centroid),
+                                 self.sensor.fov)
+                c[key] = int(np.count_nonzero(seen)) > self.params.fog_observed_slack
+        return bool(c[key])
+
     # -- updates -----------------------------------------------------------------------
     def update(self, action: Action, obs: Observation) -> None:
         data: dict[str, Any] = obs.data if isinstance(obs.data, dict) else {}

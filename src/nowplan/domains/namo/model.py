@@ -41,7 +41,7 @@ TOL = ToleranceRule()
 A, B, SW = Var("a"), Var("b"), Var("sw")
 V, R, O, AT, LM, E = Var("v"), Var("r"), Var("o"), Var("at"), Var("lm"), Var("e")
 M, HOME, PC, EX, EXO, PLACE = Var("m"), Var("home"), Var("pc"), Var("ex"), Var("exo"), Var("place")
-SPOT, ONLY, SURVEY = Var("spot"), Var("only"), Var("survey")
+SPOT, ONLY, SURVEY, HIDDEN, KEEP = Var("spot"), Var("only"), Var("survey"), Var("hidden"), Var("keep")
 
 WHERE, SEE, CLEAR = 3, 2, 1
 
@@ -81,6 +81,11 @@ def _t_localized(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     return b.robot_sigma <= float(value)
 
 
+def _t_keep(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
+    """A reservation, not a belief condition: it only carries its regions through regression."""
+    return bool(value)
+
+
 def _t_placed(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     o = b.objects.get(args[0])
     box: Box = args[1]
@@ -96,6 +101,7 @@ PREDICATES = {
     "BVRelPose": Predicate("BVRelPose", 1, rule=TOL, test=_t_bvrelpose, boolean=False),
     "Localized": Predicate("Localized", 0, rule=TOL, test=_t_localized, boolean=False),
     "Placed": Predicate("Placed", 2, test=_t_placed),
+    "Keep": Predicate("Keep", 2, test=_t_keep),
 }
 
 
@@ -121,7 +127,18 @@ def _placed_in_clear(x: Atom, y: Atom) -> bool:
     return region.hits_box(where)
 
 
-CONFLICTS = (_one_pose, _one_grip, _placed_in_clear)
+def _placed_in_kept(x: Atom, y: Atom) -> bool:
+    """Putting an object down where a later manipulation drives or drags breaks that manipulation."""
+    if x.predicate != "Placed" or y.predicate != "Keep" or x.value is not True:
+        return False
+    obj, where = x.args
+    regions, owner = y.args
+    if obj == owner or not isinstance(where, Box) or not isinstance(regions, tuple):
+        return False
+    return any(isinstance(r, Region) and r.hits_box(where) for r in regions)
+
+
+CONFLICTS = (_one_pose, _one_grip, _placed_in_clear, _placed_in_kept)
 
 
 # -- costs -----------------------------------------------------------------------------------
@@ -188,25 +205,25 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
             generators=(Generator("look_landmark", (V, LM), gens.gen_look_landmark, (E,)),),
         ),
         Operator(
-            "Pick", (O, M, HOME, PC),
+            "Pick", (O, M, HOME, PC, HIDDEN),
             (P(atom("HandEmpty"), WHERE), P(atom("RobotAt", HOME), WHERE),
              P(atom("BVRelPose", O, value=params.eps_pick), SEE)),
             (atom("Holding", O, M), atom("HandEmpty", value=False), atom("RobotAt", HOME, value=False),
-             atom("RobotAt", PC)),
+             atom("RobotAt", PC), atom("Observed", HIDDEN, value=False)),
             cost=costs["pick"],
-            generators=(Generator("manip_fields", (HOME, PC), placement.gen_manip_fields, (M,)),),
+            generators=(Generator("manip_fields", (HOME, PC, HIDDEN), placement.gen_manip_fields, (M,)),),
         ),
         Operator(
-            "Place", (O, R, EX, EXO, M, HOME, PC, PLACE, SPOT, ONLY, SURVEY),
+            "Place", (O, R, EX, EXO, M, HOME, PC, PLACE, SPOT, ONLY, SURVEY, KEEP),
             (P(atom("Holding", O, M), WHERE), P(atom("RobotAt", PC), WHERE), P(atom("Observed", SURVEY), WHERE),
              P(atom("BClear", SURVEY, ONLY, value=params.eps_clear), WHERE),
              P(atom("BClear", R, EXO, value=params.eps_clear), WHERE),
-             P(atom("BClear", SPOT, ONLY, value=params.eps_clear), WHERE)),
+             P(atom("BClear", SPOT, ONLY, value=params.eps_clear), WHERE), P(atom("Keep", KEEP, O), WHERE)),
             (atom("BClear", R, EX, value=params.eps_clear), atom("HandEmpty"),
              atom("Holding", O, M, value=False), atom("RobotAt", PC, value=False),
              atom("RobotAt", HOME), atom("Placed", O, PLACE), atom("Observed", R, value=False)),
             cost=costs["place"],
-            generators=(Generator("place", (O, EXO, M, HOME, PC, PLACE, SPOT, ONLY, SURVEY), placement.gen_place,
+            generators=(Generator("place", (O, EXO, M, HOME, PC, PLACE, SPOT, ONLY, SURVEY, KEEP), placement.gen_place,
                                   (R, EX)),),
         ),
     )

@@ -34,6 +34,7 @@ from nowplan.domains.namo.belief import NamoBelief, k_of
 from nowplan.domains.namo.generators import foresight, robot_at_in
 from nowplan.domains.namo.geometry import GRAZE_OK, Box, Grid, Manip, MapGeometry, Pt, Region, shapely
 from nowplan.domains.namo.paths import INF, dijkstra, trace_back
+from nowplan.domains.namo.regions import hard_regions, kept_regions, taboo_regions
 
 try:  # optional: a faster connectivity test (imported here, not inside a timed planning call)
     from scipy import ndimage
@@ -42,44 +43,18 @@ except ImportError:  # pragma: no cover
 
 O, R, EX, EXO, M = Var("o"), Var("r"), Var("ex"), Var("exo"), Var("m")
 HOME, PC, PLACE, SPOT, ONLY = Var("home"), Var("pc"), Var("place"), Var("spot"), Var("only")
-SURVEY = Var("survey")
+SURVEY, HIDDEN, KEEP = Var("survey"), Var("hidden"), Var("keep")
+NOTHING = Region(Pt(-1.0, -1.0), Pt(-1.0, -1.0), 0.0)  # what a pick un-observes when it hides no fog
 
 PLACE_MARGIN = 0.08  # the placed object keeps this far from regions that must stay clear
 
 
 def gen_manip_fields(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, context: Any) -> Iterator[dict[Var, Any]]:
+    """A pick's home and configuration, and what it un-observes: a carry volume partly hidden by the object."""
     m = bindings.get(M)
     if isinstance(m, Manip):
-        yield {HOME: m.home, PC: m.pick_conf}
-
-
-def taboo_regions(context: Any) -> list[Region]:
-    """Every region some plan on the stack needs clear: its BClear requirements and its moves' volumes."""
-    if not foresight(context):
-        return []
-    out: dict[Region, None] = {}
-    for a in context.requirements("BClear"):
-        if isinstance(a.args[0], Region):
-            out[a.args[0]] = None
-    for plan in context.plan_stack:
-        for step in plan.steps:
-            act = step.action
-            if act is None:
-                continue
-            for pre in act.preconditions(None):
-                if pre.predicate == "BClear" and isinstance(pre.args[0], Region):
-                    out[pre.args[0]] = None
-    return list(out)
-
-
-def hard_regions(goal: Goal, obj: str, cleared: Region) -> list[Region]:
-    out = [cleared]
-    for a in goal.atoms:
-        ex = a.args[1] if a.predicate == "BClear" else frozenset()
-        if a.predicate == "BClear" and isinstance(a.args[0], Region) and isinstance(ex, frozenset) and obj not in ex:
-            if a.args[0] != cleared:
-                out.append(a.args[0])
-    return out
+        hid = m.survey if m.survey is not None and belief.fog_behind(m.survey, m.obj) else NOTHING
+        yield {HOME: m.home, PC: m.pick_conf, HIDDEN: hid}
 
 
 def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, context: Any) -> Iterator[dict[Var, Any]]:
@@ -98,7 +73,7 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
             return
         size = belief.objects[held].size
         options = [m]
-        spot = _spot(m, held, size)
+        spot = _spot(m, held, size, belief.geom.robot_radius)
         pc = belief.nominal()
         grip = belief.grip[0] if belief.grip is not None else np.array(m.offset)
         at = Pt.of(belief.robot_mean[0] + grip[0], belief.robot_mean[1] + grip[1])
@@ -124,7 +99,7 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
             # (not the first placement's spot: a new object there is why this one was chosen)
             r_opt = Region(opt.place, opt.place, 0.0) if only_hand else region
             yield {R: r_opt, EX: ex, O: held, EXO: ex | {held}, M: opt, HOME: home,
-                   PC: opt.pick_conf, **_spot(opt, held, size)}
+                   PC: opt.pick_conf, **_spot(opt, held, size, belief.geom.robot_radius)}
         return
     if not isinstance(region, Region) or not isinstance(ex, frozenset):
         return
@@ -140,14 +115,14 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
         if not options and not gone:
             manip_options(belief, name, home, (region,), (), n=1)  # is it movable at all? (marks it if not)
         for m in options:
-            yield {O: name, EXO: ex | {name}, M: m, HOME: home, PC: m.pick_conf, **_spot(m, name, size)}
+            yield {O: name, EXO: ex | {name}, M: m, HOME: home, PC: m.pick_conf, **_spot(m, name, size, belief.geom.robot_radius)}
 
 
-def _spot(m: Manip, name: str, size: tuple[float, float]) -> dict[Var, Any]:
+def _spot(m: Manip, name: str, size: tuple[float, float], radius: float) -> dict[Var, Any]:
     """The placed box and the disc around it that must be free of other objects when it is put down."""
     box = Box(m.place.x, m.place.y, *size)
     return {PLACE: box, SPOT: Region(m.place, m.place, math.hypot(*size) / 2), ONLY: frozenset({name}),
-            SURVEY: m.survey}
+            SURVEY: m.survey, KEEP: kept_regions(m, size, radius)}
 
 
 # -- geometry of manipulation -------------------------------------------------------------

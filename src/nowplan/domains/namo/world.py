@@ -301,7 +301,7 @@ class NamoWorld:
         p = self.geom.landmark(lm)
         return self._look(math.atan2(p.y - self.robot[1], p.x - self.robot[0]))
 
-    def _do_Pick(self, obj: str, m: Manip, home: Pt, pc: Pt) -> tuple[bool, dict[str, Any], str]:
+    def _do_Pick(self, obj: str, m: Manip, home: Pt, pc: Pt, hidden: Any = None) -> tuple[bool, dict[str, Any], str]:
         self.drives += len(m.pick_path) > 1
         traveled, hit, done = self._follow(m.pick_path)
         data: dict[str, Any] = {"traveled": traveled, "grasped": False, "returned": False}
@@ -337,7 +337,7 @@ class NamoWorld:
         return m.obj_at
 
     def _do_Place(self, obj: str, region: Region, ex: Any, exo: Any, m: Manip, home: Pt, pc: Pt,
-                  place: Box, spot: Region, only: Any, survey: Region) -> tuple[bool, dict[str, Any], str]:
+                  place: Box, spot: Region, only: Any, survey: Region, keep: Any = ()) -> tuple[bool, dict[str, Any], str]:
         data: dict[str, Any] = {"carried": 0.0, "returned": 0.0, "home": False}
         if self.held != obj:
             return False, data, f"not holding {obj}"
