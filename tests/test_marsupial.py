@@ -260,6 +260,21 @@ def test_rchpn_combines_loads_of_a_shared_origin():
     assert any("combined unload(" in t for t in notes)
 
 
+@pytest.mark.parametrize("strategy", ["hpn", "hpn+peephole"])
+def test_grounding_memo_makes_the_same_choices(monkeypatch, strategy):
+    """The planner's memo of static joins and generator-free achievers changes no decision."""
+    from nowplan.planning.grounding import Grounder
+
+    runs = []
+    for memo in (True, False):
+        monkeypatch.setattr(Grounder, "memo", memo)
+        ep = episode("single", 3, 1)
+        m, bad, executed = _checked_run(ep, strategy, 1)
+        assert m.outcome is Outcome.REACHED and not bad
+        runs.append((executed, m.execution_cost, m.plans_made))
+    assert runs[0] == runs[1]
+
+
 # ------------------------------------------------------------------ the reproduction's bookkeeping
 
 

@@ -100,10 +100,17 @@ class Operator:
 
 @dataclass(frozen=True, eq=False)
 class Action:
-    """A ground operator instance.  Equality is by name and arguments."""
+    """A ground operator instance.  Equality is by name and arguments.
+
+    Its ground preconditions (per level) and effects are computed once and
+    kept (the instance is immutable; planners ask for them at every node).
+    """
 
     operator: Operator
     args: tuple[Term, ...]
+    _ground: dict[Any, tuple[Atom, ...]] = field(
+        default_factory=dict, init=False, repr=False, compare=False, hash=False
+    )
 
     @property
     def name(self) -> str:
@@ -119,16 +126,22 @@ class Action:
 
     def preconditions(self, level: int | None = None) -> tuple[Atom, ...]:
         """Ground preconditions of ``abs(op, level)``: criticality > level (all if None)."""
-        b = self.bindings
-        return tuple(
-            p.atom.bind(b)
-            for p in self.operator.preconditions
-            if level is None or p.criticality > level
-        )
+        out = self._ground.get(level)
+        if out is None:
+            b = self.bindings
+            out = self._ground[level] = tuple(
+                p.atom.bind(b)
+                for p in self.operator.preconditions
+                if level is None or p.criticality > level
+            )
+        return out
 
     def effects(self) -> tuple[Atom, ...]:
-        b = self.bindings
-        return tuple(e.bind(b) for e in self.operator.effects)
+        out = self._ground.get("effects")
+        if out is None:
+            b = self.bindings
+            out = self._ground["effects"] = tuple(e.bind(b) for e in self.operator.effects)
+        return out
 
     def cost(self, belief: Any = None) -> float:
         c = self.operator.cost

@@ -13,7 +13,7 @@ at the plan's level).
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal, Var
@@ -45,7 +45,16 @@ def unify_effect(effect: Atom, target: Atom, domain: Domain) -> dict[Var, Any] |
 
 
 class Grounder:
-    """Caches achievers per atom for one planning problem (domain, objects, belief)."""
+    """Caches achievers per atom for one planning problem (domain, objects, belief).
+
+    With ``memo`` (the default) it also remembers, for the whole problem, the
+    achievers of each generator-free operator per atom and the completions of
+    each (operator, partial binding) by static joins and typed objects: both
+    depend only on the static facts, so the answers and their order are the
+    same as without (``memo = False`` recomputes them, for tests).
+    """
+
+    memo = True
 
     def __init__(
         self,
@@ -64,6 +73,8 @@ class Grounder:
         self._static_cache: dict[Atom, bool] = {}
         self._by_type: dict[str | None, list[str]] = {}
         self._facts_ok = hasattr(belief, "facts")
+        self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
+        self._fills: dict[tuple[int, frozenset[tuple[Var, Any]]], list[dict[Var, Any]]] = {}
 
     # -- helpers -------------------------------------------------------------
     def objects_of(self, t: str | None) -> list[str]:
@@ -91,25 +102,42 @@ class Grounder:
             return cached
         out: list[Action] = []
         seen: set[tuple[str, tuple[Any, ...]]] = set()
-        for op in self.domain.operators:
-            for eff in op.effects:
-                b = unify_effect(eff, target, self.domain)
-                if b is None:
-                    continue
-                for full in self._complete(op, b, goal):
-                    act = op.instantiate(full)
-                    if act.key not in seen:
-                        seen.add(act.key)
-                        out.append(act)
+        for i, op in enumerate(self.domain.operators):
+            if self.memo and not op.generators:
+                acts = self._op_cache.get((i, target))
+                if acts is None:
+                    acts = self._op_cache[(i, target)] = list(self._op_achievers(i, op, target, goal))
+                found: Iterable[Action] = acts
+            else:
+                found = self._op_achievers(i, op, target, goal)
+            for act in found:
+                if act.key not in seen:
+                    seen.add(act.key)
+                    out.append(act)
         # generators see the goal, so only cache when no operator uses one
         if not any(op.generators for op in self.domain.operators):
             self._cache[target] = out
         return out
 
-    def _complete(self, op: Operator, b: dict[Var, Any], goal: Goal) -> Iterator[dict[Var, Any]]:
+    def _op_achievers(self, i: int, op: Operator, target: Atom, goal: Goal) -> Iterator[Action]:
+        for eff in op.effects:
+            b = unify_effect(eff, target, self.domain)
+            if b is None:
+                continue
+            for full in self._complete(i, op, b, goal):
+                yield op.instantiate(full)
+
+    def _complete(self, i: int, op: Operator, b: dict[Var, Any], goal: Goal) -> Iterator[dict[Var, Any]]:
         """All full bindings extending ``b`` (generators, static joins, typed objects)."""
         for gb in self._run_generators(op, b, goal):
-            yield from self._fill(op, gb)
+            if not self.memo:
+                yield from self._fill(op, gb)
+                continue
+            key = (i, frozenset(gb.items()))
+            fills = self._fills.get(key)
+            if fills is None:
+                fills = self._fills[key] = list(self._fill(op, gb))
+            yield from fills
 
     def _run_generators(self, op: Operator, b: dict[Var, Any], goal: Goal) -> Iterator[dict[Var, Any]]:
         def rec(i: int, cur: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
