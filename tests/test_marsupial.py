@@ -300,6 +300,34 @@ def test_reproduction_summaries_pair_runs_and_average():
     assert summary[0]["paper_cost_decrease_pct"] == 30.0  # the paper's number beside ours
 
 
+def test_reproduction_plan_options_and_stored_runs(tmp_path, monkeypatch):
+    from nowplan.domains.marsupial import repro
+    from nowplan.errors import UsageError
+    from nowplan.experiments.reproductions import ReproductionOptions
+
+    plan = repro.plan_for(ReproductionOptions(sizes=(4, 6), trials=3))
+    assert plan.sizes == (4, 6) and plan.trials == 3 and plan.regimes == repro.FULL.regimes
+    assert repro.plan_for(ReproductionOptions(quick=True)) == repro.QUICK
+    with pytest.raises(UsageError, match="out of range"):
+        repro.plan_for(ReproductionOptions(sizes=(3, 11)))
+    jobs = repro.job_list(plan)
+    assert len(jobs) == 4 * 2 * 3 * 2 and [j[2] for j in jobs[:16]] == [0] * 16  # trial-major
+
+    calls = []
+
+    def fake(job):
+        calls.append(job)
+        regime, n, trial, strategy, _ = job
+        return {"regime": regime, "packages": n, "trial": trial, "strategy": strategy, "cost": float(n)}
+
+    monkeypatch.setattr(repro, "run_one", fake)
+    runs_file = tmp_path / "runs.jsonl"
+    first = repro.execute(jobs[:5], 1, runs_file)
+    assert len(calls) == 5 and len(repro.load_runs(runs_file)) == 5
+    again = repro.execute(jobs[:8], 1, runs_file)  # the stored five are not run again
+    assert len(calls) == 8 and again[:5] == first and len(repro.load_runs(runs_file)) == 8
+
+
 @pytest.mark.slow
 def test_reproduce_002_quick_prints_both_figures():
     from nowplan.experiments.reproductions import ReproductionOptions, ReproStatus, reproduce

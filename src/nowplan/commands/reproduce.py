@@ -27,15 +27,42 @@ def register(sub: Any) -> None:
     p.add_argument("seed", help="000, 002, 003 or 004")
     p.add_argument("--quick", action="store_true", help="a small version (a few minutes on 2 cores)")
     p.add_argument("--out", type=Path, help="write a report (ours beside the paper's) into this directory")
+    p.add_argument("--jobs", type=int, help="worker processes (default 2)")
+    p.add_argument("--sizes", type=_sizes,
+                   help="seed 002: package counts, e.g. 3-10 or 3,5,7 (default 3-10; --quick 3,5)")
+    p.add_argument("--trials", type=int, help="seed 002: trials per regime and size (default 10; --quick 2)")
+    p.add_argument("--runs", type=Path, metavar="FILE",
+                   help="seed 002: append every finished run to this JSON-lines file and skip the runs "
+                        "it already holds (resume an interrupted run, or summarise stored runs)")
     p.add_argument("--json", action="store_true",
                    help='print one JSON document {"seed", "rows", "paper", "notes", …}')
     p.set_defaults(func=main)
 
 
+def _sizes(text: str) -> tuple[int, ...]:
+    """``3-10`` or ``3,5,7``."""
+    try:
+        if "-" in text:
+            lo, hi = (int(x) for x in text.split("-", 1))
+            out = tuple(range(lo, hi + 1))
+        else:
+            out = tuple(int(x) for x in text.split(","))
+    except ValueError:
+        out = ()
+    if not out or min(out) < 1:
+        raise argparse.ArgumentTypeError(f"--sizes {text!r}: give a range like 3-10 or a list like 3,5,7")
+    return out
+
+
 def main(args: argparse.Namespace) -> int:
     from nowplan.experiments.reproductions import ReproductionOptions, ReproStatus, reproduce
 
-    result = reproduce(args.seed, ReproductionOptions(quick=args.quick, out_dir=args.out))
+    if args.jobs is not None and args.jobs < 1 or args.trials is not None and args.trials < 1:
+        print("nowplan reproduce: --jobs and --trials must be at least 1", file=sys.stderr)
+        return 2
+    result = reproduce(args.seed, ReproductionOptions(
+        quick=args.quick, out_dir=args.out, jobs=args.jobs, sizes=args.sizes, trials=args.trials,
+        runs_file=args.runs))
     done = result.status is ReproStatus.DONE
     if args.json:
         print(json.dumps(result.to_json(), indent=2))

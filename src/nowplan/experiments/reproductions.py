@@ -56,6 +56,11 @@ class ReproductionOptions:
     quick: bool = False  # a small version: a few minutes on 2 cores
     out_dir: Path | None = None  # write a report (ours beside the paper's) here
     jobs: int | None = None
+    # seed 002 (others ignore these): package counts and trials per point, and a JSON-lines file
+    # that keeps every finished run and lets a later call skip the runs it already holds
+    sizes: tuple[int, ...] | None = None
+    trials: int | None = None
+    runs_file: Path | None = None
 
 
 ReproduceFn = Callable[[ReproductionOptions], ReproductionResult]

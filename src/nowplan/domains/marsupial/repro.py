@@ -6,7 +6,10 @@ For every regime, number of packages and trial, one problem is generated
 primitives executed.  Fig. 3 is the mean percent decrease in cost of RCHPN
 relative to HPN per regime and size; Fig. 4 pairs, per problem, the percent
 decrease in cost with the percent increase in CPU time (planning plus the
-peephole optimizer).  Runs go to a process pool (``--jobs``, default 2).
+peephole optimizer).  Runs go to a process pool (``--jobs``, default 2);
+``--sizes`` and ``--trials`` change the plan, and ``--runs FILE`` keeps every
+finished run in a JSON-lines file so that an interrupted reproduction resumes
+and the figures can be recomputed from stored runs.
 """
 
 from __future__ import annotations
@@ -15,8 +18,8 @@ import json
 import logging
 import math
 import time
-from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -64,7 +67,10 @@ FULL = Plan(("single", "origins", "dests", "both"), tuple(range(3, 11)), 10, 600
 QUICK = Plan(("single", "origins", "dests", "both"), (3, 5), 2, 120.0)
 
 
-def run_one(job: tuple[str, int, int, str, float]) -> dict[str, Any]:
+Job = tuple[str, int, int, str, float]  # regime, packages, trial, strategy, CPU-second limit
+
+
+def run_one(job: Job) -> dict[str, Any]:
     """One run (in a worker process): the metrics the figures need."""
     from nowplan.domains.marsupial.flatcmp import timed_run
     from nowplan.domains.marsupial.scenarios import episode
@@ -177,26 +183,76 @@ NOTES = (
 )
 
 
-def reproduce(options: ReproductionOptions) -> ReproductionResult:
-    plan = QUICK if options.quick else FULL
-    jobs = [
+def plan_for(options: ReproductionOptions) -> Plan:
+    """The regimes, sizes and trials to run: ``--quick`` or the full plan, with ``--sizes``/``--trials``."""
+    from nowplan.domains.marsupial.scenarios import MAX_PACKAGES
+    from nowplan.errors import UsageError
+
+    base = QUICK if options.quick else FULL
+    sizes = options.sizes or base.sizes
+    bad = [n for n in sizes if not 1 <= n <= MAX_PACKAGES]
+    if bad:
+        raise UsageError(
+            f"reproduce 002: --sizes {bad} out of range; the generator makes 1-{MAX_PACKAGES} packages"
+        )
+    return replace(base, sizes=tuple(sizes), trials=options.trials or base.trials)
+
+
+def job_list(plan: Plan) -> list[Job]:
+    """Trial-major order, so that an interrupted run leaves every point with about as many trials."""
+    return [
         (regime, n, trial, st, plan.time_limit)
-        for regime in plan.regimes for n in plan.sizes for trial in range(plan.trials) for st in STRATEGIES
+        for trial in range(plan.trials) for n in plan.sizes for regime in plan.regimes for st in STRATEGIES
     ]
-    workers = options.jobs or 2
-    log.info("seed 002: %d runs on %d processes", len(jobs), workers)
-    t0 = time.perf_counter()
-    if workers > 1:
+
+
+def load_runs(path: Path) -> list[dict[str, Any]]:
+    """The runs stored in a JSON-lines file (none if it does not exist)."""
+    if not path.is_file():
+        return []
+    return [json.loads(ln) for ln in path.read_text().splitlines() if ln.strip()]
+
+
+def _key(r: dict[str, Any]) -> tuple[str, int, int, str]:
+    return (str(r["regime"]), int(r["packages"]), int(r["trial"]), str(r["strategy"]))
+
+
+def execute(jobs: list[Job], workers: int, runs_file: Path | None) -> list[dict[str, Any]]:
+    """Run ``jobs`` (skipping those already in ``runs_file``, appending each finished one to it)."""
+    stored = {_key(r): r for r in load_runs(runs_file)} if runs_file is not None else {}
+    todo = [j for j in jobs if j[:4] not in stored]
+    log.info("seed 002: %d runs (%d stored) on %d processes", len(todo), len(jobs) - len(todo), workers)
+    done: dict[tuple[str, int, int, str], dict[str, Any]] = {}
+
+    def keep(r: dict[str, Any]) -> None:
+        done[_key(r)] = r
+        if runs_file is not None:
+            runs_file.parent.mkdir(parents=True, exist_ok=True)
+            with runs_file.open("a") as fh:
+                fh.write(json.dumps(r, default=str) + "\n")
+
+    if workers > 1 and len(todo) > 1:
         with ProcessPoolExecutor(max_workers=workers) as pool:
-            runs = list(pool.map(run_one, jobs, chunksize=1))
+            for fut in as_completed([pool.submit(run_one, j) for j in todo]):
+                keep(fut.result())
     else:
-        runs = [run_one(j) for j in jobs]
+        for j in todo:
+            keep(run_one(j))
+    return [stored.get(j[:4]) or done[j[:4]] for j in jobs]
+
+
+def reproduce(options: ReproductionOptions) -> ReproductionResult:
+    plan = plan_for(options)
+    jobs = job_list(plan)
+    workers = options.jobs or 2
+    t0 = time.perf_counter()
+    runs = execute(jobs, workers, options.runs_file)
     fig3, fig4, summary = summarize(runs)
     ff = ff_rows(plan.time_limit)
     wall = time.perf_counter() - t0
     notes = (
         f"{len(runs)} runs ({'quick' if options.quick else 'full'}: regimes {', '.join(plan.regimes)}; "
-        f"{min(plan.sizes)}-{max(plan.sizes)} packages; {plan.trials} trials each) in {wall:.0f} s "
+        f"{','.join(map(str, plan.sizes))} packages; trials 0-{plan.trials - 1} each) in {wall:.0f} s "
         f"on {workers} processes. " + NOTES
     )
     result = ReproductionResult(
