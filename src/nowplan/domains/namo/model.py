@@ -56,9 +56,14 @@ def _t_hand_empty(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
 
 
 def _t_holding(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
-    """Holding ``o`` grasped from the manipulation's pick configuration (its placement may be re-planned)."""
-    m = args[1]
-    held = b.held == args[0] and b.held_manip is not None and b.held_manip.pick_conf == getattr(m, "pick_conf", None)
+    """Holding ``o`` grasped from the manipulation's pick configuration (its placement may be re-planned).
+
+    A re-placement of the held object starts where the robot stands now, which a grasp that pushed
+    the robot may have moved off the pick configuration: it holds too (same home, robot at its start).
+    """
+    m, h = args[1], b.held_manip
+    held = b.held == args[0] and h is not None and isinstance(m, Manip) and (
+        h.pick_conf == m.pick_conf or (h.home == m.home and b.at(m.pick_conf)))
     return held == bool(value)
 
 
