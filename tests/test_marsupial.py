@@ -326,6 +326,8 @@ def test_reproduction_plan_options_and_stored_runs(tmp_path, monkeypatch):
     assert len(calls) == 5 and len(repro.load_runs(runs_file)) == 5
     again = repro.execute(jobs[:8], 1, runs_file)  # the stored five are not run again
     assert len(calls) == 8 and again[:5] == first and len(repro.load_runs(runs_file)) == 8
+    only = repro.execute(jobs, 1, runs_file, stored_only=True)  # summarise what is stored, run nothing
+    assert len(calls) == 8 and only == again
 
 
 @pytest.mark.slow

@@ -34,6 +34,9 @@ def register(sub: Any) -> None:
     p.add_argument("--runs", type=Path, metavar="FILE",
                    help="seed 002: append every finished run to this JSON-lines file and skip the runs "
                         "it already holds (resume an interrupted run, or summarise stored runs)")
+    p.add_argument("--stored", action="store_true",
+                   help="seed 002: run nothing; summarise the runs already in --runs FILE that the "
+                        "plan (--quick/--sizes/--trials) names (points may then have fewer trials)")
     p.add_argument("--json", action="store_true",
                    help='print one JSON document {"seed", "rows", "paper", "notes", …}')
     p.set_defaults(func=main)
@@ -60,9 +63,12 @@ def main(args: argparse.Namespace) -> int:
     if args.jobs is not None and args.jobs < 1 or args.trials is not None and args.trials < 1:
         print("nowplan reproduce: --jobs and --trials must be at least 1", file=sys.stderr)
         return 2
+    if args.stored and args.runs is None:
+        print("nowplan reproduce: --stored needs --runs FILE (the stored runs to summarise)", file=sys.stderr)
+        return 2
     result = reproduce(args.seed, ReproductionOptions(
         quick=args.quick, out_dir=args.out, jobs=args.jobs, sizes=args.sizes, trials=args.trials,
-        runs_file=args.runs))
+        runs_file=args.runs, stored_only=args.stored))
     done = result.status is ReproStatus.DONE
     if args.json:
         print(json.dumps(result.to_json(), indent=2))

@@ -61,6 +61,7 @@ class ReproductionOptions:
     sizes: tuple[int, ...] | None = None
     trials: int | None = None
     runs_file: Path | None = None
+    stored_only: bool = False  # seed 002: summarise the runs in runs_file, run nothing
 
 
 ReproduceFn = Callable[[ReproductionOptions], ReproductionResult]
