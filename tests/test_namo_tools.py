@@ -121,6 +121,21 @@ def test_aggregate_and_targets_follow_the_records():
     assert "0.25x aggressive's (target <= 0.5): met" in text
 
 
+
+def test_avg_time_ratio_is_summed_time_over_summed_baseline_as_in_table_1():
+    # Table I: baselines 1265 / 1020 / 850 s; aggressive 1.01 / 1.66 / 1.40 -> Avg 1.33 (the mean of
+    # the ratios would be 1.36); selective 0.57 / 1.06 / 0.89 -> 0.82 (mean 0.84)
+    base = {"1": 1265.0, "2": 1020.0, "3": 850.0}
+    ratio = {"aggressive replanning": (1.01, 1.66, 1.40), "selective replanning": (0.57, 1.06, 0.89),
+             "original BHPN": (1.0, 1.0, 1.0)}
+    recs = [{"domain": d, "algorithm": alg, "seed": 0, "outcome": "reached", "reason": "", "picks_places": 2,
+             "looks": 3, "moves": 5, "planning_cpu_s": base[d] * rs[i], "run_cpu_s": base[d] * rs[i], "objects": 3}
+            for alg, rs in ratio.items() for i, d in enumerate(base)]
+    by = {(r["domain"], r["algorithm"]): r for r in aggregate(recs)}
+    agg, sel = by[("Avg", "aggressive replanning")], by[("Avg", "selective replanning")]
+    assert (agg["planning_ratio"], agg["time_ratio"], agg["planning_ratio_mean"]) == (1.33, 1.33, 1.36)
+    assert (sel["planning_ratio"], sel["planning_ratio_mean"]) == (0.82, 0.84)
+
 @pytest.mark.slow
 def test_reproduce_000_quick_prints_the_table(tmp_path, capsys):
     assert main(["reproduce", "000", "--quick", "--out", str(tmp_path)]) == 0
