@@ -316,11 +316,22 @@ def write_outputs(
         lines.append(f"| {s['regime']} | {s['cost_decrease_pct']} ± {s['se']} | {s['time_increase_pct']} | "
                      f"{s['problems']} | {paper.get(s['regime'], '–')} |")
     sizes = sorted({r["packages"] for r in fig3})
-    lines += ["", "Fig. 3 by package count: mean % cost decrease (trials solved by both)", "",
+    lines += ["", "Fig. 3 by package count: mean % cost decrease (problems solved by both; unsolved: a "
+              "strategy failed or passed the CPU limit)", "",
               "| regime | " + " | ".join(str(n) for n in sizes) + " |", "|---" * (len(sizes) + 1) + "|"]
     for regime in dict.fromkeys(r["regime"] for r in fig3):
-        cell = {r["packages"]: f"{r['cost_decrease_pct']} ({r['trials']})" for r in fig3 if r["regime"] == regime}
+        cell = {r["packages"]: f"{r['cost_decrease_pct']} ({r['trials']}"
+                + (f"; {r['unsolved']} unsolved)" if r["unsolved"] else ")") for r in fig3 if r["regime"] == regime}
         lines.append(f"| {regime} | " + " | ".join(cell.get(n, "–") for n in sizes) + " |")
+    lines += ["", "Mean CPU s per run by package count, HPN / RCHPN (problems solved by both)", "",
+              "| regime | " + " | ".join(str(n) for n in sizes) + " |", "|---" * (len(sizes) + 1) + "|"]
+    for regime in dict.fromkeys(r["regime"] for r in fig4):
+        cells = []
+        for n in sizes:
+            rs = [r for r in fig4 if r["regime"] == regime and r["packages"] == n and r["solved"] == "both"]
+            cells.append(f"{sum(r['hpn_cpu_s'] for r in rs) / len(rs):.1f} / "
+                         f"{sum(r['rchpn_cpu_s'] for r in rs) / len(rs):.1f}" if rs else "–")
+        lines.append(f"| {regime} | " + " | ".join(cells) + " |")
     ff = [r for r in ff_table or [] if r.get("figure") == "FF instance"]
     if ff:
         lines += ["", "FF instance (seed V-B; the paper: FF needed about 7.5 h for a 62-step plan):", "",
