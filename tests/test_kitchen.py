@@ -184,3 +184,24 @@ def test_a_later_move_is_planned_in_the_state_the_plan_predicts() -> None:
     assert not list(model.g_move({QV: q}, None, b, None))  # the failed target is not offered again …
     b.version += 1
     assert list(model.g_move({QV: q}, None, b, None))  # … until the belief has changed
+
+
+def test_a_miss_of_the_randomised_motion_planner_is_retried(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Motion is a likely stream: one RRT-Connect miss does not make the target configuration fail."""
+    from nowplan.domains.kitchen import model as M
+    from nowplan.domains.kitchen.belief import Conf
+
+    ep = make("inspect", 0)
+    model = M.KitchenModel(ep.belief)
+    calls: list[int] = []
+
+    def flaky(*args: object, **kw: object) -> list[tuple[float, ...]] | None:
+        calls.append(1)
+        return None if len(calls) < M.MOTION_ATTEMPTS else [S.HOME, S.HOME]
+
+    monkeypatch.setattr(M, "rrt_connect", flaky)
+    assert model._motion(ep.belief, (), Conf(S.HOME)) is not None and len(calls) == M.MOTION_ATTEMPTS
+    calls.clear()
+    monkeypatch.setattr(M, "rrt_connect", lambda *a, **k: None)
+    assert model._motion(ep.belief, (), Conf(S.HOME)) is None
+    assert (Conf(S.HOME), ep.belief.version) in model._motion_failed

@@ -39,6 +39,7 @@ PICK = StochasticCost(cost=1.0, recovery=1.0, success=0.95)
 GRASPS = {"top": DOWN, "top90": DOWN_TURNED}  # top-down grasps, the second turned 90° about the vertical
 MIN_DETECT_P = 0.01  # detections less likely than this to succeed cost infinity
 OVERLAP_MASS = 0.5  # belief mass of another object at a placement that makes it taken
+MOTION_ATTEMPTS = 3  # RRT-Connect runs (fresh random samples) before a motion counts as failed
 
 
 def _tests() -> dict[str, Predicate]:
@@ -102,7 +103,8 @@ class KitchenModel:
     def _motion(self, belief: KitchenBelief, earlier: tuple[Action, ...], q2: Conf) -> Traj | None:
         """RRT-Connect to ``q2`` in the state the plan predicts after ``earlier`` (its start configuration,
         drawers, held and placed objects), so a later move of a plan bound all at once is checked in the
-        kitchen it will run in, not in today's.  A failure is remembered for this belief version only."""
+        kitchen it will run in, not in today's.  RRT-Connect gets ``MOTION_ATTEMPTS`` runs; a failure is
+        remembered for this belief version only."""
         start, drawers, held, placed = self.predicted(earlier)
         belief.sync_scene(skip=(held,) if held else (), drawers=drawers)
         sc = belief.scene
@@ -114,7 +116,11 @@ class KitchenModel:
         # the ends of a move grasp or release an object: the gripper may touch it there
         movable = [sc.objects[o] for o in belief.objects if o != held]
         ignore += touching(sc, start.q, movable) + touching(sc, q2.q, movable)
-        path = rrt_connect(sc, start.q, q2.q, belief.prng, ignore=ignore)
+        path = None
+        for _ in range(MOTION_ATTEMPTS):  # a likely stream: a miss of the randomised search is retried
+            path = rrt_connect(sc, start.q, q2.q, belief.prng, ignore=ignore)
+            if path is not None:
+                break
         if path is None:
             self._motion_failed.add((q2, belief.version))
             return None
