@@ -298,6 +298,14 @@ def test_reproduction_summaries_pair_runs_and_average():
     assert both["trials"] == 0 and both["unsolved"] == 1
     assert [s["regime"] for s in summary] == ["single origin, single destination"]
     assert summary[0]["paper_cost_decrease_pct"] == 30.0  # the paper's number beside ours
+    assert repro_pearson([(1.0, 2.0), (2.0, 4.0), (3.0, 6.0)]) == pytest.approx(1.0)
+    assert repro_pearson([(1.0, 3.0), (2.0, 2.0), (3.0, 1.0)]) == pytest.approx(-1.0)
+
+
+def repro_pearson(pts):
+    from nowplan.domains.marsupial.repro import _pearson
+
+    return _pearson(pts)
 
 
 def test_reproduction_plan_options_and_stored_runs(tmp_path, monkeypatch):

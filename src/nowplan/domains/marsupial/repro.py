@@ -125,6 +125,17 @@ def _mean_se(xs: list[float]) -> tuple[float, float]:
     return mu, math.sqrt(var / len(xs))
 
 
+def _pearson(pts: list[tuple[float, float]]) -> float:
+    if len(pts) < 2:
+        return math.nan
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    sxy = sum((x - mx) * (y - my) for x, y in pts)
+    sxx = sum((x - mx) ** 2 for x, _ in pts)
+    syy = sum((y - my) ** 2 for _, y in pts)
+    return sxy / math.sqrt(sxx * syy) if sxx > 0 and syy > 0 else math.nan
+
+
 def _r(x: float, k: int = 1) -> float:
     return round(x, k) if not math.isnan(x) else x
 
@@ -338,6 +349,10 @@ def write_outputs(
                   "| planner | status | CPU s | cost | steps |", "|---|---|---|---|---|"]
         lines += [f"| {r['planner']} | {r['status']} | {r.get('cpu_s', '')} | {r.get('cost', '')} | "
                   f"{r.get('steps', '')} |" for r in ff]
+    pts = [(r["time_increase_pct"], r["cost_decrease_pct"]) for r in fig4
+           if not (math.isnan(r["time_increase_pct"]) or math.isnan(r["cost_decrease_pct"]))]
+    lines += ["", f"Fig. 4: {len(pts)} problems, Pearson r (CPU-time increase, cost decrease) = "
+              f"{_pearson(pts):.2f}"]
     lines += ["", "![Fig. 3](seed002_fig3.png)", "", "![Fig. 4](seed002_fig4.png)", "", NOTES, ""]
     paths.append(out / "seed002.md")
     paths[-1].write_text("\n".join(lines))
