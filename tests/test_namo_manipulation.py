@@ -77,5 +77,15 @@ def test_a_held_object_can_be_re_placed_after_the_grasp_moved_the_robot() -> Non
     # office, aggressive replanning, seed 2: a move stopped at chair_b, the pick left the robot
     # 0.2 m off the pick configuration, and every re-placement then failed the Holding test
     # (it compared pick configurations), ending the run with "no plan for the goal"
-    tr, m = traced("office", "hpn+flexible+foresight+aggressive", 2)
+    _, m = traced("office", "hpn+flexible+foresight+aggressive", 2)
     assert m.outcome.value == "reached", m.reason
+
+
+@pytest.mark.parametrize("strategy, seed", [("hpn+flexible+foresight", 18), ("hpn+flexible+foresight", 24),
+                                            ("hpn+flexible+foresight+selective", 24)])
+def test_flexible_execution_does_not_retry_a_step_that_keeps_failing(strategy: str, seed: int) -> None:
+    # domain 3: a move blocked by the same object, or a drag stopped by the same wall, left the belief
+    # in the step's pre-image, and Fig. 4's retry repeated it until the 400-action budget was spent
+    _, m = traced("domain3", strategy, seed)
+    assert m.outcome.value == "reached", m.reason
+    assert m.actions < 60

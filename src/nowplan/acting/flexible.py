@@ -5,6 +5,14 @@ A plan is applicable while the belief lies in *some* pre-image
 rightmost pre-image that contains the belief.  A step whose result did not
 come about is retried if its pre-image still holds (a disappointment); a
 step made unnecessary by luck is skipped (a surprise).
+
+Retrying is for outcomes that vary: once a plan has gone back ``MAX_RETRIES``
+times (taken a step again, or an earlier one, because a step did not have
+its result: a move blocked by the same object, a drag stopped by the same
+wall), the next setback is not retried: for the rest of that action the
+rigid rules apply, so the plans whose steps did not have their results are
+popped and the goal is replanned from the belief as it is (the original
+BHPN's failure handling), instead of retrying until a budget runs out.
 """
 
 from __future__ import annotations
@@ -26,6 +34,9 @@ def rightmost(ex: Executive, frame: Frame) -> int | None:
     return None
 
 
+MAX_RETRIES = 2  # setbacks a plan may retry before it is replanned (see the module docstring)
+
+
 class Flexible(Mechanism):
     name = "flexible"
 
@@ -34,12 +45,24 @@ class Flexible(Mechanism):
             return None
         if ex.domain.satisfies(ex.belief, frame.plan.goal):
             return False
-        return rightmost(ex, frame) is not None
+        if ex.__dict__.get("_flexible_rigid_at") == ex.metrics.actions:
+            return None  # a retry was given up since the last action: rigid rules
+        i = rightmost(ex, frame)
+        if i is None:
+            return False
+        if i + 1 <= frame.i and frame.info.get("retries", 0) >= MAX_RETRIES:
+            ex.trace.emit("note", plan_id=frame.plan_id,
+                          text=f"flexible: plan set back {MAX_RETRIES} times already; replanning")
+            ex.__dict__["_flexible_rigid_at"] = ex.metrics.actions
+            return None
+        return True
 
     def next_step(self, ex: Executive, frame: Frame) -> PlanStep | None:
         i = rightmost(ex, frame)
         if i is None:
             return None
+        if i + 1 <= frame.i:  # a step taken again, or an earlier one: a setback
+            frame.info["retries"] = frame.info.get("retries", 0) + 1
         frame.i = i + 1
         return frame.plan.steps[frame.i]
 
