@@ -196,3 +196,18 @@ def test_a_look_that_did_not_localise_is_not_offered_again_from_there():
     assert not list(gen_look_obj(binds, Goal(()), b, None))
     b._bump(percept=True)  # something new was seen: worth another try
     assert list(gen_look_obj(binds, Goal(()), b, None))
+
+
+def test_fastest_of_merges_reproductions_run_by_run_and_refuses_different_behaviour():
+    from nowplan.domains.namo.reproduction import fastest_of
+    from nowplan.errors import UsageError
+
+    def rec(seed, plan_s, moves=5):
+        return {"domain": "1", "algorithm": "original BHPN", "seed": seed, "outcome": "reached", "actions": 9,
+                "picks_places": 2, "looks": 3, "moves": moves, "plans": 7, "planning_cpu_s": plan_s,
+                "run_cpu_s": 2 * plan_s}
+    merged = {r["seed"]: r for r in fastest_of([[rec(0, 0.3), rec(1, 0.1)], [rec(0, 0.2), rec(1, 0.4)]])}
+    assert (merged[0]["planning_cpu_s"], merged[1]["planning_cpu_s"]) == (0.2, 0.1)
+    assert merged[0]["run_cpu_s"] == 0.4
+    with pytest.raises(UsageError, match="behaved differently"):
+        fastest_of([[rec(0, 0.3)], [rec(0, 0.2, moves=6)]])
