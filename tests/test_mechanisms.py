@@ -233,3 +233,37 @@ def test_run_episode_traces_a_rendered_frame_per_action():
     m3 = run_episode(Episode(prob, SymbolicWorld(CHAIN, prob.init), SymbolicBelief(prob.init)),
                      parse_strategy("online"), trace=tr3, render=render)
     assert m3.actions == 3 and [f["n"] for f in tr3.of("frame")] == [0, 1, 2, 3]
+
+
+def _undo_s1_times(k: int) -> Callable:
+    """The world undoes s1 after each of the first k actions (a step that keeps not working)."""
+    count = {"k": 0}
+
+    def fn(state, rng):
+        count["k"] += 1
+        return [atom("s1", value=False)] if count["k"] <= k else []
+
+    return fn
+
+
+def _flexible_with(max_retries: int, undos: int) -> tuple:
+    prob = Problem(CHAIN, {}, State([atom("s0")]), Goal.of([atom("s3")]))
+    world = SymbolicWorld(CHAIN, prob.init, exogenous=_undo_s1_times(undos), exogenous_prob=1.0)
+    tr = Trace()
+    m = run_episode(Episode(prob, world, SymbolicBelief(prob.init)),
+                    parse_strategy("flat+flexible", max_retries=max_retries), trace=tr)
+    return m, tr
+
+
+def test_flexible_stops_retrying_a_plan_set_back_max_retries_times():
+    # step1 is undone three times: two retries, then the third setback is replanned (rigid rules)
+    m, tr = _flexible_with(max_retries=2, undos=3)
+    assert m.outcome is Outcome.REACHED
+    assert m.action_counts["step1"] == 4
+    assert m.replans == 1 and m.plans_made == 2
+    assert any("set back 2 times" in e["text"] for e in tr.of("note"))
+    # with a larger bound the same plan is retried throughout, never replanned
+    m, tr = _flexible_with(max_retries=5, undos=3)
+    assert m.outcome is Outcome.REACHED and m.action_counts["step1"] == 4
+    assert m.replans == 0 and m.plans_made == 1
+    assert not tr.of("note")

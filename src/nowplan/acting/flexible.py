@@ -6,8 +6,8 @@ rightmost pre-image that contains the belief.  A step whose result did not
 come about is retried if its pre-image still holds (a disappointment); a
 step made unnecessary by luck is skipped (a surprise).
 
-Retrying is for outcomes that vary: once a plan has gone back ``MAX_RETRIES``
-times (taken a step again, or an earlier one, because a step did not have
+Retrying is for outcomes that vary: once a plan has gone back
+``Strategy.max_retries`` times (default 2) (taken a step again, or an earlier one, because a step did not have
 its result: a move blocked by the same object, a drag stopped by the same
 wall), the next setback is not retried: for the rest of that action the
 rigid rules apply, so the plans whose steps did not have their results are
@@ -34,26 +34,27 @@ def rightmost(ex: Executive, frame: Frame) -> int | None:
     return None
 
 
-MAX_RETRIES = 2  # setbacks a plan may retry before it is replanned (see the module docstring)
-
-
 class Flexible(Mechanism):
     name = "flexible"
+
+    def __init__(self, max_retries: int = 2) -> None:
+        self.max_retries = max_retries  # setbacks a plan may retry before it is replanned
+        self._rigid_at: int | None = None  # action count at which a retry was last given up
 
     def applicable(self, ex: Executive, frame: Frame) -> bool | None:
         if frame.root:
             return None
         if ex.domain.satisfies(ex.belief, frame.plan.goal):
             return False
-        if ex.__dict__.get("_flexible_rigid_at") == ex.metrics.actions:
+        if self._rigid_at == ex.metrics.actions:
             return None  # a retry was given up since the last action: rigid rules
         i = rightmost(ex, frame)
         if i is None:
             return False
-        if i + 1 <= frame.i and frame.info.get("retries", 0) >= MAX_RETRIES:
+        if i + 1 <= frame.i and frame.info.get("retries", 0) >= self.max_retries:
             ex.trace.emit("note", plan_id=frame.plan_id,
-                          text=f"flexible: plan set back {MAX_RETRIES} times already; replanning")
-            ex.__dict__["_flexible_rigid_at"] = ex.metrics.actions
+                          text=f"flexible: plan set back {self.max_retries} times already; replanning")
+            self._rigid_at = ex.metrics.actions
             return None
         return True
 
@@ -69,5 +70,5 @@ class Flexible(Mechanism):
 
 register_switch(
     Switch("flexible", "retry a step whose pre-image still holds; jump ahead on surprises (Fig. 4)",
-           mechanism=lambda s: Flexible())
+           mechanism=lambda s: Flexible(s.max_retries))
 )
