@@ -133,8 +133,12 @@ class Grounder:
             if not self.memo:
                 yield from self._fill(op, gb)
                 continue
-            key = (i, frozenset(gb.items()))
-            fills = self._fills.get(key)
+            try:
+                key = (i, frozenset(gb.items()))
+                fills = self._fills.get(key)
+            except TypeError:  # a generator value that cannot be hashed: no memo for it
+                yield from self._fill(op, gb)
+                continue
             if fills is None:
                 fills = self._fills[key] = list(self._fill(op, gb))
             yield from fills
