@@ -74,7 +74,7 @@ class Grounder:
         self._by_type: dict[str | None, list[str]] = {}
         self._facts_ok = hasattr(belief, "facts")
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
-        self._fills: dict[tuple[int, frozenset[tuple[Var, Any]]], list[dict[Var, Any]]] = {}
+        self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
 
     # -- helpers -------------------------------------------------------------
     def objects_of(self, t: str | None) -> list[str]:
@@ -134,7 +134,8 @@ class Grounder:
                 yield from self._fill(op, gb)
                 continue
             try:
-                key = (i, frozenset(gb.items()))
+                # with the value's type: 1, 1.0 and True are equal keys but not the same binding
+                key = (i, frozenset((k, type(v), v) for k, v in gb.items()))
                 fills = self._fills.get(key)
             except TypeError:  # a generator value that cannot be hashed: no memo for it
                 yield from self._fill(op, gb)
