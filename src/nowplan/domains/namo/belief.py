@@ -35,6 +35,13 @@ from nowplan.worlds.base import Observation
 log = logging.getLogger(__name__)
 
 LOOP_LIMIT = 1500  # move-generator calls without a belief update that signal a planning loop
+# A move stopped by a contact: the robot's centre could not go on to a point at most this far ahead
+# along the commanded path (the controller checks its path in steps of about this length) ...
+CONTACT_AHEAD = 0.05
+# ... and a later motion whose centre passes within this distance of that point meets the same object
+# (unless the object has since moved by more than CONTACT_MOVED)
+CONTACT_REACH = 0.08
+CONTACT_MOVED = 0.1
 
 
 @lru_cache(maxsize=64)
@@ -87,6 +94,9 @@ class NamoBelief:
     # (view point, object or "look:<region>") -> percept when a look from there did not localise the
     # object or reveal the region (occluded, out of view): not relied on again until something new is seen
     futile_looks: dict[tuple[Pt, str], int] = field(default_factory=dict)
+    # object -> (point the robot's centre was stopped from reaching by it, its estimated centre then):
+    # a blocked move is an observation that the object occupies the way there (see in_contact_way)
+    touched: dict[str, list[tuple[Pt, Pt]]] = field(default_factory=dict)
     _cache: dict[Any, Any] = field(default_factory=dict, repr=False)
     _cache_version: int = -1
     _cells: dict[Region, np.ndarray] = field(default_factory=dict, repr=False)
@@ -167,9 +177,38 @@ class NamoBelief:
         if key in c:
             return c[key]  # type: ignore[no-any-return]
         k = k_of(eps)
-        out = [o.name for o in self.free_objects(exclude) if region.hits_box(o.box, k * o.sigma)]
+        out = [o.name for o in self.free_objects(exclude)
+               if region.hits_box(o.box, k * o.sigma) or self.in_contact_way(region, o.name)]
         c[key] = out
         return out
+
+    def in_the_way(self, region: Region, name: str) -> bool:
+        """Does the object's body (not just its shadow) block the region, as far as the robot knows?"""
+        est = self.objects.get(name)
+        return est is not None and (region.hits_box(est.box, 0.05) or self.in_contact_way(region, name))
+
+    def in_contact_way(self, region: Region, name: str) -> bool:
+        """Would the motion for ``region`` reach a point that ``name`` stopped the robot from reaching?
+
+        The motion is what the world executes: from the robot's pose onto the
+        region's start, then along it, if the robot is (nominally) at the
+        start; from the start otherwise.  A point counts only if the motion
+        gets closer to it than where the motion begins (moving away from a
+        contact stays possible), and only while the object's estimate has
+        not moved since the contact (it was moved, or seen elsewhere).
+        """
+        memo = self.touched.get(name)
+        est = self.objects.get(name)
+        if not memo or est is None or name == self.held:
+            return False
+        pts = [self.pose, region.start, region.end] if self.at(region.start) else [region.start, region.end]
+        for h, was in memo:
+            if est.center.dist(was) > CONTACT_MOVED:
+                continue
+            d = min(Box(h.x, h.y, 0.0, 0.0).distance_to_segment(pts[i], pts[i + 1]) for i in range(len(pts) - 1))
+            if d < CONTACT_REACH and d < h.dist(pts[0]) - 1e-3:
+                return True
+        return False
 
     def clear(self, region: Region, exclude: frozenset[str], eps: float) -> bool:
         return not self.blockers(region, eps, exclude) and not self.bumped(region)
@@ -250,19 +289,24 @@ class NamoBelief:
         name = action.name
         looked = self.objects.get(str(action.args[1])) if name == "LookObj" else None
         before = looked.sigma if looked is not None else None
+        touched: Pt | None = None  # where a move stopped by a contact could not go on to
         if name == "Move":
             region = action.args[2]
             assert isinstance(region, Region)
-            self._drive((self.pose, region.start, region.end), float(data.get("traveled", 0.0)))
+            path = (self.pose, region.start, region.end)
+            stop = self._drive(path, float(data.get("traveled", 0.0)))
             if data.get("completed", obs.success):
                 self.robot_sym = region.end
             else:
                 self.robot_sym = self.geom.grid.snap(self.pose)
+                touched = along(path, stop + CONTACT_AHEAD) if data.get("contacts") else None
         elif name == "Pick":
             self._update_pick(action, data)
         elif name == "Place":
             self._update_place(action, data)
         self._sense(data)
+        if touched is not None:
+            self._remember_contacts(data, touched)
         if before is not None and looked is not None and looked.sigma > 0.9 * before:
             v = action.args[0]
             if isinstance(v, Pt):
@@ -272,7 +316,20 @@ class NamoBelief:
                 self.futile_looks[(action.args[0], f"look:{action.args[1]}")] = self.percept
         self._bump()
 
-    def _drive(self, path: tuple[Pt, ...], traveled: float) -> None:
+    def _remember_contacts(self, data: dict[str, Any], h: Pt) -> None:
+        """A move stopped by contact: the robot's centre could not reach ``h`` for the objects touched.
+
+        Remembered with each object's estimate (after the contact's own
+        update), so that ``BClear`` keeps failing for motions through ``h``
+        until the object is moved or seen elsewhere, even when the estimate
+        alone (a few centimetres off) says the way is clear.
+        """
+        for c in data.get("contacts", ()):
+            est = self.objects.get(str(c[0]))
+            if est is not None:
+                self.touched.setdefault(est.name, []).append((h, est.center))
+
+    def _drive(self, path: tuple[Pt, ...], traveled: float) -> float:
         """Dead-reckon ``traveled`` metres (odometry along the commanded path) from where the robot is.
 
         The controller drives from the robot's actual pose through the
@@ -282,13 +339,15 @@ class NamoBelief:
         stopped at once would move the estimate, and the object with it.
         """
         if len(path) < 2:
-            return
+            return 0.0
         pts = [Pt.of(float(self.robot_mean[0]), float(self.robot_mean[1])), *path[1:]]
         planned, done = polyline_length(path), polyline_length(pts)
-        p = along(pts, traveled * done / planned if planned > 1e-9 else 0.0)
+        stop = traveled * done / planned if planned > 1e-9 else 0.0
+        p = along(pts, stop)
         self.robot_mean = np.array([p.x, p.y])
         self.robot_var += (self.params.motion_model * traveled) ** 2
         self.trajectory.append(p)
+        return stop
 
     def _update_pick(self, action: Action, data: dict[str, Any]) -> None:
         o, m = str(action.args[0]), action.args[1]

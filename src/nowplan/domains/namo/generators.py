@@ -99,8 +99,7 @@ def _clearable(belief: NamoBelief, r: Region) -> bool:
     from nowplan.domains.namo.placement import manip_options
 
     for name in belief.blockers(r, belief.params.eps_clear):
-        est = belief.objects[name]
-        if not r.hits_box(est.box, 0.05):
+        if not belief.in_the_way(r, name):
             continue  # a closer look will probably show the way is clear
         if not manip_options(belief, name, r.start, (r,), (), n=1):
             return False
@@ -171,7 +170,7 @@ def gen_look_clear(bindings: Bindings, goal: Goal, belief: NamoBelief, context: 
     k = k_of(belief.params.eps_clear)
     for name in belief.blockers(r, belief.params.eps_clear, ex):
         est = belief.objects[name]
-        if r.hits_box(est.box, 0.05):
+        if belief.in_the_way(r, name):
             continue
         d = v.dist(est.center)
         if d > belief.sensor.range - 0.2:
