@@ -267,3 +267,26 @@ def test_flexible_stops_retrying_a_plan_set_back_max_retries_times():
     assert m.outcome is Outcome.REACHED and m.action_counts["step1"] == 4
     assert m.replans == 0 and m.plans_made == 1
     assert not tr.of("note")
+
+
+
+def test_the_refinement_bound_counts_identical_plans_together():
+    # a failed plan is often remade identically (the belief has not changed): its copies must
+    # share one allowance, or the allowances multiply down the stack (RCHPN on marsupial
+    # dests-6 trial 3 re-proved one subgoal unsolvable for over 1 000 CPU s)
+    from types import SimpleNamespace
+
+    from nowplan.acting.hpn import Executive
+
+    from nowplan.core.levels import LevelMap
+    from nowplan.planning.plan import Plan, PlanStep
+
+    plan = Goal.of([atom("s3")])
+    act = CHAIN.operators[0].instantiate({})
+    p1 = Plan((PlanStep(None, Goal.of([atom("s0")])), PlanStep(act, plan)), LevelMap(CHAIN.top_level))
+    p2 = Plan((PlanStep(None, Goal.of([atom("s0")])), PlanStep(act, plan)), LevelMap(CHAIN.top_level))
+    key = Executive._refinement_key
+    f1 = SimpleNamespace(root=False, plan=p1, plan_id=3, i=1)
+    f2 = SimpleNamespace(root=False, plan=p2, plan_id=9, i=1)
+    assert key(None, f1) == key(None, f2)  # different plan ids, the same plan: one counter
+    assert key(None, f1) != key(None, SimpleNamespace(root=False, plan=p1, plan_id=3, i=0))

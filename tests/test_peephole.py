@@ -258,3 +258,36 @@ def test_rchpn_on_logistics_reaches_the_goal_with_valid_actions(seed):
     assert m.outcome is Outcome.REACHED, m.reason
     assert ran_ok and all(ran_ok)
     assert ep.problem.domain.satisfies(world.state, ep.problem.goal)
+
+
+def test_select_parallel_ops_does_not_form_a_combination_that_failed():
+    s = state(robot="yard", x="yard", y="hall", z="yard", w="yard")
+    ops = [act("carry", "x", "yard"), act("close"), act("carry", "y", "hall"),
+           act("carry", "z", "yard"), act("carry", "w", "yard")]
+    goal = Goal.of([atom("closed"), *(atom("carried", q) for q in "xyzw")])
+    failed = frozenset({act("carry", "x", "yard").key, act("carry", "y", "hall").key})
+    r = Reorderer(TOY, OBJECTS, s, LevelMap(TOY.top_level), ResourceModel(),
+                  PeepholeConfig(max_combined=3, min_hidden_to_combine=1), failed=[failed])
+    new, _, last = r.select_parallel_ops(*r.chain(ops, goal))
+    assert last == 2
+    assert {str(a) for a in new[:3]} == {"carry(x, yard)", "carry(z, yard)", "carry(w, yard)"}
+
+
+def test_peephole_remembers_a_failed_combination_until_the_next_action():
+    from types import SimpleNamespace
+
+    from nowplan.acting.peephole import Peephole
+    from nowplan.planning.plan import PlanResult, PlanStatus
+    from nowplan.trace import Trace
+
+    m = Peephole()
+    ex = SimpleNamespace(metrics=SimpleNamespace(actions=3), trace=Trace())
+    combo = frozenset({("carry", ("x", "yard")), ("carry", ("y", "hall"))})
+    parent = SimpleNamespace(plan_id=7, i=2, info={"joint": 2, "joint_ops": combo})
+    m.after_plan_failure(ex, parent, Goal(), PlanResult(PlanStatus.UNSOLVABLE, reason="exhausted"))
+    assert m._failed == [combo] and m._failed_at == 3
+    assert "not combined again" in ex.trace.of("note")[0]["text"]
+    # a failure of an ordinary (uncombined) step is not recorded
+    plain = SimpleNamespace(plan_id=8, i=1, info={"joint": None, "joint_ops": None})
+    m.after_plan_failure(ex, plain, Goal(), PlanResult(PlanStatus.UNSOLVABLE, reason="exhausted"))
+    assert m._failed == [combo]

@@ -18,7 +18,7 @@ import logging
 import random
 import time
 from collections import Counter
-from collections.abc import Callable
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -89,7 +89,7 @@ class Executive:
         self.on_action = on_action  # observers (e.g. a renderer); never change control flow
         # refinements of each (plan, step) since the last action: the bound on re-planning a
         # step that keeps failing while the belief does not change
-        self._refinements: Counter[tuple[int, int]] = Counter()
+        self._refinements: Counter[Hashable] = Counter()
         check_supported(self.domain, strategy)
         if strategy.domain_planner and self.domain.planner is None:
             raise ScenarioError(
@@ -195,6 +195,8 @@ class Executive:
             )
             self._last_failure = f"{res.status.value}: {res.reason}"
             self._last_status = res.status
+            for m in self.mechanisms:
+                m.after_plan_failure(self, parent, goal, res)
             return None
         self.metrics.plans_made += 1
         self._made[id(res.plan)] = {
@@ -242,6 +244,19 @@ class Executive:
     def goal_holds(self) -> bool:
         return self.domain.satisfies(self.belief, self.problem.goal)
 
+    def _refinement_key(self, f: Frame) -> Hashable:
+        """What the loop guard counts refinements of: a step of a plan *by content*.
+
+        A plan that fails is often replanned into the very same plan (the belief has not
+        changed); counting per plan id would give every copy a fresh allowance, and the
+        allowances multiply down the levels of the stack.  Counting per content bounds the
+        refinements of one step of one plan, however often it is remade, until the next action.
+        """
+        if f.root:
+            return ("root", 1)
+        acts = tuple(s.action.key if s.action is not None else None for s in f.plan.steps)
+        return (acts, f.plan.goal, f.i)
+
     # -- the loop ------------------------------------------------------------------
     def run(self) -> Metrics:
         self._t0 = time.perf_counter()
@@ -273,18 +288,18 @@ class Executive:
                 if len(self.stack) >= self.strategy.max_depth:
                     outcome, reason = Outcome.LIMIT, f"plan stack deeper than {self.strategy.max_depth}"
                     break
-                key = (f.plan_id, f.i if not f.root else 1)
+                key = self._refinement_key(f)
                 self._refinements[key] += 1
                 if self._refinements[key] > self.strategy.max_refinements:
                     why = (
-                        f"step {key[1]} of plan {f.plan_id} refined {self.strategy.max_refinements} "
-                        "times without an action in between"
+                        f"step {f.i if not f.root else 1} of plan {f.plan_id} (or of identical plans "
+                        f"made for it) refined {self.strategy.max_refinements} times without an action "
+                        "in between"
                     )
                     if f.root:
                         outcome, reason = Outcome.FAILED, f"no progress: {why}"
                         break
                     self.trace.emit("note", plan_id=f.plan_id, text=f"executive: gave up: {why}")
-                    self._refinements[key] = 0
                     self.pop("failed")
                     continue
                 levels = f.plan.levels if action is None else f.plan.levels.next_level(action)

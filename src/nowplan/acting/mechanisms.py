@@ -17,7 +17,7 @@ if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame
     from nowplan.core.atoms import Goal
     from nowplan.planning.regression import PlannerConfig
-    from nowplan.planning.plan import PlanStep
+    from nowplan.planning.plan import PlanResult, PlanStep
 
 
 class Mechanism:
@@ -44,6 +44,9 @@ class Mechanism:
     ) -> PlannerConfig | None:
         """The planner configuration for the plan about to be made for ``goal`` (None: keep)."""
         return None
+
+    def after_plan_failure(self, ex: Executive, parent: Frame, goal: Goal, result: PlanResult) -> None:
+        """The planner found no plan for ``goal``, the subgoal of ``parent``'s current step."""
 
 
 MechanismFactory = Callable[[Any], Mechanism]  # Strategy -> Mechanism

@@ -37,7 +37,7 @@ from nowplan.core.atoms import Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
-from nowplan.planning.plan import Plan, PlanStep
+from nowplan.planning.plan import Plan, PlanResult, PlanStep
 from nowplan.planning.regression import PlannerConfig, preimage
 
 if TYPE_CHECKING:
@@ -81,8 +81,10 @@ class Reorderer:
         levels: LevelMap,
         model: ResourceModel | None = None,
         config: PeepholeConfig | None = None,
+        failed: Sequence[frozenset[Any]] = (),
     ) -> None:
         self.domain = domain
+        self.failed = failed  # combinations (sets of action keys) found unplannable in this belief
         self.belief = belief
         self.levels = levels
         self.model = model or resource_model(domain)
@@ -186,6 +188,11 @@ class Reorderer:
             else:
                 self.moves.append(f"dropped {a} (no longer needed)")
 
+    def _failed_within(self, ops: Sequence[Action]) -> bool:
+        """Whether these operators include a combination whose joint planning failed."""
+        keys = {a.key for a in ops}
+        return any(f <= keys for f in self.failed)
+
     # -- Alg. 4 -------------------------------------------------------------------
     def select_parallel_ops(
         self, ops: list[Action], goals: list[Goal]
@@ -196,7 +203,7 @@ class Reorderer:
             return ops, goals, last
         j = 1
         while j < len(ops) and last + 1 < self.config.max_combined:
-            if self.combinable(ops[j]):
+            if self.combinable(ops[j]) and not self._failed_within([*ops[: last + 1], ops[j]]):
                 group = Subgoal(tuple(ops[: last + 1]), goals[last + 1])
                 if self.arrange(group, Subgoal((ops[j],), goals[j + 1])) is Arrange.COMBINE:
                     new = [*ops[: last + 1], ops[j], *ops[last + 1 : j], *ops[j + 1 :]]
@@ -237,6 +244,11 @@ class Peephole(Mechanism):
         self.config = config or PeepholeConfig()
         self.reorders = 0
         self.combinations = 0
+        # combinations whose joint planning failed, and the action count they failed at: not
+        # formed again until the belief changes (the planner would prove the same subgoal
+        # unplannable again, at the cost of a full search each time)
+        self._failed: list[frozenset[Any]] = []
+        self._failed_at = -1
 
     def after_push(self, ex: Executive, frame: Frame) -> None:
         frame.info["orig"] = list(range(len(frame.plan.steps)))
@@ -264,7 +276,10 @@ class Peephole(Mechanism):
         ops = [s.action for s in plan.steps[k + 1 :] if s.action is not None]
         before = list(ops)
         goals = [s.goal for s in plan.steps[k:]]
-        r = Reorderer(ex.domain, ex.problem.objects, ex.belief, plan.levels, config=self.config)
+        if self._failed_at != ex.metrics.actions:
+            self._failed, self._failed_at = [], ex.metrics.actions
+        r = Reorderer(ex.domain, ex.problem.objects, ex.belief, plan.levels, config=self.config,
+                      failed=self._failed)
         last = 0
         if r.arrangeable(ops[0]):
             ops, goals = r.select_gap(ops, goals)
@@ -288,7 +303,21 @@ class Peephole(Mechanism):
             log.info("peephole on plan %d: %s", frame.plan_id, "; ".join(r.moves))
         frame.i = k + 1 + last
         frame.info["joint"] = frame.i if last > 0 else None
+        frame.info["joint_ops"] = frozenset(a.key for a in ops[: last + 1]) if last > 0 else None
         return frame.plan.steps[frame.i]
+
+    def after_plan_failure(self, ex: Executive, parent: Frame, goal: Goal, result: PlanResult) -> None:
+        """A combined subgoal with no plan: remember the combination until the next action."""
+        joint = parent.info.get("joint")
+        ops = parent.info.get("joint_ops")
+        if joint is None or joint != parent.i or ops is None:
+            return
+        if self._failed_at != ex.metrics.actions:
+            self._failed, self._failed_at = [], ex.metrics.actions
+        self._failed.append(ops)
+        ex.trace.emit("note", plan_id=parent.plan_id,
+                      text=f"peephole: combined subgoal of {len(ops)} steps has no plan "
+                           f"({result.status.value}); not combined again until the next action")
 
     def planner_config(
         self, ex: Executive, parent: Frame, goal: Goal, config: PlannerConfig
