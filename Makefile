@@ -36,6 +36,7 @@ test-deps: $(TESTDEPS)
 	else echo "test-deps: chromium missing and not root; the browser test will be skipped"; fi
 
 test: $(STAMP) test-deps
+	$(BIN)/python -m mypy src/nowplan
 	$(BIN)/python -m pytest
 
 test-all: $(STAMP) test-deps
