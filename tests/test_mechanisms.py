@@ -285,8 +285,8 @@ def test_the_refinement_bound_counts_identical_plans_together():
     act = CHAIN.operators[0].instantiate({})
     p1 = Plan((PlanStep(None, Goal.of([atom("s0")])), PlanStep(act, plan)), LevelMap(CHAIN.top_level))
     p2 = Plan((PlanStep(None, Goal.of([atom("s0")])), PlanStep(act, plan)), LevelMap(CHAIN.top_level))
-    key = Executive._refinement_key
+    key = Executive.refinement_key
     f1 = SimpleNamespace(root=False, plan=p1, plan_id=3, i=1)
     f2 = SimpleNamespace(root=False, plan=p2, plan_id=9, i=1)
-    assert key(None, f1) == key(None, f2)  # different plan ids, the same plan: one counter
-    assert key(None, f1) != key(None, SimpleNamespace(root=False, plan=p1, plan_id=3, i=0))
+    assert key(f1) == key(f2)  # different plan ids, the same plan: one counter
+    assert key(f1) != key(SimpleNamespace(root=False, plan=p1, plan_id=3, i=0))

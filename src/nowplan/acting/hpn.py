@@ -244,7 +244,8 @@ class Executive:
     def goal_holds(self) -> bool:
         return self.domain.satisfies(self.belief, self.problem.goal)
 
-    def _refinement_key(self, f: Frame) -> Hashable:
+    @staticmethod
+    def refinement_key(f: Frame) -> Hashable:
         """What the loop guard counts refinements of: a step of a plan *by content*.
 
         A plan that fails is often replanned into the very same plan (the belief has not
@@ -288,7 +289,7 @@ class Executive:
                 if len(self.stack) >= self.strategy.max_depth:
                     outcome, reason = Outcome.LIMIT, f"plan stack deeper than {self.strategy.max_depth}"
                     break
-                key = self._refinement_key(f)
+                key = self.refinement_key(f)
                 self._refinements[key] += 1
                 if self._refinements[key] > self.strategy.max_refinements:
                     why = (
