@@ -87,8 +87,8 @@ class Executive:
         self._made: dict[int, dict[str, Any]] = {}  # plans made but not pushed yet
         self.mechanisms = strategy.mechanisms()
         self.on_action = on_action  # observers (e.g. a renderer); never change control flow
-        # refinements of each (plan, step) since the last action: the bound on re-planning a
-        # step that keeps failing while the belief does not change
+        # refinements of each step of each plan (by content, see refinement_key) since the last
+        # action: the bound on re-planning a step that keeps failing while the belief does not change
         self._refinements: Counter[Hashable] = Counter()
         check_supported(self.domain, strategy)
         if strategy.domain_planner and self.domain.planner is None:

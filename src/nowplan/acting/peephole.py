@@ -250,6 +250,12 @@ class Peephole(Mechanism):
         self._failed: list[frozenset[Any]] = []
         self._failed_at = -1
 
+    def _failed_now(self, ex: Executive) -> list[frozenset[Any]]:
+        """The combinations that failed in the current belief (forgotten after each action)."""
+        if self._failed_at != ex.metrics.actions:
+            self._failed, self._failed_at = [], ex.metrics.actions
+        return self._failed
+
     def after_push(self, ex: Executive, frame: Frame) -> None:
         frame.info["orig"] = list(range(len(frame.plan.steps)))
 
@@ -276,10 +282,8 @@ class Peephole(Mechanism):
         ops = [s.action for s in plan.steps[k + 1 :] if s.action is not None]
         before = list(ops)
         goals = [s.goal for s in plan.steps[k:]]
-        if self._failed_at != ex.metrics.actions:
-            self._failed, self._failed_at = [], ex.metrics.actions
         r = Reorderer(ex.domain, ex.problem.objects, ex.belief, plan.levels, config=self.config,
-                      failed=self._failed)
+                      failed=self._failed_now(ex))
         last = 0
         if r.arrangeable(ops[0]):
             ops, goals = r.select_gap(ops, goals)
@@ -312,9 +316,7 @@ class Peephole(Mechanism):
         ops = parent.info.get("joint_ops")
         if joint is None or joint != parent.i or ops is None:
             return
-        if self._failed_at != ex.metrics.actions:
-            self._failed, self._failed_at = [], ex.metrics.actions
-        self._failed.append(ops)
+        self._failed_now(ex).append(ops)
         ex.trace.emit("note", plan_id=parent.plan_id,
                       text=f"peephole: combined subgoal of {len(ops)} steps has no plan "
                            f"({result.status.value}); not combined again until the next action")

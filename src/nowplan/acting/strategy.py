@@ -10,12 +10,16 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.mechanisms import SWITCHES, Mechanism, Switch, register_switch
 from nowplan.errors import ScenarioError
 from nowplan.planning.regression import PlannerConfig
+
+if TYPE_CHECKING:
+    from nowplan.core.domain import Domain
+
 
 # modules that register switches with mechanisms when imported
 MECHANISM_MODULES = (
@@ -93,11 +97,10 @@ register_switch(
            {"domain_planner": True})
 )
 
-def check_supported(domain: Any, strategy: Strategy) -> None:
+def check_supported(domain: Domain, strategy: Strategy) -> None:
     """Refuse, before a run starts, a switch the domain declares it cannot support (and why)."""
-    unsupported = getattr(domain, "unsupported", None) or {}
     for switch in strategy.switches:
-        why = unsupported.get(switch)
+        why = domain.unsupported.get(switch)
         if why is not None:
             fix = (f"drop '{switch}' from the strategy '{strategy.name}'" if len(strategy.switches) > 1
                    else "choose another strategy (e.g. hpn)")
