@@ -189,6 +189,37 @@ def test_vehicle_shareability_verdicts():
     assert vehicle_shareable(("vehicle", "truck0"), acts[:1], acts[1:], ep.belief) is fits
 
 
+def test_the_loader_can_jam_a_bay_the_greedy_packer_fits():
+    # dests-6 trial 3: four packages fit a 3x6 bay by the packer, but stowed by the loader in this
+    # order the tall one walls off the free cells at the back and the ell cannot be stowed
+    empty = Hold.empty(3, 6)
+    jam = [("p4", "bar"), ("p3", "pole"), ("p2", "tall"), ("p0", "ell")]
+    assert can_share(empty, None, dict(jam))
+    assert not lp.can_stow_in_turn(empty, None, jam)
+    assert lp.can_stow_in_turn(empty, None, [jam[-1], *jam[:-1]])
+    conf: lp.Config = (empty, None)
+    for pkg in jam[:-1]:
+        path = lp.search((conf[0], pkg), lp.stow_goal, lp.stow_h)
+        assert path
+        conf = path[-1].after
+    assert lp.search((conf[0], jam[-1]), lp.stow_goal, lp.stow_h) is None
+
+
+def test_shareability_follows_the_loads_order():
+    ep = episode("dests", 6, 3)
+    shapes = dict(ep.belief.facts("shape"))
+    assert [shapes[p] for p in ("p4", "p3", "p2", "p0")] == ["bar", "pole", "tall", "ell"]
+    assert ep.belief.value(("cargo", ("truck4",))) == Hold.empty(3, 6)
+    load = next(op for op in ep.problem.domain.operators if op.name == "load")
+
+    def loads(*pkgs: str) -> list:
+        return [load.instantiate({load.params[0]: x, load.params[1]: "truck4", load.params[2]: "c4-l3"})
+                for x in pkgs]
+
+    assert vehicle_shareable(("vehicle", "truck4"), loads("p4", "p3", "p2"), loads("p0"), ep.belief) is False
+    assert vehicle_shareable(("space", "truck4"), loads("p0"), loads("p4", "p3", "p2"), ep.belief) is True
+
+
 def test_renderer_gives_a_png():
     ep = episode("single", 2, 0)
     png = get_domain("marsupial").renderer(ep.world, ep.belief)
@@ -234,6 +265,16 @@ def test_runs_reach_the_goal_with_valid_primitives(regime, strategy):
     assert ep.problem.domain.satisfies(ep.world.state, ep.problem.goal)
     costs = {"load": 10, "unload": 10, "travel": 10, "same_city": 0, "pack": 0}
     assert m.execution_cost == sum(costs.get(a.split("(")[0], 1) for a in executed)
+
+
+@pytest.mark.slow
+def test_rchpn_does_not_combine_loads_the_loader_cannot_stow():
+    # it used to combine four loads into truck4 that only the greedy packer could fit, and then
+    # found no plan to pack the truck ("no progress"); about 12 CPU s
+    ep = episode("dests", 6, 3)
+    m, bad, executed = _checked_run(ep, "hpn+peephole", 3)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert not bad and ep.problem.domain.satisfies(ep.world.state, ep.problem.goal)
 
 
 def test_ff_instance_is_solved_quickly():

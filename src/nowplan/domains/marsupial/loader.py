@@ -22,7 +22,7 @@ from __future__ import annotations
 import heapq
 import itertools
 import logging
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 
 from nowplan.domains.marsupial.grid import (
@@ -264,3 +264,41 @@ def door_of(status: str, shapes: Mapping[str, str]) -> Door:
 
     pkg = door_package(status)
     return (pkg, shapes[pkg]) if pkg is not None else None
+
+
+def can_stow_in_turn(hold: Hold, door: Door, extra: Sequence[tuple[str, str]]) -> bool:
+    """Can the loader stow ``extra`` packages, loaded in this order, into the bay as it is now?
+
+    The shareability test of the loads as the robot will do them: each
+    package arrives at the load anchor and the stow search (the one the
+    ``door(v) = none`` and ``packed(v)`` generators use) must find a way to
+    put it in storage from where the earlier ones were put.  The greedy
+    packer (:func:`~.grid.can_share`) may find room that this loader, placing
+    each package cheaply, does not leave; this test follows the loader.
+    Paths come from (and go into) :data:`CACHE`, so the plan that follows a
+    positive answer reuses them.
+    """
+    key = (hold, door, tuple(extra))
+    known = _STOW_MEMO.get(key)
+    if known is not None:
+        return known
+    conf: Config = (hold, door)
+    ok = True
+    have = set(hold.packages()) | ({door[0]} if door is not None else set())
+    todo = [(n, s) for n, s in extra if n not in have]
+    for i in range(len(todo) + 1):
+        if not is_packed(*conf):
+            path = CACHE.path(conf, "stow", stow_goal, stow_h)
+            if not path:
+                ok = False
+                break
+            conf = path[-1].after
+        if i < len(todo):
+            conf = (conf[0], todo[i])
+    if len(_STOW_MEMO) >= 4096:
+        _STOW_MEMO.clear()
+    _STOW_MEMO[key] = ok
+    return ok
+
+
+_STOW_MEMO: dict[tuple[Hold, Door, tuple[tuple[str, str], ...]], bool] = {}

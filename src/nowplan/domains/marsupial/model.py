@@ -340,14 +340,25 @@ UNSUPPORTED = {
 # -- the ordering preference's resources ---------------------------------------------------------
 
 
-def _packages_for(veh: str, actions: tuple[Action, ...] | list[Action]) -> set[str]:
-    return {
-        str(x.args[0]) for x in actions if x.name in ("load", "unload") and x.args[1] == veh
-    }
+def _packages_for(veh: str, actions: tuple[Action, ...] | list[Action]) -> list[str]:
+    """The packages the actions load into or unload from ``veh``, in the actions' order."""
+    out: list[str] = []
+    for x in actions:
+        if x.name in ("load", "unload") and x.args[1] == veh and str(x.args[0]) not in out:
+            out.append(str(x.args[0]))
+    return out
 
 
 def vehicle_shareable(resource: tuple[Any, ...], first: Any, second: Any, belief: Any) -> bool | None:
-    """A vehicle (and its space) is shareable by two subgoals if everything they move in it can be packed."""
+    """A vehicle (and its space) is shareable by two subgoals if everything they move in it can be packed.
+
+    Seed 002 V-B's greedy packer answers first (room for every package, as
+    far back as possible); when it finds room, the loader's own stow search
+    must also manage to put the packages away one after the other, as the
+    loads will bring them (:func:`.loader.can_stow_in_turn`): a fit only
+    the packer could find would leave a package at the door that no plan
+    can stow, so the vehicle could not travel.
+    """
     if resource[0] not in ("vehicle", "space"):
         return None
     veh = str(resource[1])
@@ -355,8 +366,10 @@ def vehicle_shareable(resource: tuple[Any, ...], first: Any, second: Any, belief
     if not isinstance(hold, Hold):
         return None
     shapes = dict(belief.facts("shape"))
-    want = {x: shapes[x] for x in _packages_for(veh, [*first, *second]) if x in shapes}
-    return can_share(hold, door, want)
+    order = [x for x in _packages_for(veh, [*first, *second]) if x in shapes]
+    if not can_share(hold, door, {x: shapes[x] for x in order}):
+        return False
+    return lp.can_stow_in_turn(hold, door, [(x, shapes[x]) for x in order])
 
 
 RESOURCES = register_resource_model(
