@@ -335,6 +335,8 @@ def test_reproduction_summaries_pair_runs_and_average():
     assert [r["time_increase_pct"] for r in single] == [100.0, 50.0]
     row = next(r for r in fig3 if r["regime"] == "single")
     assert row["cost_decrease_pct"] == 17.5 and row["trials"] == 2 and row["unsolved"] == 0
+    assert [r["hpn_over_rchpn_pct"] for r in single] == [33.3, 11.1]  # the other reading of "ratio"
+    assert row["hpn_over_rchpn_pct"] == 22.2
     both = next(r for r in fig3 if r["regime"] == "both")
     assert both["trials"] == 0 and both["unsolved"] == 1
     assert [s["regime"] for s in summary] == ["single origin, single destination"]
