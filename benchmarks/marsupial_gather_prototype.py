@@ -31,6 +31,7 @@ from nowplan.acting import peephole as ph
 from nowplan.acting.arrange import Arrange, Subgoal, depends
 from nowplan.acting.resources import register_resource_model
 from nowplan.domains.marsupial import model as mm
+from nowplan.domains.marsupial import loader as lp
 from nowplan.domains.marsupial.grid import Hold, can_share
 
 VEH_FIX = "veh" in sys.argv[5:] or "--quick-set" in sys.argv
@@ -55,9 +56,12 @@ def shareable(resource: tuple[Any, ...], first: Sequence[Action], second: Sequen
                 oreach = {str(l) for l, v in belief.facts("reachable") if str(v) == other}
                 l = where.get(p)
                 if l is not None and l in reach and l not in oreach:
-                    pk.add(p)
-    want = {x: shapes[x] for x in pk if x in shapes}
-    return can_share(hold, door, want)
+                    if p not in pk:
+                        pk.append(p)
+    order = [x for x in pk if x in shapes]
+    if not can_share(hold, door, {x: shapes[x] for x in order}):
+        return False
+    return lp.can_stow_in_turn(hold, door, [(x, shapes[x]) for x in order])  # as the library's test
 
 register_resource_model(mm.NAME, dataclasses.replace(mm.RESOURCES, shareable=shareable))
 
