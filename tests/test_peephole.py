@@ -291,3 +291,29 @@ def test_peephole_remembers_a_failed_combination_until_the_next_action():
     plain = SimpleNamespace(plan_id=8, i=1, info={"joint": None, "joint_ops": None})
     m.after_plan_failure(ex, plain, Goal(), PlanResult(PlanStatus.UNSOLVABLE, reason="exhausted"))
     assert m._failed == [combo]
+
+
+def test_a_combination_too_large_to_plan_lowers_the_complexity_limit_until_the_next_action():
+    from types import SimpleNamespace
+
+    from nowplan.acting.peephole import Peephole
+    from nowplan.planning.plan import PlanResult, PlanStatus
+    from nowplan.trace import Trace
+
+    m = Peephole(PeepholeConfig(max_combined=4))
+    ex = SimpleNamespace(metrics=SimpleNamespace(actions=5), trace=Trace())
+
+    def fail(n: int, status: PlanStatus) -> None:
+        combo = frozenset(("carry", (f"q{i}", "yard")) for i in range(n))
+        parent = SimpleNamespace(plan_id=1, i=1, info={"joint": 1, "joint_ops": combo})
+        m.after_plan_failure(ex, parent, Goal(), PlanResult(status, reason="r"))
+
+    fail(4, PlanStatus.TIME_LIMIT)
+    assert m._cap == 3 and "nor more than 3 steps" in ex.trace.of("note")[-1]["text"]
+    fail(3, PlanStatus.UNSOLVABLE)  # a combination proved impossible is remembered, the limit kept
+    assert m._cap == 3
+    fail(3, PlanStatus.NODE_LIMIT)
+    fail(2, PlanStatus.TIME_LIMIT)
+    assert m._cap == 1  # one step at a time, as HPN
+    ex.metrics.actions = 6  # the belief changed: the paper's limit again
+    assert m._failed_now(ex) == [] and m._cap == 4

@@ -104,3 +104,26 @@ def test_shortcuts_can_be_switched_off(flags):
         assert not any(a.startswith("serialization") for a in res.attempts)
     if not mono:
         assert not any(a.startswith("monotonic") for a in res.attempts)
+
+
+def test_the_time_limit_runs_on_the_configured_clock(monkeypatch):
+    import itertools
+    import time
+
+    from nowplan.errors import UsageError
+
+    dom, objs, state, goal = _clock_problem()
+    assert plan(dom, objs, state, goal, config=PlannerConfig(time_limit=5.0, clock="cpu")).status is PlanStatus.SOLVED
+    ticks = itertools.count(0.0, 100.0)  # a CPU clock that jumps 100 s per reading
+    monkeypatch.setattr(time, "process_time", lambda: next(ticks))
+    cpu = plan(dom, objs, state, goal, config=PlannerConfig(time_limit=5.0, clock="cpu"))
+    assert cpu.status is PlanStatus.TIME_LIMIT
+    assert plan(dom, objs, state, goal, config=PlannerConfig(time_limit=5.0)).status is PlanStatus.SOLVED
+    with pytest.raises(UsageError, match="'wall' or 'cpu'"):
+        plan(dom, objs, state, goal, config=PlannerConfig(clock="sundial"))
+
+
+def _clock_problem():
+    ops = (_op("ab", [atom("a", x)], [atom("b", x)]), _op("bc", [atom("b", x)], [atom("c", x)]))
+    dom = Domain("t", PREDS, ops, types={"o": None})
+    return dom, {"k": "o"}, State([atom("a", "k")]), Goal.of([atom("c", "k")])

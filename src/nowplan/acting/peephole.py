@@ -37,7 +37,7 @@ from nowplan.core.atoms import Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
-from nowplan.planning.plan import Plan, PlanResult, PlanStep
+from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.regression import PlannerConfig, preimage
 
 if TYPE_CHECKING:
@@ -249,11 +249,17 @@ class Peephole(Mechanism):
         # unplannable again, at the cost of a full search each time)
         self._failed: list[frozenset[Any]] = []
         self._failed_at = -1
+        # the complexity limit in this belief: lowered below the size of a combined subgoal whose
+        # joint search ran out of nodes or time (seed 002 IV: the limit keeps the next level's
+        # problems solvable), so that after at most max_combined - 1 such failures RCHPN plans
+        # the steps one at a time, as HPN does
+        self._cap = self.config.max_combined
 
     def _failed_now(self, ex: Executive) -> list[frozenset[Any]]:
         """The combinations that failed in the current belief (forgotten after each action)."""
         if self._failed_at != ex.metrics.actions:
             self._failed, self._failed_at = [], ex.metrics.actions
+            self._cap = self.config.max_combined
         return self._failed
 
     def after_push(self, ex: Executive, frame: Frame) -> None:
@@ -282,8 +288,11 @@ class Peephole(Mechanism):
         ops = [s.action for s in plan.steps[k + 1 :] if s.action is not None]
         before = list(ops)
         goals = [s.goal for s in plan.steps[k:]]
-        r = Reorderer(ex.domain, ex.problem.objects, ex.belief, plan.levels, config=self.config,
-                      failed=self._failed_now(ex))
+        failed = self._failed_now(ex)
+        config = self.config
+        if self._cap < config.max_combined:
+            config = replace(config, max_combined=self._cap)
+        r = Reorderer(ex.domain, ex.problem.objects, ex.belief, plan.levels, config=config, failed=failed)
         last = 0
         if r.arrangeable(ops[0]):
             ops, goals = r.select_gap(ops, goals)
@@ -317,9 +326,13 @@ class Peephole(Mechanism):
         if joint is None or joint != parent.i or ops is None:
             return
         self._failed_now(ex).append(ops)
+        too_big = result.status in (PlanStatus.TIME_LIMIT, PlanStatus.NODE_LIMIT)
+        if too_big:
+            self._cap = min(self._cap, len(ops) - 1)
         ex.trace.emit("note", plan_id=parent.plan_id,
                       text=f"peephole: combined subgoal of {len(ops)} steps has no plan "
-                           f"({result.status.value}); not combined again until the next action")
+                           f"({result.status.value}); not combined again until the next action"
+                           + (f", nor more than {self._cap} steps" if too_big else ""))
 
     def planner_config(
         self, ex: Executive, parent: Frame, goal: Goal, config: PlannerConfig

@@ -17,7 +17,7 @@ import itertools
 import logging
 import random
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -36,7 +36,10 @@ log = logging.getLogger(__name__)
 @dataclass(frozen=True)
 class PlannerConfig:
     max_nodes: int = 50_000  # expansions for the full search
-    time_limit: float = 60.0  # wall seconds for one call (all methods)
+    time_limit: float = 60.0  # seconds for one call (all methods), on ``clock``
+    # "wall" (elapsed time) or "cpu" (this process's CPU time: the same searches end on a loaded
+    # machine as on a quiet one, for experiments)
+    clock: str = "wall"
     weight: float = 1.0  # f = g + weight * h
     serialization: bool = True  # HPN shortcut 1
     monotonic: bool = True  # HPN shortcut 2
@@ -101,6 +104,7 @@ class _Search:
         self.levels = levels
         self.config = config
         self.deadline = deadline
+        self.now = _clock(config)
         self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values)
         self.drop = frozenset(
             n
@@ -182,7 +186,7 @@ class _Search:
             self.expanded += 1
             if exp > max_nodes:
                 return PlanStatus.NODE_LIMIT, None, f"expanded {max_nodes} nodes without a plan"
-            if time.perf_counter() > self.deadline:
+            if self.now() > self.deadline:
                 return PlanStatus.TIME_LIMIT, None, f"time limit of {self.config.time_limit:g} s reached"
             gcost = best_g[node]
             allowed = [
@@ -232,6 +236,14 @@ class _Search:
         return steps
 
 
+def _clock(config: PlannerConfig) -> Callable[[], float]:
+    if config.clock not in ("wall", "cpu"):
+        from nowplan.errors import UsageError
+
+        raise UsageError(f"PlannerConfig.clock is {config.clock!r}; use 'wall' or 'cpu'")
+    return time.process_time if config.clock == "cpu" else time.perf_counter
+
+
 def plan(
     domain: Domain,
     objects: Mapping[str, str | None],
@@ -247,9 +259,8 @@ def plan(
     levels = levels or LevelMap(domain.top_level)
     rng = rng or random.Random(config.seed)
     t_cpu = time.process_time()
-    t0 = time.perf_counter()
     search = _Search(
-        domain, objects, belief, levels, config, context, deadline=t0 + config.time_limit
+        domain, objects, belief, levels, config, context, deadline=_clock(config)() + config.time_limit
     )
     attempts: list[str] = []
     result: tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str] = (
@@ -267,11 +278,11 @@ def plan(
         method = "serialization"
     if result[0] is not PlanStatus.SOLVED and config.monotonic and len(goal) > 1 and unmet != list(goal.atoms):
         protect = frozenset(a for a in goal.atoms if search.holds(a))
-        if time.perf_counter() < search.deadline:
+        if search.now() < search.deadline:
             result = search.run(goal, config.shortcut_nodes, protect=protect)
             attempts.append(f"monotonic:{result[0].value}")
             method = "monotonic"
-    if result[0] is not PlanStatus.SOLVED and time.perf_counter() < search.deadline:
+    if result[0] is not PlanStatus.SOLVED and search.now() < search.deadline:
         result = search.run(goal, config.max_nodes)
         attempts.append(f"full:{result[0].value}")
         method = "full"
