@@ -19,7 +19,7 @@ import random
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Literal
 
 from nowplan.core.atoms import Atom, Goal, conjoin, contradiction
 from nowplan.core.domain import Domain
@@ -39,7 +39,7 @@ class PlannerConfig:
     time_limit: float = 60.0  # seconds for one call (all methods), on ``clock``
     # "wall" (elapsed time) or "cpu" (this process's CPU time: the same searches end on a loaded
     # machine as on a quiet one, for experiments)
-    clock: str = "wall"
+    clock: Literal["wall", "cpu"] = "wall"
     weight: float = 1.0  # f = g + weight * h
     serialization: bool = True  # HPN shortcut 1
     monotonic: bool = True  # HPN shortcut 2
