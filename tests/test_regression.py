@@ -50,10 +50,8 @@ def test_preimage_keeps_only_critical_preconditions_at_a_level():
 
 
 def test_plan_invariants_chain():
-    ops = (_op("ab", [atom("a", x)], [atom("b", x)]), _op("bc", [atom("b", x)], [atom("c", x)]))
-    dom = Domain("t", PREDS, ops, types={"o": None})
-    init = State([atom("a", "k")])
-    res = plan(dom, {"k": "o"}, init, Goal.of([atom("c", "k")]), flat_levels())
+    dom, objs, init, goal = _chain_problem()
+    res = plan(dom, objs, init, goal, flat_levels())
     assert res.status is PlanStatus.SOLVED and res.plan is not None
     assert [a.name for a in res.plan.actions] == ["ab", "bc"]
     assert res.plan.goal == Goal.of([atom("c", "k")])
@@ -112,7 +110,7 @@ def test_the_time_limit_runs_on_the_configured_clock(monkeypatch):
 
     from nowplan.errors import UsageError
 
-    dom, objs, state, goal = _clock_problem()
+    dom, objs, state, goal = _chain_problem()
     assert plan(dom, objs, state, goal, config=PlannerConfig(time_limit=5.0, clock="cpu")).status is PlanStatus.SOLVED
     ticks = itertools.count(0.0, 100.0)  # a CPU clock that jumps 100 s per reading
     monkeypatch.setattr(time, "process_time", lambda: next(ticks))
@@ -123,7 +121,7 @@ def test_the_time_limit_runs_on_the_configured_clock(monkeypatch):
         plan(dom, objs, state, goal, config=PlannerConfig(clock="sundial"))
 
 
-def _clock_problem():
+def _chain_problem():
     ops = (_op("ab", [atom("a", x)], [atom("b", x)]), _op("bc", [atom("b", x)], [atom("c", x)]))
     dom = Domain("t", PREDS, ops, types={"o": None})
     return dom, {"k": "o"}, State([atom("a", "k")]), Goal.of([atom("c", "k")])

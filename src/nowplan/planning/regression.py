@@ -97,14 +97,13 @@ class _Search:
         levels: LevelMap,
         config: PlannerConfig,
         context: PlanningContext | None,
-        deadline: float,
     ) -> None:
         self.domain = domain
         self.belief = belief
         self.levels = levels
         self.config = config
-        self.deadline = deadline
         self.now = _clock(config)
+        self.deadline = self.now() + config.time_limit
         self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values)
         self.drop = frozenset(
             n
@@ -259,9 +258,7 @@ def plan(
     levels = levels or LevelMap(domain.top_level)
     rng = rng or random.Random(config.seed)
     t_cpu = time.process_time()
-    search = _Search(
-        domain, objects, belief, levels, config, context, deadline=_clock(config)() + config.time_limit
-    )
+    search = _Search(domain, objects, belief, levels, config, context)
     attempts: list[str] = []
     result: tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str] = (
         PlanStatus.UNSOLVABLE,
