@@ -101,7 +101,7 @@ def test_load_pddl_adds_the_rule_and_it_prunes() -> None:
     assert any(isinstance(c, MutexRule) for c in with_m.domain.conflicts)
     assert without.domain.conflicts == ()
     assert with_m.domain.rules.atoms_conflict(atom("at", "pkg1", "city1-loc1"), atom("in", "pkg1", "plane1"))
-    cfg = PlannerConfig(time_limit=30, serialization=False, monotonic=False)
+    cfg = PlannerConfig(time_limit=30, serialization=False, monotonic=False, engine="regression")
     r1 = plan(with_m.domain, with_m.objects, with_m.init, with_m.goal, flat_levels(), cfg)
     r2 = plan(without.domain, without.objects, without.init, without.goal, flat_levels(), cfg)
     assert r1.solved and r2.solved

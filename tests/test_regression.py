@@ -60,16 +60,22 @@ def test_plan_invariants_chain():
 
 def test_unreachable_goal_is_unsolvable_not_an_exception():
     dom = Domain("t", PREDS, (_op("ab", [atom("a", x)], [atom("b", x)]),))
-    res = plan(dom, {"k": None}, State(), Goal.of([atom("b", "k")]), flat_levels())
+    regr = PlannerConfig(engine="regression")
+    res = plan(dom, {"k": None}, State(), Goal.of([atom("b", "k")]), flat_levels(), regr)
     assert res.status is PlanStatus.UNSOLVABLE and "exhausted" in res.reason and res.plan is None
+    # the forward engine sees it before searching: no action reaches b(k)
+    fwd = plan(dom, {"k": None}, State(), Goal.of([atom("b", "k")]), flat_levels())
+    assert fwd.status is PlanStatus.UNSOLVABLE and "b(k)" in fwd.reason and fwd.method == "forward:gbfs"
 
 
 def test_node_limit_is_reported():
     size = SIZES["medium"]
     prob = generate(size, 1)
-    cfg = PlannerConfig(max_nodes=3, shortcut_nodes=2, heuristic="count")
+    cfg = PlannerConfig(max_nodes=3, shortcut_nodes=2, heuristic="count", engine="regression")
     res = plan(LOG, prob.objects, prob.init, prob.goal, flat_levels(), cfg)
     assert res.status is PlanStatus.NODE_LIMIT and "3 nodes" in res.reason
+    fwd = plan(LOG, prob.objects, prob.init, prob.goal, flat_levels(), PlannerConfig(max_nodes=3))
+    assert fwd.status is PlanStatus.NODE_LIMIT and "3 states" in fwd.reason
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -111,12 +117,16 @@ def test_the_time_limit_runs_on_the_configured_clock(monkeypatch):
     from nowplan.errors import UsageError
 
     dom, objs, state, goal = _chain_problem()
-    assert plan(dom, objs, state, goal, config=PlannerConfig(time_limit=5.0, clock="cpu")).status is PlanStatus.SOLVED
-    ticks = itertools.count(0.0, 100.0)  # a CPU clock that jumps 100 s per reading
-    monkeypatch.setattr(time, "process_time", lambda: next(ticks))
-    cpu = plan(dom, objs, state, goal, config=PlannerConfig(time_limit=5.0, clock="cpu"))
-    assert cpu.status is PlanStatus.TIME_LIMIT
-    assert plan(dom, objs, state, goal, config=PlannerConfig(time_limit=5.0)).status is PlanStatus.SOLVED
+    for engine in ("regression", "forward"):
+        cfg = PlannerConfig(time_limit=5.0, clock="cpu", engine=engine)
+        assert plan(dom, objs, state, goal, config=cfg).status is PlanStatus.SOLVED
+        ticks = itertools.count(0.0, 100.0)  # a CPU clock that jumps 100 s per reading
+        with monkeypatch.context() as m:
+            m.setattr(time, "process_time", lambda: next(ticks))
+            cpu = plan(dom, objs, state, goal, config=cfg)
+            assert cpu.status is PlanStatus.TIME_LIMIT, engine
+            wall = PlannerConfig(time_limit=5.0, engine=engine)
+            assert plan(dom, objs, state, goal, config=wall).status is PlanStatus.SOLVED
     with pytest.raises(UsageError, match="'wall' or 'cpu'"):
         plan(dom, objs, state, goal, config=PlannerConfig(clock="sundial"))
 

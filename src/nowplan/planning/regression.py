@@ -47,6 +47,14 @@ class PlannerConfig:
     max_generator_values: int = 8
     seed: int = 0
     heuristic: str = "hadd"  # hadd (HSPr-style, when the belief lists its facts) | count
+    # "auto": search forward (nowplan.planning.forward) where the belief lists its facts and the
+    # domain has no generators or tested predicates, else regress; "forward" | "regression" force one
+    engine: Literal["auto", "forward", "regression"] = "auto"
+    # the forward search: lazy greedy best-first with preferred operators, or (weighted) A*
+    search: Literal["gbfs", "astar"] = "gbfs"
+    forward_heuristic: Literal["ff", "add", "max"] = "ff"
+    # action costs as the forward heuristic sees them (FD's adapt_costs): one | plusone | normal
+    cost_type: Literal["one", "plusone", "normal"] = "plusone"
 
 
 def preimage(
@@ -235,6 +243,11 @@ class _Search:
         return steps
 
 
+def context_allows_forward(context: PlanningContext | None) -> bool:
+    """A domain's own estimate (``context.extras["heuristic"]``) is for the regression search."""
+    return context is None or context.extras.get("heuristic") is None
+
+
 def _clock(config: PlannerConfig) -> Callable[[], float]:
     if config.clock not in ("wall", "cpu"):
         from nowplan.errors import UsageError
@@ -258,6 +271,12 @@ def plan(
     levels = levels or LevelMap(domain.top_level)
     rng = rng or random.Random(config.seed)
     t_cpu = time.process_time()
+    if config.engine != "regression" and context_allows_forward(context):
+        from nowplan.planning.forward import plan_forward
+
+        forward = plan_forward(domain, objects, belief, goal, levels, config)
+        if forward is not None:
+            return forward
     search = _Search(domain, objects, belief, levels, config, context)
     attempts: list[str] = []
     result: tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str] = (

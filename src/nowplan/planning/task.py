@@ -1,0 +1,384 @@
+"""An integer STRIPS task for forward search, grounded by relaxed reachability.
+
+In the style of Fast Downward's translator and search code: atoms become
+fact ids, a ground action becomes tuples of precondition, add and delete
+ids, and a state is a ``frozenset`` of the true fact ids.
+
+Grounding joins each operator's positive preconditions against the facts a
+relaxed (delete-free) exploration reaches from the initial state, until a
+fixpoint; parameters no such precondition binds are enumerated by type.
+Static preconditions (predicates no operator changes) are checked at every
+level, as the regression planner's grounder does; the others count only
+when their criticality is kept at the action's level.  A grounding is
+cached per (domain, objects, static facts, level) and reused for any later
+state whose true facts it already reached (everything reachable from such a
+state was reached too).
+
+Negative conditions are compiled into facts of their own ("not p"): an
+action that deletes ``p`` adds ``not p`` and one that adds ``p`` deletes it
+(FD's translation of negative preconditions).  At an abstraction level an
+action's hidden preconditions are not checked, so its adds also delete
+every fact the domain's conflict rules (mutexes) exclude: the regression
+planner assumes the same when it refuses a pre-image that conflicts with an
+action's effects, so plans found forward regress into exact pre-images.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from nowplan.core.atoms import Atom, Goal, Var, contradiction
+from nowplan.core.domain import Domain
+from nowplan.core.levels import LevelMap
+from nowplan.core.operators import Action, Operator
+
+
+def forward_unsupported(domain: Domain, belief: Any) -> str | None:
+    """Why forward search cannot run on this domain and belief, or ``None`` if it can."""
+    if not (hasattr(belief, "atoms") and hasattr(belief, "facts")):
+        return "the belief does not list its facts"
+    if any(op.generators for op in domain.operators):
+        return "operators have generators"
+    for p in domain.predicates.values():
+        if p.test is not None:
+            return f"predicate {p.name} has a test"
+        if not p.boolean:
+            return f"predicate {p.name} is not boolean"
+    for op in domain.operators:
+        atoms = [pc.atom for pc in op.preconditions] + list(op.effects)
+        if any(not isinstance(a.value, bool) for a in atoms):
+            return f"operator {op.name} has a non-boolean condition or effect"
+    return None
+
+
+@dataclass
+class Grounding:
+    """The reachable ground actions of a problem for one abstraction level."""
+
+    actions: list[Action]
+    reached: set[Atom]  # positive atoms reachable from the states seen so far
+    statics: frozenset[str]
+
+
+_CACHE: dict[Any, Grounding] = {}
+_CACHE_SIZE = 16
+
+
+def _key_of(domain: Domain, objects: Mapping[str, str | None], belief: Any, statics: frozenset[str],
+            level: int) -> Any:
+    facts = tuple(sorted((p, tuple(sorted(map(repr, belief.facts(p))))) for p in statics))
+    return (id(domain), domain.name, tuple(sorted(objects.items(), key=repr)), facts, level)
+
+
+def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, level: int) -> Grounding:
+    """The reachable actions for ``belief`` at ``level`` (cached across calls)."""
+    statics = domain.static_predicates
+    key = _key_of(domain, objects, belief, statics, level)
+    init = {a for a in belief.atoms() if a.value is True}
+    hit = _CACHE.get(key)
+    if hit is not None and init <= hit.reached:
+        return hit
+    start = init | (hit.reached if hit is not None else set())
+    g = _ground(domain, objects, start, statics, level)
+    if len(_CACHE) >= _CACHE_SIZE and key not in _CACHE:
+        _CACHE.pop(next(iter(_CACHE)))
+    _CACHE[key] = g
+    return g
+
+
+def _objects_by_type(domain: Domain, objects: Mapping[str, str | None]) -> dict[str | None, list[str]]:
+    allobj = {**dict(domain.constants), **dict(objects)}
+    out: dict[str | None, list[str]] = {None: sorted(allobj)}
+    for t in list(domain.types) + [o for o in set(allobj.values()) if o is not None]:
+        if t not in out:
+            ok = domain.subtypes(t)
+            out[t] = sorted(o for o, ot in allobj.items() if ot in ok)
+    return out
+
+
+def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
+            statics: frozenset[str], level: int) -> Grounding:
+    by_type = _objects_by_type(domain, objects)
+    type_sets = {t: frozenset(v) for t, v in by_type.items()}
+    reached: set[Atom] = set(start)
+    facts: dict[str, set[tuple[Any, ...]]] = {}
+    for a in reached:
+        facts.setdefault(a.predicate, set()).add(a.args)
+    seen: set[tuple[str, tuple[Any, ...]]] = set()
+    actions: list[Action] = []
+    grew = True
+    while grew:
+        grew = False
+        new: list[Atom] = []
+        for op in domain.operators:
+            for b in _bindings(op, facts, by_type, type_sets, statics, level):
+                act = op.instantiate(b)
+                if act.key in seen or not _negative_statics_hold(act, statics, facts):
+                    continue
+                seen.add(act.key)
+                actions.append(act)
+                for e in act.effects():
+                    if e.value is True and e not in reached:
+                        reached.add(e)
+                        new.append(e)
+        for e in new:
+            facts.setdefault(e.predicate, set()).add(e.args)
+            grew = True
+    return Grounding(actions, reached, statics)
+
+
+def _negative_statics_hold(act: Action, statics: frozenset[str], facts: Mapping[str, set[Any]]) -> bool:
+    for p in act.preconditions(None):
+        if p.value is False and p.predicate in statics and p.args in facts.get(p.predicate, ()):
+            return False
+    return True
+
+
+def _bindings(op: Operator, facts: Mapping[str, set[tuple[Any, ...]]],
+              by_type: Mapping[str | None, list[str]], type_sets: Mapping[str | None, frozenset[str]],
+              statics: frozenset[str], level: int) -> Iterator[dict[Var, Any]]:
+    """Bindings whose joined positive preconditions (statics, and kept ones) are reached."""
+    conds = [
+        p.atom for p in op.preconditions
+        if p.atom.value is True and (p.atom.predicate in statics or p.criticality > level)
+    ]
+    remaining = list(conds)
+    order: list[Atom] = []
+    bound: set[Var] = set()
+    while remaining:  # join the most constrained condition first
+        best = max(remaining, key=lambda a: (sum(1 for t in a.args if not isinstance(t, Var) or t in bound),
+                                             -len(facts.get(a.predicate, ()))))
+        remaining.remove(best)
+        order.append(best)
+        bound.update(t for t in best.args if isinstance(t, Var))
+
+    def join(i: int, cur: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
+        if i == len(order):
+            yield cur
+            return
+        c = order[i]
+        for args in facts.get(c.predicate, ()):
+            if len(args) != len(c.args):
+                continue
+            nxt = cur
+            ok = True
+            for t, v in zip(c.args, args, strict=True):
+                if isinstance(t, Var):
+                    have = nxt.get(t, _UNBOUND)
+                    if have is _UNBOUND:
+                        if nxt is cur:
+                            nxt = dict(cur)
+                        nxt[t] = v
+                    elif have != v:
+                        ok = False
+                        break
+                elif t != v:
+                    ok = False
+                    break
+            if ok:
+                yield from join(i + 1, nxt)
+
+    for jb in join(0, {}):
+        if not _types_ok(op, jb, type_sets):
+            continue
+        free = [v for v in op.params if v not in jb]
+        domains = [by_type.get(op.type_of(v), []) for v in free]
+        for combo in itertools.product(*domains):
+            full = dict(jb)
+            full.update(zip(free, combo, strict=True))
+            yield full
+
+
+_UNBOUND = object()
+
+
+def _types_ok(op: Operator, b: Mapping[Var, Any], type_sets: Mapping[str | None, frozenset[str]]) -> bool:
+    if not op.param_types:
+        return True
+    for v, t in zip(op.params, op.param_types, strict=True):
+        if t is None or v not in b:
+            continue
+        val = b[v]
+        if val in type_sets[None] and val not in type_sets.get(t, ()):  # other values are not typed
+            return False
+    return True
+
+
+# --------------------------------------------------------------------------- the task
+
+
+@dataclass
+class Task:
+    """Integer actions at one level map: ``pre``/``add``/``dele`` are fact-id tuples."""
+
+    facts: list[Atom]  # id -> atom (value False for a compiled "not" fact)
+    index: dict[Atom, int]
+    actions: list[Action]
+    pre: list[tuple[int, ...]]
+    add: list[tuple[int, ...]]
+    dele: list[tuple[int, ...]]
+    cost: list[float]
+    init: frozenset[int]
+    goal: tuple[int, ...]
+    unsolvable: str = ""  # why the goal cannot be reached (a goal atom never reachable)
+    by_pre: dict[int, list[int]] = field(default_factory=dict)  # fact -> actions that need it
+    no_pre: list[int] = field(default_factory=list)  # actions with no preconditions
+
+
+def build_task(
+    domain: Domain,
+    objects: Mapping[str, str | None],
+    belief: Any,
+    goal: Goal,
+    levels: LevelMap,
+    cost_of: Any,
+) -> Task:
+    """The integer task for ``goal`` from ``belief`` with each action at its level in ``levels``."""
+    top = max([levels.top, *(lv for _, lv in levels.overrides)])
+    gr = grounding(domain, objects, belief, top)
+    statics = gr.statics
+    facts: list[Atom] = []
+    index: dict[Atom, int] = {}
+
+    def fid(a: Atom) -> int:
+        i = index.get(a)
+        if i is None:
+            i = index[a] = len(facts)
+            facts.append(a)
+        return i
+
+    true_now = {a for a in belief.atoms() if a.value is True}
+    negs: set[Atom] = set()  # the positive atoms whose negation is a condition somewhere
+    kept = _reachable(gr, levels, statics, true_now)
+    for _, conds in kept:
+        negs.update(p.negate() for p in conds if p.value is False)
+    negs.update(a.negate() for a in goal.atoms if a.value is False and a.predicate not in statics)
+    # ids in a canonical order, whatever the cache saw before: the same call makes the same plan
+    reached = set(true_now)
+    for act, _ in kept:
+        reached.update(e for e in act.effects() if e.value is True)
+    for a in sorted(reached, key=_atom_order):
+        fid(a)
+    for a in sorted(negs, key=_atom_order):
+        fid(a.negate())
+    abstract = any(not levels.is_primitive(act) for act, _ in kept)
+    excludes = _Excluder(domain, reached) if abstract and domain.rules.conflicts else None
+    pre: list[tuple[int, ...]] = []
+    add: list[tuple[int, ...]] = []
+    dele: list[tuple[int, ...]] = []
+    cost: list[float] = []
+    actions: list[Action] = []
+    for act, conds in kept:
+        p_ids = tuple(sorted({fid(c) if c.value is True else index[c] for c in conds}))
+        adds = {e for e in act.effects() if e.value is True}
+        dels = {e.negate() for e in act.effects() if e.value is False} - adds
+        if excludes is not None and not levels.is_primitive(act):
+            dels |= excludes(adds) - adds
+        a_ids = {index[e] for e in adds if e in index}
+        d_ids = {index[e] for e in dels if e in index}
+        a_ids |= {index[e.negate()] for e in dels if e in negs}
+        d_ids |= {index[e.negate()] for e in adds if e in negs}
+        actions.append(act)
+        pre.append(p_ids)
+        add.append(tuple(sorted(a_ids)))
+        dele.append(tuple(sorted(d_ids - a_ids)))
+        cost.append(float(cost_of(act)))
+    init = frozenset({index[a] for a in true_now if a in index}
+                     | {index[n.negate()] for n in negs if n not in true_now})
+    task = Task(facts, index, actions, pre, add, dele, cost, init, ())
+    goal_ids: list[int] = []
+    for a in goal.atoms:
+        if a.predicate in statics:
+            if not domain.holds(a, belief):
+                task.unsolvable = f"the goal needs {a}, a static fact that is false"
+            continue
+        i = index.get(a)
+        if i is None:
+            task.unsolvable = f"the goal needs {a}, which no action sequence reaches"
+            continue
+        goal_ids.append(i)
+    task.goal = tuple(sorted(goal_ids))
+    for k, p in enumerate(pre):
+        if not p:
+            task.no_pre.append(k)
+        for f in p:
+            task.by_pre.setdefault(f, []).append(k)
+    return task
+
+
+def _atom_order(a: Atom) -> tuple[str, str, bool]:
+    return (a.predicate, repr(a.args), bool(a.value))
+
+
+def _reachable(gr: Grounding, levels: LevelMap, statics: frozenset[str],
+               true_now: set[Atom]) -> list[tuple[Action, list[Atom]]]:
+    """The actions a relaxed exploration from ``true_now`` reaches at their levels, in name order.
+
+    Each comes with its conditions at its level (static ones left out: the
+    grounding checked them).
+    """
+    conds_of: list[tuple[Action, list[Atom]]] = []
+    waiting: dict[Atom, list[int]] = {}
+    missing: list[int] = []
+    for act in gr.actions:
+        conds = [p for p in act.preconditions(levels.level(act)) if p.predicate not in statics]
+        k = len(conds_of)
+        conds_of.append((act, conds))
+        need = {p for p in conds if p.value is True}
+        missing.append(len(need))
+        for p in need:
+            waiting.setdefault(p, []).append(k)
+    reached: set[Atom] = set()
+    fired = [k for k, m in enumerate(missing) if m == 0]
+    queue = list(true_now)
+    for k in fired:
+        queue.extend(e for e in conds_of[k][0].effects() if e.value is True)
+    while queue:
+        f = queue.pop()
+        if f in reached:
+            continue
+        reached.add(f)
+        for k in waiting.pop(f, ()):
+            missing[k] -= 1
+            if missing[k] == 0:
+                fired.append(k)
+                queue.extend(e for e in conds_of[k][0].effects() if e.value is True and e not in reached)
+    out = [conds_of[k] for k in fired]
+    out.sort(key=lambda ac: (ac[0].name, repr(ac[0].args)))
+    return out
+
+
+class _Excluder:
+    """The reached atoms that the domain's conflict rules exclude once an atom is added."""
+
+    def __init__(self, domain: Domain, reached: Iterable[Atom]) -> None:
+        self.rules = domain.rules
+        self.reached = sorted(reached)
+        self.memo: dict[Atom, frozenset[Atom]] = {}
+        keyed = [c for c in self.rules.conflicts if hasattr(c, "group_keys")]
+        self.plain = [c for c in self.rules.conflicts if not hasattr(c, "group_keys")]
+        self.groups: dict[Any, list[Atom]] = {}
+        self.keyed = keyed
+        for a in self.reached:
+            for rule in keyed:
+                for k in rule.group_keys(a):
+                    self.groups.setdefault(k, []).append(a)
+
+    def __call__(self, adds: Iterable[Atom]) -> set[Atom]:
+        out: set[Atom] = set()
+        for e in adds:
+            hit = self.memo.get(e)
+            if hit is None:
+                found: set[Atom] = set()
+                for rule in self.keyed:
+                    for k in rule.group_keys(e):
+                        found.update(x for x in self.groups.get(k, ()) if x != e)
+                if self.plain:
+                    found.update(x for x in self.reached
+                                 if x != e and contradiction([e, x], self.rules, new=[x]) is not None)
+                hit = self.memo[e] = frozenset(found)
+            out |= hit
+        return out
