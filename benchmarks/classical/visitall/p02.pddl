@@ -1,0 +1,42 @@
+; 4 x 4 grid
+(define (problem visitall-4x4-s2)
+  (:domain grid-visit-all)
+  (:objects
+    loc-x0-y0 loc-x0-y1 loc-x0-y2 loc-x0-y3 loc-x1-y0 loc-x1-y1 loc-x1-y2 loc-x1-y3
+    loc-x2-y0 loc-x2-y1 loc-x2-y2 loc-x2-y3 loc-x3-y0 loc-x3-y1 loc-x3-y2 loc-x3-y3 -
+    place
+  )
+  (:init
+    (connected loc-x0-y0 loc-x1-y0) (connected loc-x0-y0 loc-x0-y1)
+    (connected loc-x0-y1 loc-x1-y1) (connected loc-x0-y1 loc-x0-y2)
+    (connected loc-x0-y1 loc-x0-y0) (connected loc-x0-y2 loc-x1-y2)
+    (connected loc-x0-y2 loc-x0-y3) (connected loc-x0-y2 loc-x0-y1)
+    (connected loc-x0-y3 loc-x1-y3) (connected loc-x0-y3 loc-x0-y2)
+    (connected loc-x1-y0 loc-x2-y0) (connected loc-x1-y0 loc-x0-y0)
+    (connected loc-x1-y0 loc-x1-y1) (connected loc-x1-y1 loc-x2-y1)
+    (connected loc-x1-y1 loc-x0-y1) (connected loc-x1-y1 loc-x1-y2)
+    (connected loc-x1-y1 loc-x1-y0) (connected loc-x1-y2 loc-x2-y2)
+    (connected loc-x1-y2 loc-x0-y2) (connected loc-x1-y2 loc-x1-y3)
+    (connected loc-x1-y2 loc-x1-y1) (connected loc-x1-y3 loc-x2-y3)
+    (connected loc-x1-y3 loc-x0-y3) (connected loc-x1-y3 loc-x1-y2)
+    (connected loc-x2-y0 loc-x3-y0) (connected loc-x2-y0 loc-x1-y0)
+    (connected loc-x2-y0 loc-x2-y1) (connected loc-x2-y1 loc-x3-y1)
+    (connected loc-x2-y1 loc-x1-y1) (connected loc-x2-y1 loc-x2-y2)
+    (connected loc-x2-y1 loc-x2-y0) (connected loc-x2-y2 loc-x3-y2)
+    (connected loc-x2-y2 loc-x1-y2) (connected loc-x2-y2 loc-x2-y3)
+    (connected loc-x2-y2 loc-x2-y1) (connected loc-x2-y3 loc-x3-y3)
+    (connected loc-x2-y3 loc-x1-y3) (connected loc-x2-y3 loc-x2-y2)
+    (connected loc-x3-y0 loc-x2-y0) (connected loc-x3-y0 loc-x3-y1)
+    (connected loc-x3-y1 loc-x2-y1) (connected loc-x3-y1 loc-x3-y2)
+    (connected loc-x3-y1 loc-x3-y0) (connected loc-x3-y2 loc-x2-y2)
+    (connected loc-x3-y2 loc-x3-y3) (connected loc-x3-y2 loc-x3-y1)
+    (connected loc-x3-y3 loc-x2-y3) (connected loc-x3-y3 loc-x3-y2)
+    (at-robot loc-x0-y0) (visited loc-x0-y0)
+  )
+  (:goal (and
+    (visited loc-x0-y0) (visited loc-x0-y1) (visited loc-x0-y2) (visited loc-x0-y3)
+    (visited loc-x1-y0) (visited loc-x1-y1) (visited loc-x1-y2) (visited loc-x1-y3)
+    (visited loc-x2-y0) (visited loc-x2-y1) (visited loc-x2-y2) (visited loc-x2-y3)
+    (visited loc-x3-y0) (visited loc-x3-y1) (visited loc-x3-y2) (visited loc-x3-y3)
+  ))
+)
