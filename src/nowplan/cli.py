@@ -15,7 +15,8 @@ import logging
 import sys
 from collections.abc import Sequence
 
-from nowplan import __version__
+from typing import Any
+
 from nowplan.errors import NowplanError
 
 # subcommand modules under nowplan.commands, in --help order
@@ -29,15 +30,26 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
+class _Version(argparse.Action):
+    """``--version``, reading the installed version only when asked."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: Any, values: Any,
+                 option_string: str | None = None) -> None:
+        import nowplan
+
+        parser.exit(0, f"nowplan {nowplan.__version__}\n")
+
+
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The parser; with ``only``, just that subcommand's module is imported (a fast start)."""
     parser = _Parser(
         prog="nowplan",
         description="Hierarchical planning and acting under uncertainty.",
     )
-    parser.add_argument("--version", action="version", version=f"nowplan {__version__}")
+    parser.add_argument("--version", action=_Version, nargs=0, help="print the version and exit")
     parser.add_argument("-v", "--verbose", action="count", default=0, help="log more (-v info, -vv debug)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    for name in COMMANDS:
+    for name in COMMANDS if only is None else (only,):
         try:
             mod = importlib.import_module(f"nowplan.commands.{name}")
         except ModuleNotFoundError as exc:
@@ -49,7 +61,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    # the first word naming a subcommand (options such as -v may come before it)
+    named = next((a for a in argv if not a.startswith("-")), None)
+    parser = build_parser(named if named in COMMANDS and "-h" not in argv[: argv.index(named)] else None)
     args = parser.parse_args(argv)
     logging.basicConfig(
         level=[logging.WARNING, logging.INFO, logging.DEBUG][min(args.verbose, 2)],

@@ -63,13 +63,28 @@ def read_source(path: str | Path) -> Source:
 
 @functools.lru_cache(maxsize=2)
 def _parser(kind: str) -> Any:
+    """The ``pddl`` package's parser, its LALR tables cached on disk by Lark.
+
+    Building the tables takes ~0.15 s per parser and process; Lark's own
+    ``cache`` (a file in the temporary directory, keyed by the grammar and
+    options) loads them in a few milliseconds, so ``nowplan plan`` starts fast.
+    """
+    from lark import Lark, Transformer
+    from pddl.parser import GRAMMAR_FILE, PARSERS_DIRECTORY
+
     if kind == "domain":
-        from pddl.parser.domain import DomainParser
+        from pddl.parser.domain import DomainParser as Base
+    else:
+        from pddl.parser.problem import ProblemParser as Base
 
-        return DomainParser()
-    from pddl.parser.problem import ProblemParser
+    class Cached(Base):  # type: ignore[misc]
+        def __init__(self) -> None:
+            Transformer.__init__(self)
+            self._transformer = self.transformer_cls()
+            self._parser = Lark(GRAMMAR_FILE.read_text(), parser="lalr", import_paths=[PARSERS_DIRECTORY],
+                                start=self.start_symbol, transformer=self._transformer, cache=True)
 
-    return ProblemParser()
+    return Cached()
 
 
 def parse_source(src: Source, kind: str) -> Any:

@@ -107,26 +107,33 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
     facts: dict[str, set[tuple[Any, ...]]] = {}
     for a in reached:
         facts.setdefault(a.predicate, set()).add(a.args)
+    joins = [_Join(op, statics, level, facts) for op in domain.operators]
     seen: set[tuple[str, tuple[Any, ...]]] = set()
     actions: list[Action] = []
-    grew = True
-    while grew:
-        grew = False
+    changed: set[str] | None = None  # predicates with new facts in the last round (None: all)
+    while changed is None or changed:
+        index = _Index(facts)
         new: list[Atom] = []
-        for op in domain.operators:
-            for b in _bindings(op, facts, by_type, type_sets, statics, level):
-                act = op.instantiate(b)
-                if act.key in seen or not _negative_statics_hold(act, statics, facts):
+        for op, join in zip(domain.operators, joins, strict=True):
+            if changed is not None and not join.predicates & changed:
+                continue  # nothing new to join against: the same bindings as last round
+            for args in join.bindings(index, by_type, type_sets):
+                key = (op.name, args)
+                if key in seen:
                     continue
-                seen.add(act.key)
+                act = Action(op, args)
+                if not _negative_statics_hold(act, statics, facts):
+                    continue
+                seen.add(key)
                 actions.append(act)
                 for e in act.effects():
                     if e.value is True and e not in reached:
                         reached.add(e)
                         new.append(e)
+        changed = set()
         for e in new:
             facts.setdefault(e.predicate, set()).add(e.args)
-            grew = True
+            changed.add(e.predicate)
     return Grounding(actions, reached, statics)
 
 
@@ -137,74 +144,115 @@ def _negative_statics_hold(act: Action, statics: frozenset[str], facts: Mapping[
     return True
 
 
-def _bindings(op: Operator, facts: Mapping[str, set[tuple[Any, ...]]],
-              by_type: Mapping[str | None, list[str]], type_sets: Mapping[str | None, frozenset[str]],
-              statics: frozenset[str], level: int) -> Iterator[dict[Var, Any]]:
-    """Bindings whose joined positive preconditions (statics, and kept ones) are reached."""
-    conds = [
-        p.atom for p in op.preconditions
-        if p.atom.value is True and (p.atom.predicate in statics or p.criticality > level)
-    ]
-    remaining = list(conds)
-    order: list[Atom] = []
-    bound: set[Var] = set()
-    while remaining:  # join the most constrained condition first
-        best = max(remaining, key=lambda a: (sum(1 for t in a.args if not isinstance(t, Var) or t in bound),
-                                             -len(facts.get(a.predicate, ()))))
-        remaining.remove(best)
-        order.append(best)
-        bound.update(t for t in best.args if isinstance(t, Var))
+class _Index:
+    """Facts of a predicate by the values at some argument positions, built on demand."""
 
-    def join(i: int, cur: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
-        if i == len(order):
-            yield cur
-            return
-        c = order[i]
-        for args in facts.get(c.predicate, ()):
-            if len(args) != len(c.args):
-                continue
-            nxt = cur
-            ok = True
-            for t, v in zip(c.args, args, strict=True):
+    def __init__(self, facts: Mapping[str, set[tuple[Any, ...]]]) -> None:
+        self.facts = facts
+        self.tables: dict[tuple[str, tuple[int, ...]], dict[tuple[Any, ...], list[tuple[Any, ...]]]] = {}
+
+    def lookup(self, pred: str, positions: tuple[int, ...], arity: int) -> dict[tuple[Any, ...], list[tuple[Any, ...]]]:
+        key = (pred, positions)
+        t = self.tables.get(key)
+        if t is None:
+            t = {}
+            for args in self.facts.get(pred, ()):
+                if len(args) == arity:
+                    t.setdefault(tuple(args[i] for i in positions), []).append(args)
+            self.tables[key] = t
+        return t
+
+
+class _Join:
+    """An operator's positive conditions compiled into a join plan over parameter slots.
+
+    The conditions joined are the static ones and those kept at ``level``;
+    each step looks facts up by the slots already bound (an index per
+    predicate and bound positions), then binds the rest.
+    """
+
+    def __init__(self, op: Operator, statics: frozenset[str], level: int,
+                 facts: Mapping[str, set[tuple[Any, ...]]]) -> None:
+        self.op = op
+        slot = {v: i for i, v in enumerate(op.params)}
+        conds = [
+            p.atom for p in op.preconditions
+            if p.atom.value is True and (p.atom.predicate in statics or p.criticality > level)
+        ]
+        self.predicates = frozenset(c.predicate for c in conds)
+        bound: set[Var] = set()
+        # per step: predicate, arity, bound positions, how to build the lookup key (slot or constant),
+        # and the positions that bind new slots (a slot repeated in one atom is checked after binding)
+        self.steps: list[tuple[str, int, tuple[int, ...], tuple[tuple[bool, Any], ...],
+                               tuple[tuple[int, int], ...]]] = []
+        remaining = list(conds)
+        while remaining:  # the most constrained condition first
+            best = max(remaining, key=lambda a: (
+                sum(1 for t in a.args if not isinstance(t, Var) or t in bound),
+                -len(facts.get(a.predicate, ()))))
+            remaining.remove(best)
+            positions: list[int] = []
+            keyparts: list[tuple[bool, Any]] = []
+            binds: list[tuple[int, int]] = []
+            fresh: set[Var] = set()
+            for i, t in enumerate(best.args):
                 if isinstance(t, Var):
-                    have = nxt.get(t, _UNBOUND)
+                    if t in bound:
+                        positions.append(i)
+                        keyparts.append((True, slot[t]))
+                    else:
+                        binds.append((i, slot[t]))
+                        fresh.add(t)
+                else:
+                    positions.append(i)
+                    keyparts.append((False, t))
+            bound |= fresh
+            self.steps.append((best.predicate, len(best.args), tuple(positions), tuple(keyparts), tuple(binds)))
+        self.free = [(i, op.param_types[i] if op.param_types else None)
+                     for i, v in enumerate(op.params) if v not in bound]
+        self.typed = [(i, t) for i, t in enumerate(op.param_types) if t is not None] if op.param_types else []
+
+    def bindings(self, index: _Index, by_type: Mapping[str | None, list[str]],
+                 type_sets: Mapping[str | None, frozenset[str]]) -> Iterator[tuple[Any, ...]]:
+        n = len(self.op.params)
+        steps = self.steps
+        objects = type_sets[None]
+
+        def join(k: int, cur: list[Any]) -> Iterator[list[Any]]:
+            if k == len(steps):
+                yield cur
+                return
+            pred, arity, positions, keyparts, binds = steps[k]
+            table = index.lookup(pred, positions, arity)
+            key = tuple(cur[v] if is_slot else v for is_slot, v in keyparts)
+            for args in table.get(key, ()):
+                nxt = list(cur)
+                ok = True
+                for pos, sl in binds:
+                    have = nxt[sl]
                     if have is _UNBOUND:
-                        if nxt is cur:
-                            nxt = dict(cur)
-                        nxt[t] = v
-                    elif have != v:
+                        nxt[sl] = args[pos]
+                    elif have != args[pos]:
                         ok = False
                         break
-                elif t != v:
-                    ok = False
-                    break
-            if ok:
-                yield from join(i + 1, nxt)
+                if ok:
+                    yield from join(k + 1, nxt)
 
-    for jb in join(0, {}):
-        if not _types_ok(op, jb, type_sets):
-            continue
-        free = [v for v in op.params if v not in jb]
-        domains = [by_type.get(op.type_of(v), []) for v in free]
-        for combo in itertools.product(*domains):
-            full = dict(jb)
-            full.update(zip(free, combo, strict=True))
-            yield full
+        for b in join(0, [_UNBOUND] * n):
+            if any(b[i] in objects and b[i] not in type_sets.get(t, ()) for i, t in self.typed
+                   if b[i] is not _UNBOUND):
+                continue
+            if not self.free:
+                yield tuple(b)
+                continue
+            for combo in itertools.product(*(by_type.get(t, []) for _, t in self.free)):
+                full = list(b)
+                for (i, _), v in zip(self.free, combo, strict=True):
+                    full[i] = v
+                yield tuple(full)
 
 
 _UNBOUND = object()
-
-
-def _types_ok(op: Operator, b: Mapping[Var, Any], type_sets: Mapping[str | None, frozenset[str]]) -> bool:
-    if not op.param_types:
-        return True
-    for v, t in zip(op.params, op.param_types, strict=True):
-        if t is None or v not in b:
-            continue
-        val = b[v]
-        if val in type_sets[None] and val not in type_sets.get(t, ()):  # other values are not typed
-            return False
-    return True
 
 
 # --------------------------------------------------------------------------- the task
