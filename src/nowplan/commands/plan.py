@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import json
 import logging
+import sys
 import time
 from typing import Any
 
@@ -23,7 +24,14 @@ from nowplan.errors import UsageError
 
 log = logging.getLogger(__name__)
 
-ENGINES = ("regression", "fd")
+ENGINES = ("nowplan", "forward", "regression", "fd")
+SEARCHES = {
+    "forward:gbfs": "lazy greedy best-first search, h_FF with preferred operators",
+    "forward:astar": "weighted A* forward, h_FF",
+    "full": "regression A*",
+    "serialization": "regression A*, serialization shortcut",
+    "monotonic": "regression A*, monotonic shortcut",
+}
 
 
 def _level(value: str) -> str | int:
@@ -44,9 +52,15 @@ def register(subparsers: Any) -> None:
     p.add_argument("domain", metavar="DOMAIN.pddl", help="PDDL domain file")
     p.add_argument("problem", metavar="PROBLEM.pddl", help="PDDL problem file")
     p.add_argument("--criticality", metavar="FILE", help="criticality side file (see docs/pddl.md)")
-    p.add_argument("--engine", choices=ENGINES, default="regression",
-                   help="regression: nowplan's A* regression planner (default); "
+    p.add_argument("--engine", choices=ENGINES, default="nowplan",
+                   help="nowplan (default): the executive's own planner, forward search where it applies "
+                        "(PDDL always), else regression; forward | regression: force one; "
                         "fd: Fast Downward (needs the 'fd' extra)")
+    p.add_argument("--search", choices=("gbfs", "astar"), default="gbfs",
+                   help="forward search: gbfs (lazy greedy best-first with preferred operators, default) "
+                        "or astar (weighted by --weight; --weight 1 with --heuristic max is optimal)")
+    p.add_argument("--heuristic", choices=("ff", "add", "max"), default="ff",
+                   help="forward heuristic: h_FF (default), h_add or h_max")
     p.add_argument("--level", type=_level, default="flat",
                    help="'flat' (default: a concrete plan), 'top' (the most abstract level) or a number")
     p.add_argument("--json", action="store_true", help="print a JSON document instead of the plan")
@@ -56,7 +70,7 @@ def register(subparsers: Any) -> None:
     p.add_argument("--max-nodes", type=positive_int, default=500_000, metavar="N",
                    help="node expansions allowed to the regression search (default 500000)")
     p.add_argument("--weight", type=positive_float, default=2.0, metavar="W",
-                   help="weighted A*: f = g + W*h (regression engine; default 2, 1 = A*)")
+                   help="weighted A*: f = g + W*h (regression engine and --search astar; default 2, 1 = A*)")
     p.add_argument("--shortcuts", action="store_true",
                    help="try HPN's serialization and monotonic shortcuts before full search")
     p.add_argument("--no-mutexes", action="store_true",
@@ -90,6 +104,9 @@ def run(args: argparse.Namespace) -> int:
         from nowplan.planning.regression import PlannerConfig, plan
 
         config = PlannerConfig(
+            engine="auto" if args.engine == "nowplan" else args.engine,
+            search=args.search,
+            forward_heuristic=args.heuristic,
             max_nodes=args.max_nodes,
             time_limit=args.time_limit,
             weight=args.weight,
@@ -107,7 +124,7 @@ def run(args: argparse.Namespace) -> int:
             "cost": result.plan.cost(problem.init) if result.plan is not None else None,
             "status": result.status.value,
             "planning_time_s": round(elapsed, 6),
-            "method": f"{args.engine}:{result.method}" if result.method else args.engine,
+            "method": f"fd:{result.method}" if args.engine == "fd" else result.method or args.engine,
             "engine": args.engine,
             "level": "flat" if level is None else level,
             "expanded": result.expanded,
@@ -121,5 +138,9 @@ def run(args: argparse.Namespace) -> int:
             print(a)
     else:
         print(f"{result.status.value}: {result.reason}" if result.reason else result.status.value)
-    log.info("%s in %.3f s (%s)", result.status.value, elapsed, result.method)
+    if not args.json:
+        what = SEARCHES.get(result.method, result.method) if args.engine != "fd" else "Fast Downward"
+        cost = f", cost {result.plan.cost(problem.init):g}" if result.plan is not None else ""
+        print(f"nowplan plan: {result.status.value} by {result.method or args.engine} ({what}){cost}, "
+              f"{result.expanded} expanded, {elapsed:.3f} s", file=sys.stderr)
     return 0 if result.solved else 1
