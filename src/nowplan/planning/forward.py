@@ -33,6 +33,7 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.hff import CostType, Kind, RelaxedHeuristic
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
+from nowplan.planning.postprocess import eliminate_actions
 from nowplan.planning.task import Task, build_task, forward_unsupported
 
 if TYPE_CHECKING:
@@ -270,6 +271,8 @@ def forward_plan(
                  max_nodes=max_nodes, out_of_time=out_of_time)
     if res.status is not PlanStatus.SOLVED or res.actions is None:
         return res, None
+    ids = {act: i for i, act in enumerate(task.actions)}
+    res.actions = [task.actions[i] for i in eliminate_actions(task, [ids[a] for a in res.actions])]
     steps = regress_actions(domain, belief, goal, res.actions, levels)
     if steps is None:
         log.warning("the forward plan for %s does not regress into pre-images at its levels", goal)
