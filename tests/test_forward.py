@@ -1,0 +1,130 @@
+"""The forward engine: grounding, the integer task, h_FF, lazy GBFS / A*, action elimination."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from nowplan.core.atoms import Atom, Goal, Var, atom
+from nowplan.core.domain import Domain, Predicate
+from nowplan.core.levels import LevelMap, flat_levels
+from nowplan.core.operators import Operator, Precondition
+from nowplan.core.state import State
+from nowplan.io.pddl_read import load_pddl
+from nowplan.planning import task as task_mod
+from nowplan.planning.forward import regress_actions, search
+from nowplan.planning.hff import RelaxedHeuristic
+from nowplan.planning.plan import PlanStatus
+from nowplan.planning.postprocess import eliminate_actions
+from nowplan.planning.regression import PlannerConfig, plan
+from tests.helpers import replay
+
+DATA = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl"
+CASES = [(d, p) for d in ("gripper", "logistics", "blocksworld", "lights") for p in ("p01.pddl", "p03.pddl")]
+
+
+@pytest.mark.parametrize(("dom", "prob"), CASES)
+@pytest.mark.parametrize("search_kind", ["gbfs", "astar"])
+def test_forward_plans_replay_with_exact_preimages(dom: str, prob: str, search_kind: str) -> None:
+    p = load_pddl(DATA / dom / "domain.pddl", DATA / dom / prob)
+    cfg = PlannerConfig(search=search_kind, weight=1.0 if search_kind == "astar" else 2.0)  # type: ignore[arg-type]
+    res = plan(p.domain, p.objects, p.init, p.goal, flat_levels(), cfg)
+    assert res.solved and res.plan is not None and res.method == f"forward:{search_kind}"
+    replay(p.domain, p.init, res.plan)
+    # each pre-image is the regression of the next one (the regression planner's own pre-image)
+    again = regress_actions(p.domain, p.init, p.goal, list(res.plan.actions), flat_levels())
+    assert again is not None and [g for _, g in again] == [s.goal for s in res.plan.steps]
+
+
+def test_astar_with_hmax_is_optimal_on_small_problems() -> None:
+    p = load_pddl(DATA / "gripper" / "domain.pddl", DATA / "gripper" / "p01.pddl")
+    opt = plan(p.domain, p.objects, p.init, p.goal, flat_levels(),
+               PlannerConfig(search="astar", weight=1.0, forward_heuristic="max", cost_type="normal"))
+    regr = plan(p.domain, p.objects, p.init, p.goal, flat_levels(),
+                PlannerConfig(engine="regression", weight=1.0, serialization=False, monotonic=False))
+    assert opt.plan is not None and regr.plan is not None
+    assert opt.plan.cost() <= regr.plan.cost()
+
+
+def test_the_same_call_gives_the_same_plan_whatever_the_cache_saw_before() -> None:
+    p = load_pddl(DATA / "logistics" / "domain.pddl", DATA / "logistics" / "p03.pddl")
+    task_mod._CACHE.clear()
+    first = plan(p.domain, p.objects, p.init, p.goal, flat_levels())
+    # plan from a later state (the cache grows its reached set), then ask again
+    assert first.plan is not None
+    later = p.init.apply(first.plan.actions[0].effects())
+    plan(p.domain, p.objects, later, p.goal, flat_levels())
+    again = plan(p.domain, p.objects, p.init, p.goal, flat_levels())
+    assert again.plan is not None and again.plan.actions == first.plan.actions
+
+
+# a tiny domain with a negative precondition, a negative goal and two fluents per object
+X = Var("x")
+PREDS = {n: Predicate(n, 1) for n in ("on", "lit", "broken")}
+
+
+def _op(name: str, pre: list[Atom], eff: list[Atom], crit: int = 1) -> Operator:
+    return Operator(name, (X,), tuple(Precondition(a, crit) for a in pre), tuple(eff))
+
+
+def test_negative_preconditions_and_goals_compile_into_facts() -> None:
+    dom = Domain("neg", PREDS, (
+        _op("switch_on", [atom("on", X, value=False), atom("broken", X, value=False)], [atom("on", X)]),
+        _op("switch_off", [atom("on", X)], [atom("on", X, value=False)]),
+        _op("light", [atom("on", X)], [atom("lit", X)]),
+        _op("fix", [atom("broken", X)], [atom("broken", X, value=False)]),
+    ))
+    init = State([atom("broken", "a")])
+    goal = Goal.of([atom("lit", "a"), atom("on", "a", value=False)])
+    res = plan(dom, {"a": None}, init, goal, flat_levels())
+    assert res.solved and res.plan is not None
+    assert [a.name for a in res.plan.actions] == ["fix", "switch_on", "light", "switch_off"]
+    replay(dom, init, res.plan)
+
+
+def test_an_unreachable_goal_is_refused_before_searching() -> None:
+    dom = Domain("neg", PREDS, (_op("light", [atom("on", X)], [atom("lit", X)]),))
+    res = plan(dom, {"a": None}, State(), Goal.of([atom("lit", "a")]), flat_levels())
+    assert res.status is PlanStatus.UNSOLVABLE and "lit(a)" in res.reason and res.expanded == 0
+
+
+def test_hff_is_zero_at_the_goal_and_infinite_at_a_dead_end() -> None:
+    p = load_pddl(DATA / "gripper" / "domain.pddl", DATA / "gripper" / "p01.pddl")
+    t = task_mod.build_task(p.domain, p.objects, p.init, p.goal, flat_levels(), lambda a: 1.0)
+    h = RelaxedHeuristic(t, "ff", "one")
+    h0, preferred = h.evaluate(t.init)
+    assert h0 > 0 and preferred and all(all(f in t.init for f in t.pre[a]) for a in preferred)
+    hadd, _ = RelaxedHeuristic(t, "add", "one").evaluate(t.init)
+    hmax, _ = RelaxedHeuristic(t, "max", "one").evaluate(t.init)
+    assert hmax <= h0 <= hadd
+    goal_state = frozenset(t.goal)
+    assert h.evaluate(goal_state | t.init)[0] == 0.0
+    assert h.evaluate(frozenset())[0] == float("inf")  # no robot anywhere: nothing can move
+
+
+def test_action_elimination_drops_what_nothing_needs() -> None:
+    p = load_pddl(DATA / "gripper" / "domain.pddl", DATA / "gripper" / "p01.pddl")
+    t = task_mod.build_task(p.domain, p.objects, p.init, p.goal, flat_levels(), lambda a: 1.0)
+    res = search(t)
+    assert res.actions is not None
+    ids = {a: i for i, a in enumerate(t.actions)}
+    good = [ids[a] for a in res.actions]
+    # a detour: move to the other room and back before the plan
+    moves = [i for i, a in enumerate(t.actions) if a.name == "move" and all(f in t.init for f in t.pre[i])]
+    back = next(j for j, a in enumerate(t.actions)
+                if a.name == "move" and a.args == tuple(reversed(t.actions[moves[0]].args)))
+    padded = [moves[0], back, *good]
+    assert eliminate_actions(t, padded) == eliminate_actions(t, good)
+    assert len(eliminate_actions(t, padded)) <= len(good)
+
+
+def test_abstract_levels_search_forward_with_conflicts_as_deletes() -> None:
+    from nowplan.domains.logistics import SIZES, generate
+    from nowplan.domains.logistics.model import DOMAIN as LOG
+
+    prob = generate(SIZES["small"], 1)
+    res = plan(LOG, prob.objects, prob.init, prob.goal, LevelMap(LOG.top_level), PlannerConfig(engine="forward"))
+    assert res.solved and res.plan is not None and res.method == "forward:gbfs"
+    assert all(not a.name.startswith(("drive", "fly")) for a in res.plan.actions)
+    replay(LOG, prob.init, res.plan, concrete=False)
