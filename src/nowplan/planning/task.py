@@ -70,7 +70,8 @@ _CACHE_SIZE = 16
 def _key_of(domain: Domain, objects: Mapping[str, str | None], belief: Any, statics: frozenset[str],
             level: int) -> Any:
     facts = tuple(sorted((p, tuple(sorted(map(repr, belief.facts(p))))) for p in statics))
-    return (id(domain), domain.name, tuple(sorted(objects.items(), key=repr)), facts, level)
+    # the domain itself (held by the cache, so its identity cannot be reused by another domain)
+    return (domain, tuple(sorted(objects.items(), key=repr)), facts, level)
 
 
 def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, level: int) -> Grounding:
