@@ -15,6 +15,7 @@ from functools import cached_property
 from typing import Any
 
 from nowplan.core.atoms import EQUALITY, Atom, ConflictRule, Goal, Rules, Term, ValueRule, Var
+from nowplan.core.facts import FactTable
 from nowplan.core.operators import Operator
 from nowplan.errors import ModelError
 
@@ -74,6 +75,11 @@ class Domain:
     @cached_property
     def rules(self) -> Rules:
         return Rules({n: p.rule for n, p in self.predicates.items()}, tuple(self.conflicts))
+
+    @cached_property
+    def facts(self) -> FactTable:
+        """This domain's atoms interned as integers (see :mod:`nowplan.core.facts`)."""
+        return FactTable(self.rules)
 
     @cached_property
     def operator_map(self) -> dict[str, Operator]:

@@ -11,7 +11,7 @@ foresight).  :class:`Action` is a ground instance.
 from __future__ import annotations
 
 import enum
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Hashable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -47,6 +47,7 @@ class Precondition:
 
 
 GeneratorFn = Callable[..., Iterable[Mapping[Var, Any]]]
+ReadsFn = Callable[[Mapping[Var, Any], "Goal"], Hashable]
 
 
 @dataclass(frozen=True)
@@ -62,6 +63,9 @@ class Generator:
     outputs: tuple[Var, ...]
     fn: GeneratorFn = field(compare=False, hash=False)
     inputs: tuple[Var, ...] = ()
+    # optional: ``reads(bindings, goal) -> key``, all the values depend on besides the bindings of
+    # ``inputs``, the belief and the context; a planner may then keep the values per key
+    reads: ReadsFn | None = field(default=None, compare=False, hash=False)
 
 
 CostFn = Callable[[Bindings, Any], float]
@@ -111,14 +115,17 @@ class Action:
     _ground: dict[Any, tuple[Atom, ...]] = field(
         default_factory=dict, init=False, repr=False, compare=False, hash=False
     )
+    # what planners derive from the instance and keep (e.g. its facts' ids per level)
+    memo: dict[Any, Any] = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
+    # (name, args): the instance's identity, made once (planners look actions up by it at every node)
+    key: tuple[str, tuple[Term, ...]] = field(init=False, repr=False, compare=False, hash=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "key", (self.operator.name, self.args))
 
     @property
     def name(self) -> str:
         return self.operator.name
-
-    @property
-    def key(self) -> tuple[str, tuple[Term, ...]]:
-        return (self.name, self.args)
 
     @property
     def bindings(self) -> dict[Var, Term]:
@@ -162,9 +169,9 @@ class Action:
         return f"{self.name}({', '.join(fmt_term(a) for a in self.args)})"
 
     def __hash__(self) -> int:
-        return hash((self.name, self.args))
+        return hash(self.key)
 
     def __eq__(self, other: object) -> bool:
-        return isinstance(other, Action) and (self.name, self.args) == (other.name, other.args)
+        return isinstance(other, Action) and self.key == other.key
 
 

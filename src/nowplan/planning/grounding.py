@@ -13,7 +13,7 @@ at the plan's level).
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal, Var
@@ -75,6 +75,18 @@ class Grounder:
         self._facts_ok = hasattr(belief, "facts")
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
         self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+        # per predicate: the operators (in order) with an effect of it, and those effects
+        self._by_pred: dict[str, list[tuple[int, Operator, tuple[Atom, ...]]]] = {}
+        for i, op in enumerate(domain.operators):
+            per: dict[str, list[Atom]] = {}
+            for e in op.effects:
+                per.setdefault(e.predicate, []).append(e)
+            for pred, effs in per.items():
+                self._by_pred.setdefault(pred, []).append((i, op, tuple(effs)))
+        self._gen_cache: dict[tuple[Atom, tuple[Hashable, ...]], list[Action]] = {}
+        self._unify_cache: dict[tuple[tuple[Atom, ...], Atom], list[dict[Var, Any]]] = {}
+        # ground actions of the domain, one object per instance (planners keep data on them)
+        self._actions: dict[tuple[int, tuple[Any, ...]], Action] = domain.facts.actions
 
     # -- helpers -------------------------------------------------------------
     def objects_of(self, t: str | None) -> list[str]:
@@ -95,39 +107,100 @@ class Grounder:
         return r
 
     # -- achievers -----------------------------------------------------------
-    def achievers(self, target: Atom, goal: Goal) -> list[Action]:
-        """Ground actions one of whose effects entails ``target``."""
+    def achievers(self, target: Atom, goal: Goal | Callable[[], Goal]) -> list[Action]:
+        """Ground actions one of whose effects entails ``target``.
+
+        ``goal`` (the subgoal being regressed, for generators) may be given as a
+        function that makes it, called only when a generator has to run.
+        Achievers that no generator takes part in are kept per atom; with
+        ``memo``, those of operators whose generators all declare what they
+        read of the goal (``Generator.reads``) are kept per atom and reading.
+        """
         cached = self._cache.get(target)
         if cached is not None:
             return cached
+        entries = self._by_pred.get(target.predicate, ())
+        gen_entries = [e for e in entries if e[1].generators]
+        key: tuple[Atom, tuple[Hashable, ...]] | None = None
+        if gen_entries and self.memo:
+            g = goal() if callable(goal) else goal
+            goal = g
+            readings: list[Hashable] = []
+            for i, op, effs in gen_entries:
+                r = self._reading(op, effs, target, g)
+                if r is None:
+                    readings = []
+                    break
+                readings.append((i, r))
+            if readings:
+                key = (target, tuple(readings))
+                hit = self._gen_cache.get(key)
+                if hit is not None:
+                    return hit
         out: list[Action] = []
         seen: set[tuple[str, tuple[Any, ...]]] = set()
-        for i, op in enumerate(self.domain.operators):
+        for i, op, effs in entries:
             if self.memo and not op.generators:
                 acts = self._op_cache.get((i, target))
                 if acts is None:
-                    acts = self._op_cache[(i, target)] = list(self._op_achievers(i, op, target, goal))
+                    acts = self._op_cache[(i, target)] = list(self._op_achievers(i, op, effs, target, goal))
                 found: Iterable[Action] = acts
             else:
-                found = self._op_achievers(i, op, target, goal)
+                found = self._op_achievers(i, op, effs, target, goal)
             for act in found:
                 if act.key not in seen:
                     seen.add(act.key)
                     out.append(act)
-        # generators see the goal, so only cache when no operator uses one
-        if not any(op.generators for op in self.domain.operators):
+        # generators see the goal: keep the answer per atom only when none takes part
+        if not gen_entries:
             self._cache[target] = out
+        elif key is not None:
+            self._gen_cache[key] = out
         return out
 
-    def _op_achievers(self, i: int, op: Operator, target: Atom, goal: Goal) -> Iterator[Action]:
-        for eff in op.effects:
-            b = unify_effect(eff, target, self.domain)
-            if b is None:
-                continue
-            for full in self._complete(i, op, b, goal):
-                yield op.instantiate(full)
+    def _unified(self, effs: tuple[Atom, ...], target: Atom) -> list[dict[Var, Any]]:
+        """The bindings that make each of ``effs`` entail ``target`` (kept: the caller must not change them)."""
+        key = (effs, target)
+        out = self._unify_cache.get(key)
+        if out is None:
+            out = self._unify_cache[key] = [
+                b for b in (unify_effect(e, target, self.domain) for e in effs) if b is not None
+            ]
+        return out
 
-    def _complete(self, i: int, op: Operator, b: dict[Var, Any], goal: Goal) -> Iterator[dict[Var, Any]]:
+    def _reading(self, op: Operator, effs: tuple[Atom, ...], target: Atom, goal: Goal) -> Hashable | None:
+        """What ``op``'s generators read of ``goal`` when achieving ``target``; ``None``: unknown."""
+        out: list[Hashable] = []
+        for b in self._unified(effs, target):
+            for gen in op.generators:
+                if gen.reads is None or not all(v in b for v in gen.inputs):
+                    return None
+                out.append(gen.reads(b, goal))
+        return tuple(out)
+
+    def _op_achievers(
+        self, i: int, op: Operator, effs: tuple[Atom, ...], target: Atom, goal: Goal | Callable[[], Goal]
+    ) -> Iterator[Action]:
+        for b in self._unified(effs, target):
+            for full in self._complete(i, op, dict(b), goal):
+                yield self.instantiate(i, op, full)
+
+    def instantiate(self, i: int, op: Operator, full: Mapping[Var, Any]) -> Action:
+        """``op.instantiate(full)``, one object per ground instance of the domain."""
+        args = tuple(full[v] for v in op.params) if all(v in full for v in op.params) else None
+        if args is None:
+            return op.instantiate(full)  # raises: unbound parameters
+        try:
+            act = self._actions.get((i, args))
+        except TypeError:  # an argument that cannot be hashed
+            return op.instantiate(full)
+        if act is None:
+            act = self._actions[(i, args)] = op.instantiate(full)
+        return act
+
+    def _complete(
+        self, i: int, op: Operator, b: dict[Var, Any], goal: Goal | Callable[[], Goal]
+    ) -> Iterator[dict[Var, Any]]:
         """All full bindings extending ``b`` (generators, static joins, typed objects)."""
         for gb in self._run_generators(op, b, goal):
             if not self.memo:
@@ -144,7 +217,15 @@ class Grounder:
                 fills = self._fills[key] = list(self._fill(op, gb))
             yield from fills
 
-    def _run_generators(self, op: Operator, b: dict[Var, Any], goal: Goal) -> Iterator[dict[Var, Any]]:
+    def _run_generators(
+        self, op: Operator, b: dict[Var, Any], goal: Goal | Callable[[], Goal]
+    ) -> Iterator[dict[Var, Any]]:
+        if not op.generators:
+            yield b
+            return
+        if callable(goal):
+            goal = goal()
+
         def rec(i: int, cur: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
             if i == len(op.generators):
                 yield cur

@@ -23,12 +23,14 @@ from typing import Any, Literal
 
 from nowplan.core.atoms import Atom, Goal, conjoin, contradiction
 from nowplan.core.domain import Domain
+from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.heuristics import HAdd, can_relax, hadd_table
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
+from nowplan.planning.subgoals import NodeIndex, action_facts, regress
 
 log = logging.getLogger(__name__)
 
@@ -97,6 +99,8 @@ def achieves(goal: Goal, action: Action, domain: Domain) -> bool:
 
 
 class _Search:
+    """A* over subgoals as frozensets of fact ids (:mod:`nowplan.planning.subgoals`)."""
+
     def __init__(
         self,
         domain: Domain,
@@ -112,6 +116,7 @@ class _Search:
         self.config = config
         self.now = _clock(config)
         self.deadline = self.now() + config.time_limit
+        self.table = domain.facts
         self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values)
         self.drop = frozenset(
             n
@@ -119,6 +124,8 @@ class _Search:
             if domain.predicates[n].test is None and hasattr(belief, "facts")
         )
         self._holds: dict[Atom, bool] = {}
+        self._fholds: dict[int, bool] = {}
+        self._hv: dict[int, float] = {}
         self._costs: dict[tuple[str, tuple[Any, ...]], float] = {}
         self.expanded = 0
         self.generated = 0
@@ -139,18 +146,34 @@ class _Search:
             self._holds[a] = r
         return r
 
-    def satisfied(self, g: Goal) -> bool:
-        return all(self.holds(a) for a in g.atoms)
+    def fholds(self, f: int) -> bool:
+        r = self._fholds.get(f)
+        if r is None:
+            r = self._fholds[f] = self.holds(self.table.atoms[f])
+        return r
 
-    def h(self, g: Goal) -> float:
+    def satisfied(self, fs: frozenset[int]) -> bool:
+        return all(self.fholds(f) for f in fs)
+
+    def h(self, fs: frozenset[int]) -> float:
         if self.hadd is not None:
-            return self.hadd(g)
+            hv = self._hv
+            total = 0.0
+            for f in fs:
+                x = hv.get(f)
+                if x is None:
+                    x = hv[f] = 0.0 if self.fholds(f) else self.hadd.table.get(self.table.atoms[f], math.inf)
+                total += x
+            return total
         if callable(self.domain_h):
-            return float(self.domain_h(g, self.belief, self.holds))
-        unmet = sum(1 for a in g.atoms if not self.holds(a))
+            return float(self.domain_h(self.table.goal(fs), self.belief, self.holds))
+        unmet = sum(1 for f in fs if not self.fholds(f))
         return unmet * (self.min_cost if self.min_cost > 0 else 1.0)
 
     def cost(self, act: Action) -> float:
+        fixed = act.operator.cost
+        if not callable(fixed):
+            return float(fixed)
         c = self._costs.get(act.key)
         if c is None:
             c = act.cost(self.belief)
@@ -165,29 +188,36 @@ class _Search:
         protect: frozenset[Atom] = frozenset(),
     ) -> tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str]:
         """A* from ``goal``; ``order`` = serialization, ``protect`` = monotonic atoms."""
+        T = self.table
+        fluent = T.fluent
+        root = T.ids_of(goal.atoms)
+        root_ok = T.consistent(root)  # else its successors are computed on Goals (see subgoals)
+        order_ids = [T.id(a) for a in order] if order is not None else None
+        # the atoms left out of the search while the focus is k: order[: k - 1]
+        hidden = [frozenset(order_ids[: max(k - 1, 0)]) for k in range(len(order_ids) + 1)] if order_ids else []
+        guard = {fluent[f]: f for f in T.ids_of(protect)}
         focus0 = len(order) if order is not None else 0
         counter = itertools.count()
-        start = (goal, focus0)
-        frontier: list[tuple[float, float, int, tuple[Goal, int]]] = [
-            (self.config.weight * self.h(goal), self.h(goal), next(counter), start)
-        ]
-        best_g: dict[tuple[Goal, int], float] = {start: 0.0}
-        parent: dict[tuple[Goal, int], tuple[tuple[Goal, int], Action] | None] = {start: None}
-        closed: set[tuple[Goal, int]] = set()
+        Node = tuple[frozenset[int], int]
+        start: Node = (root, focus0)
+        h0 = self.h(root)
+        frontier: list[tuple[float, float, int, Node]] = [(self.config.weight * h0, h0, next(counter), start)]
+        best_g: dict[Node, float] = {start: 0.0}
+        parent: dict[Node, tuple[Node, Action] | None] = {start: None}
+        closed: set[Node] = set()
+        levels, drop, weight = self.levels, self.drop, self.config.weight
         exp = 0
         while frontier:
             _, _, _, node = heapq.heappop(frontier)
             if node in closed:
                 continue
             closed.add(node)
-            g_node, focus = node
-            if order is not None:
+            fs, focus = node
+            if order_ids is not None:
                 # shift the focus down once the non-focused part already holds
-                while focus > 0 and all(
-                    self.holds(a) for a in g_node.atoms if a not in order[: focus - 1]
-                ):
+                while focus > 0 and all(self.fholds(f) for f in fs if f not in hidden[focus]):
                     focus -= 1
-            if self.satisfied(g_node):
+            if self.satisfied(fs):
                 return PlanStatus.SOLVED, self._path(node, parent), ""
             exp += 1
             self.expanded += 1
@@ -196,29 +226,35 @@ class _Search:
             if self.now() > self.deadline:
                 return PlanStatus.TIME_LIMIT, None, f"time limit of {self.config.time_limit:g} s reached"
             gcost = best_g[node]
-            allowed = [
-                a
-                for a in sorted(g_node.atoms)
-                if order is None or a not in order[: max(focus - 1, 0)]
-            ]
-            tried: set[tuple[str, tuple[Any, ...]]] = set()
+            skip = hidden[focus] if order_ids is not None else frozenset()
+            allowed = [f for f in T.sorted(fs) if f not in skip]
+            index = NodeIndex(T, fs)
+            goal_of = _GoalOf(T, fs)
+            legacy = not root_ok and fs == root
+            tried: set[int] = set()  # by identity: the grounder makes one object per instance
+            alive = []  # (and the lists stay alive while ids are compared)
             for target in allowed:
-                for act in self.grounder.achievers(target, g_node):
-                    if act.key in tried:
+                acts = self.grounder.achievers(T.atoms[target], goal_of)
+                alive.append(acts)
+                for act in acts:
+                    if id(act) in tried:
                         continue
-                    tried.add(act.key)
-                    if protect and any(
-                        e.key == p.key and e.value != p.value
-                        for e in act.effects()
-                        for p in protect
+                    tried.add(id(act))
+                    info = action_facts(T, act, levels.level(act), drop)
+                    if guard and any(
+                        guard.get(fluent[e], e) != e for e in info.all_effs
                     ):
                         continue
-                    pre = preimage(g_node, act, self.levels.level(act), self.domain, self.drop)
+                    if not legacy:
+                        pre = regress(T, index, info)
+                    else:
+                        g = preimage(goal_of(), act, levels.level(act), self.domain, drop)
+                        pre = None if g is None else T.ids_of(g.atoms)
                     if pre is None:
                         continue
                     child = (pre, focus)
                     ng = gcost + self.cost(act)
-                    if child in closed or ng >= best_g.get(child, float("inf")):
+                    if child in closed or ng >= best_g.get(child, math.inf):
                         continue
                     best_g[child] = ng
                     parent[child] = (node, act)
@@ -226,19 +262,23 @@ class _Search:
                     hh = self.h(pre)
                     if hh == math.inf:
                         continue  # an atom of the pre-image is unreachable
-                    heapq.heappush(frontier, (ng + self.config.weight * hh, hh, next(counter), child))
+                    heapq.heappush(frontier, (ng + weight * hh, hh, next(counter), child))
         return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
 
     def _path(
         self,
-        node: tuple[Goal, int],
-        parent: dict[tuple[Goal, int], tuple[tuple[Goal, int], Action] | None],
+        node: tuple[frozenset[int], int],
+        parent: Mapping[tuple[frozenset[int], int], tuple[tuple[frozenset[int], int], Action] | None],
     ) -> list[tuple[Action | None, Goal]]:
-        steps: list[tuple[Action | None, Goal]] = [(None, node[0])]
+        T = self.table
+        steps: list[tuple[Action | None, Goal]] = [(None, T.goal(node[0]))]
         cur = node
-        while parent[cur] is not None:
-            prev, act = parent[cur]  # type: ignore[misc]
-            steps.append((act, prev[0]))
+        while True:
+            link = parent[cur]
+            if link is None:
+                break
+            prev, act = link
+            steps.append((act, T.goal(prev[0])))
             cur = prev
         return steps
 
@@ -259,6 +299,22 @@ def concrete(domain: Domain, levels: LevelMap) -> bool:
 def context_allows_forward(context: PlanningContext | None) -> bool:
     """A domain's own estimate (``context.extras["heuristic"]``) is for the regression search."""
     return context is None or context.extras.get("heuristic") is None
+
+
+class _GoalOf:
+    """A node's subgoal as a :class:`Goal`, made on the first call (for generators)."""
+
+    __slots__ = ("table", "fs", "goal")
+
+    def __init__(self, table: FactTable, fs: frozenset[int]) -> None:
+        self.table = table
+        self.fs = fs
+        self.goal: Goal | None = None
+
+    def __call__(self) -> Goal:
+        if self.goal is None:
+            self.goal = self.table.goal(self.fs)
+        return self.goal
 
 
 def _clock(config: PlannerConfig) -> Callable[[], float]:

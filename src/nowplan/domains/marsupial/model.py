@@ -124,7 +124,18 @@ def _robot_gen(kind: str, arg: Var) -> Generator:
         if t is not None:
             yield {arg: t.arg, L1: t.before[0], L2: t.after[0], D1: t.door_before, D2: t.door_after}
 
-    return Generator(f"loader_{kind}", (arg, L1, L2, D1, D2), fn, (v,))
+    return Generator(f"loader_{kind}", (arg, L1, L2, D1, D2), fn, (v,), reads=_bay_wanted)
+
+
+def _bay_wanted(bind: Mapping[Var, Any], goal: Any) -> tuple[Any, Any]:
+    """What a robot generator reads of the goal: the cargo and door it asks of the vehicle."""
+    veh = bind.get(v)
+    table = goal.by_key()
+    return table.get(("cargo", (veh,))), table.get(("door", (veh,)))
+
+
+def _nothing(bind: Mapping[Var, Any], goal: Any) -> tuple[()]:
+    return ()
 
 
 def _pack_gen(bind: Mapping[Var, Any], goal: Any, belief: Any, context: Any) -> Iterator[dict[Var, Any]]:
@@ -165,7 +176,7 @@ def operators(where: Where) -> tuple[Operator, ...]:
              atom("packed", v, value=False)),
             cost=VEHICLE_COST, param_types=("package", "vehicle", "location"),
             resources=(Resource(("vehicle", v), SH), Resource(("stop", v, l), SH), Resource(("space", v), CN)),
-            generators=(Generator("load_place", (l,), where.load_place, (p, v)),),
+            generators=(Generator("load_place", (l,), where.load_place, (p, v), reads=where.wanted),),
         ),
         Operator(
             "unload", (p, v, l),
@@ -190,7 +201,7 @@ def operators(where: Where) -> tuple[Operator, ...]:
             (_pre(atom("reachable", l, v), PKG), _pre(atom("at", p, l), PKG)),
             (atom("same_city", p, v),),
             cost=INFERENCE_COST, param_types=("package", "vehicle", "location"),
-            generators=(Generator("same_city_place", (l,), where.same_city_place, (p, v)),),
+            generators=(Generator("same_city_place", (l,), where.same_city_place, (p, v), reads=where.wanted),),
         ),
         Operator(
             "pack", (v, L),
@@ -198,7 +209,7 @@ def operators(where: Where) -> tuple[Operator, ...]:
             (atom("packed", v),),
             cost=INFERENCE_COST, param_types=("vehicle", None),
             resources=(Resource(("storage", v), CT),),
-            generators=(Generator("pack", (L,), _pack_gen, (v,)),),
+            generators=(Generator("pack", (L,), _pack_gen, (v,), reads=_nothing),),
         ),
     )
 
@@ -246,10 +257,18 @@ class Where:
                 return self.place_now(belief, str(args[1]))
         return None
 
+    def wanted(self, bind: Mapping[Var, Any], goal: Any) -> tuple[str, ...]:
+        """All that ``choose`` reads of the goal: where it wants the package, among ``v``'s places."""
+        return tuple(sorted(self._wanted(str(bind.get(p)), str(bind.get(v)), goal)))
+
+    def _wanted(self, pkg: str, veh: str, goal: Any) -> list[str]:
+        reach = self.reach.get(veh, frozenset())
+        return [str(a.args[1]) for a in goal.atoms if a.predicate == "at" and a.args[0] == pkg
+                and a.value is True and a.args[1] in reach]
+
     def choose(self, pkg: str, veh: str, goal: Any, belief: Any) -> list[str]:
         reach = self.reach.get(veh, frozenset())
-        wanted = [str(a.args[1]) for a in goal.atoms if a.predicate == "at" and a.args[0] == pkg
-                  and a.value is True and a.args[1] in reach]
+        wanted = self._wanted(pkg, veh, goal)
         if wanted:
             return wanted
         now = self.place_now(belief, pkg)

@@ -1,0 +1,196 @@
+"""The regression planner's speed on the problems HPN and RCHPN solve (issue 19).
+
+For each marsupial problem (``regime × packages × trial``) and strategy (``hpn``,
+``hpn+peephole``) and for logistics HPN on the generated problems of
+``benchmarks/flat_logistics.py``, one line per run with
+
+* ``calls``: regression-planner calls (the executive's plans, RCHPN's joint plans
+  and the peephole estimator's small plans), ``joint`` of them with the
+  serialization shortcut switched off by the peephole (combined subgoals);
+* ``nodes``: nodes expanded over all calls; ``plan_cpu``: CPU s inside the planner
+  (all calls); ``nodes/s``; ``joint_cpu``: CPU s of the joint calls;
+* ``cost``: execution cost; ``cpu``: CPU s of the whole run; ``actions``: a digest
+  of the executed action sequence (to check that a change made the same decisions).
+
+    .venv/bin/python benchmarks/planner_profile.py --regimes single,both --sizes 3,5,8 \\
+        --trials 0,1 --logistics 20 --out benchmarks/results/planner_profile_before.jsonl
+    .venv/bin/python benchmarks/planner_profile.py --regimes single --sizes 8 --trials 0 \\
+        --strategies hpn --no-logistics --profile prof.txt
+
+``--profile FILE`` runs everything under cProfile and writes the top 20 functions
+by cumulative and by internal time.  Times are CPU seconds (``time.process_time``);
+the machine is shared, so compare ratios within one run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import cProfile
+import hashlib
+import io
+import json
+import pstats
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+import nowplan.acting.hpn as hpn_mod
+import nowplan.acting.resources as resources_mod
+import nowplan.planning.regression as regression
+from nowplan.acting.run import run_episode
+from nowplan.acting.strategy import parse_strategy
+from nowplan.belief.symbolic import SymbolicBelief
+from nowplan.domains.marsupial.flatcmp import timed_run
+from nowplan.domains.marsupial.scenarios import episode
+from nowplan.domains.registry import Episode
+from nowplan.io.logistics_gen import generate_logistics
+from nowplan.io.pddl_read import load_pddl
+from nowplan.planning.regression import PlannerConfig
+from nowplan.worlds.symbolic import SymbolicWorld
+
+DATA = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl" / "logistics"
+# (cities, locations per city, airplanes, packages), as in flat_logistics.py
+LOGISTICS = {2: (2, 2, 1, 2), 4: (2, 3, 1, 4), 6: (3, 3, 1, 6), 8: (4, 3, 2, 8), 10: (5, 3, 2, 10),
+             14: (6, 4, 2, 14), 20: (8, 4, 3, 20)}
+
+
+class Counter:
+    """Wraps the regression planner wherever the executive and the estimator call it."""
+
+    def __init__(self) -> None:
+        self.reset()
+        self._orig = regression.plan
+
+    def reset(self) -> None:
+        self.calls = self.joint = self.nodes = 0
+        self.cpu = self.joint_cpu = 0.0
+
+    def wrap(self, source: str) -> Any:
+        orig = regression.plan
+
+        def counted(*args: Any, **kw: Any) -> Any:
+            c0 = time.process_time()
+            res = orig(*args, **kw)
+            dt = time.process_time() - c0
+            cfg = args[5] if len(args) > 5 else kw.get("config")
+            self.calls += 1
+            self.nodes += res.expanded
+            self.cpu += dt
+            if source == "exec" and cfg is not None and not cfg.serialization:
+                self.joint += 1
+                self.joint_cpu += dt
+            return res
+
+        return counted
+
+    def install(self) -> None:
+        hpn_mod.regression_plan = self.wrap("exec")  # type: ignore[assignment]
+        resources_mod.plan = self.wrap("estimator")  # type: ignore[assignment]
+
+
+def digest(actions: list[str]) -> str:
+    return hashlib.sha1("\n".join(actions).encode()).hexdigest()[:12]
+
+
+def record(ep: Episode) -> list[str]:
+    executed: list[str] = []
+    world = ep.world
+    original = world.execute
+
+    def execute(action: Any) -> Any:
+        executed.append(str(action))
+        return original(action)
+
+    world.execute = execute  # type: ignore[method-assign]
+    return executed
+
+
+def marsupial_run(regime: str, n: int, trial: int, strategy: str, limit: float, ctr: Counter) -> dict[str, Any]:
+    ep = episode(regime, n, trial)
+    executed = record(ep)
+    ctr.reset()
+    m, cpu, ok = timed_run(ep, strategy, trial, limit)
+    return row("marsupial", f"{regime}-{n}", trial, strategy, m, cpu, ok, executed, ctr)
+
+
+def logistics_run(n: int, seed: int, limit: float, ctr: Counter) -> dict[str, Any]:
+    c, loc, a, _ = LOGISTICS[n]
+    with tempfile.TemporaryDirectory() as tmp:
+        prob = Path(tmp) / f"p-c{c}-l{loc}-a{a}-n{n}-s{seed}.pddl"
+        prob.write_text(generate_logistics(c, loc, a, n, seed=seed))
+        p = load_pddl(DATA / "domain.pddl", prob, DATA / "logistics.crit")
+    ep = Episode(p, SymbolicWorld(p.domain, p.init), SymbolicBelief(p.init))
+    executed = record(ep)
+    ctr.reset()
+    st = parse_strategy("hpn", time_limit=limit, max_actions=10_000, planner=PlannerConfig(time_limit=limit))
+    c0 = time.process_time()
+    m = run_episode(ep, st)
+    cpu = time.process_time() - c0
+    ok = bool(p.domain.satisfies(ep.world.state, p.goal))
+    return row("logistics", f"log-{n}", seed, "hpn", m, cpu, ok, executed, ctr)
+
+
+def row(domain: str, problem: str, trial: int, strategy: str, m: Any, cpu: float, ok: bool,
+        executed: list[str], ctr: Counter) -> dict[str, Any]:
+    return {
+        "domain": domain, "problem": problem, "trial": trial, "strategy": strategy,
+        "outcome": m.outcome.value, "goal_holds": ok, "cost": m.execution_cost, "n_actions": len(executed),
+        "calls": ctr.calls, "joint": ctr.joint, "nodes": ctr.nodes, "plan_cpu": round(ctr.cpu, 4),
+        "joint_cpu": round(ctr.joint_cpu, 4), "nodes_per_s": round(ctr.nodes / ctr.cpu) if ctr.cpu else None,
+        "cpu": round(cpu, 4), "actions": digest(executed),
+    }
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--regimes", default="single,both")
+    ap.add_argument("--sizes", default="3,5,8")
+    ap.add_argument("--trials", default="0,1")
+    ap.add_argument("--strategies", default="hpn,hpn+peephole")
+    ap.add_argument("--logistics", default="20", help="logistics package counts (flat_logistics sizes)")
+    ap.add_argument("--no-logistics", action="store_true")
+    ap.add_argument("--no-marsupial", action="store_true")
+    ap.add_argument("--logistics-seeds", default="0,1")
+    ap.add_argument("--limit-s", type=float, default=600.0, help="CPU s per run")
+    ap.add_argument("--profile", type=Path, help="write a cProfile top 20 here")
+    ap.add_argument("--out", type=Path, help="append the rows (JSON lines) here")
+    args = ap.parse_args()
+    ctr = Counter()
+    ctr.install()
+    jobs: list[Any] = []
+    if not args.no_marsupial:
+        for regime in args.regimes.split(","):
+            for n in map(int, args.sizes.split(",")):
+                for trial in map(int, args.trials.split(",")):
+                    for st in args.strategies.split(","):
+                        jobs.append(lambda r=regime, n=n, t=trial, s=st: marsupial_run(r, n, t, s, args.limit_s, ctr))
+    if not args.no_logistics:
+        for n in map(int, args.logistics.split(",")):
+            for seed in map(int, args.logistics_seeds.split(",")):
+                jobs.append(lambda n=n, s=seed: logistics_run(n, s, args.limit_s, ctr))
+    prof = cProfile.Profile() if args.profile else None
+    rows = []
+    for job in jobs:
+        if prof is not None:
+            prof.enable()
+        r = job()
+        if prof is not None:
+            prof.disable()
+        rows.append(r)
+        print(json.dumps(r), flush=True)
+        if args.out:
+            with args.out.open("a") as fh:
+                fh.write(json.dumps(r) + "\n")
+    if prof is not None:
+        buf = io.StringIO()
+        st = pstats.Stats(prof, stream=buf)
+        st.sort_stats("cumulative").print_stats(20)
+        st.sort_stats("tottime").print_stats(20)
+        args.profile.write_text(buf.getvalue())
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,148 @@
+"""Atoms interned as integers (fact ids), for searches that hash and compare many subgoals.
+
+A :class:`FactTable` belongs to one domain (``Domain.facts``) and lives as long
+as it: an atom gets its id the first time it is seen and keeps it, so a
+ground action can keep its effects' and preconditions' ids between planner
+calls.  Per fact the table keeps what regression asks at every node:
+
+* the *fluent* id (predicate and arguments: one fact per value);
+* whether the predicate's value rule is plain equality (then a fact entails
+  another of its fluent only if it is the same fact);
+* its keys under the domain's *keyed* conflict rules (``group_keys``: at
+  most one true atom per key), computed once, so a subgoal's mutex check is
+  a dictionary lookup per key;
+* its sort key (predicate, arguments): the order in which a search visits a
+  subgoal's atoms, the same as sorting the atoms (a goal has one atom per
+  fluent).
+
+Conflict rules without ``group_keys`` (plain pairwise callables) are asked
+once per pair of facts and the answer is kept.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Iterable
+from typing import TYPE_CHECKING, Any
+from nowplan.core.atoms import EQUALITY, Atom, Goal, Rules, Term
+
+if TYPE_CHECKING:
+    from nowplan.core.operators import Action
+
+FluentKey = tuple[str, tuple[Term, ...]]
+
+
+class FactTable:
+    """Interned atoms of one domain (see the module docstring)."""
+
+    def __init__(self, rules: Rules) -> None:
+        self.rules = rules
+        self.keyed = tuple(c for c in rules.conflicts if hasattr(c, "group_keys"))
+        self.plain = tuple(c for c in rules.conflicts if not hasattr(c, "group_keys"))
+        self.ids: dict[Atom, int] = {}
+        self.atoms: list[Atom] = []
+        self.fluent: list[int] = []
+        self.fluent_ids: dict[FluentKey, int] = {}
+        self.equality: list[bool] = []  # the predicate's value rule is equality
+        self.gkeys: list[tuple[Hashable, ...]] = []
+        self.sort_key: list[tuple[str, tuple[Term, ...]]] = []
+        self._pairs: dict[tuple[int, int], bool] = {}
+        # ground actions by (operator index, arguments): one object per instance, so what a
+        # planner keeps on an action (its facts' ids) outlives one call
+        self.actions: dict[tuple[int, tuple[Any, ...]], Action] = {}
+
+    def __len__(self) -> int:
+        return len(self.atoms)
+
+    def id(self, a: Atom) -> int:
+        f = self.ids.get(a)
+        if f is None:
+            f = self._add(a)
+        return f
+
+    def _add(self, a: Atom) -> int:
+        f = len(self.atoms)
+        self.ids[a] = f
+        self.atoms.append(a)
+        key = (a.predicate, a.args)
+        fl = self.fluent_ids.get(key)
+        if fl is None:
+            fl = self.fluent_ids[key] = len(self.fluent_ids)
+        self.fluent.append(fl)
+        self.equality.append(self.rules.rule(a.predicate) is EQUALITY)
+        keys: list[Hashable] = []
+        for rule in self.keyed:
+            keys.extend(rule.group_keys(a))
+        self.gkeys.append(tuple(keys))
+        self.sort_key.append(key)
+        return f
+
+    def ids_of(self, atoms: Iterable[Atom]) -> frozenset[int]:
+        get = self.ids.get
+        out = []
+        for a in atoms:
+            f = get(a)
+            out.append(self._add(a) if f is None else f)
+        return frozenset(out)
+
+    def goal(self, fs: Iterable[int]) -> Goal:
+        atoms = self.atoms
+        return Goal(frozenset(atoms[f] for f in fs))
+
+    def sorted(self, fs: Iterable[int]) -> list[int]:
+        """Fact ids in the order of their atoms (as ``sorted(goal.atoms)``)."""
+        return sorted(fs, key=self.sort_key.__getitem__)
+
+    # -- relations between facts -------------------------------------------
+    def entails(self, have: int, want: int) -> bool:
+        """Same fluent assumed: does ``have``'s value guarantee ``want``'s?"""
+        if have == want:
+            return True
+        if self.equality[want]:
+            return False
+        a, b = self.atoms[have], self.atoms[want]
+        return self.rules.rule(b.predicate).entails(a.value, b.value)
+
+    def plain_conflict(self, x: int, y: int) -> bool:
+        """Do the plain (pairwise) conflict rules exclude facts ``x`` and ``y`` together?"""
+        key = (x, y) if x < y else (y, x)
+        r = self._pairs.get(key)
+        if r is None:
+            a, b = self.atoms[x], self.atoms[y]
+            r = self._pairs[key] = any(c(a, b) or c(b, a) for c in self.plain)
+        return r
+
+    def consistent(self, fs: Iterable[int]) -> bool:
+        """No two facts of ``fs`` share a fluent with incompatible values or a conflict rule's key."""
+        seen: dict[Hashable, int] = {}
+        fl: dict[int, int] = {}
+        lst = list(fs)
+        for f in lst:
+            o = fl.get(self.fluent[f])
+            if o is not None and o != f:
+                a, b = self.atoms[o], self.atoms[f]
+                if not self.rules.rule(a.predicate).compatible(a.value, b.value):
+                    return False
+            fl[self.fluent[f]] = f
+            for k in self.gkeys[f]:
+                o = seen.get(k)
+                if o is not None and o != f:
+                    return False
+                seen[k] = f
+        if self.plain:
+            for i, x in enumerate(lst):
+                for y in lst[i + 1 :]:
+                    if x != y and self.fluent[x] != self.fluent[y] and self.plain_conflict(x, y):
+                        return False
+        return True
+
+    def meet(self, old: int, new: int) -> int | None:
+        """The fact for both values of one fluent (``conjoin``'s merge), or ``None`` if incompatible."""
+        if old == new:
+            return old
+        if self.equality[new]:
+            return None
+        a, b = self.atoms[old], self.atoms[new]
+        rule = self.rules.rule(b.predicate)
+        if not rule.compatible(a.value, b.value):
+            return None
+        return self.id(Atom(b.predicate, b.args, rule.meet(a.value, b.value)))

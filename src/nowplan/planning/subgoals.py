@@ -1,0 +1,164 @@
+"""Pre-images over fact ids: what :func:`nowplan.planning.regression.preimage` computes, per node.
+
+A subgoal is a frozenset of fact ids (:class:`~nowplan.core.facts.FactTable`).
+When the search expands a node it indexes the node once (:class:`NodeIndex`:
+its facts by fluent and by conflict key); each successor then costs a few
+lookups per effect and precondition of the action (:class:`ActionFacts`,
+kept on the action):
+
+1. the node's facts of the fluents the effects set are removed if an effect
+   entails them, else the regression fails;
+2. one mutex pass: an effect that shares a conflict key with a remaining
+   fact fails it (and two effects that share one);
+3. the kept preconditions are merged per fluent as ``conjoin`` does, and a
+   precondition that shares a key with a remaining fact, or with another
+   precondition, fails it.
+
+Pairs of remaining facts are not checked again: every node the search
+generates was checked whole when it was made, so only a root goal can be
+contradictory, and the search regresses a contradictory root with the
+Goal-level :func:`~nowplan.planning.regression.preimage` instead
+(:meth:`FactTable.consistent` decides).  Plain pairwise conflict rules are
+asked once per pair of facts (the table keeps the answer).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable
+
+from nowplan.core.facts import FactTable
+from nowplan.core.operators import Action
+
+
+class ActionFacts:
+    """An action's effects and kept preconditions as fact ids, at one level."""
+
+    __slots__ = ("all_effs", "effs", "eff_fl", "eff_keys", "self_clash", "pre")
+
+    def __init__(self, table: FactTable, act: Action, level: int | None, drop: frozenset[str]) -> None:
+        by_fluent: dict[int, int] = {}
+        self.all_effs = tuple(table.id(e) for e in act.effects())
+        for f in self.all_effs:
+            by_fluent[table.fluent[f]] = f  # a later effect on one fluent wins, as in a dict by key
+        self.effs = tuple(by_fluent.values())
+        self.eff_fl = tuple(by_fluent.items())
+        keys: list[tuple[Hashable, int]] = []
+        seen: dict[Hashable, int] = {}
+        clash = False
+        for f in self.effs:
+            for k in table.gkeys[f]:
+                o = seen.get(k)
+                if o is not None and o != f:
+                    clash = True
+                seen[k] = f
+                keys.append((k, f))
+        self.eff_keys = tuple(keys)
+        self.self_clash = clash
+        self.pre = tuple(table.id(p) for p in act.preconditions(level) if p.predicate not in drop)
+
+
+def action_facts(table: FactTable, act: Action, level: int | None, drop: frozenset[str]) -> ActionFacts:
+    key = (table, level, drop)
+    info: ActionFacts | None = act.memo.get(key)
+    if info is None:
+        info = act.memo[key] = ActionFacts(table, act, level, drop)
+    return info
+
+
+class NodeIndex:
+    """A subgoal's facts by fluent and by conflict key (built once per expanded node)."""
+
+    __slots__ = ("fs", "by_fluent", "by_key")
+
+    def __init__(self, table: FactTable, fs: frozenset[int]) -> None:
+        self.fs = fs
+        fl = table.fluent
+        gk = table.gkeys
+        self.by_fluent = {fl[f]: f for f in fs}
+        by_key: dict[Hashable, int] = {}
+        for f in fs:
+            for k in gk[f]:
+                by_key[k] = f
+        self.by_key = by_key
+
+
+def regress(table: FactTable, node: NodeIndex, info: ActionFacts) -> frozenset[int] | None:
+    """The pre-image of a consistent subgoal through an action, or ``None`` (see the module docstring)."""
+    fs = node.fs
+    nf = node.by_fluent
+    removed: set[int] = set()
+    for flu, e in info.eff_fl:
+        o = nf.get(flu)
+        if o is not None:
+            if o != e and not table.entails(e, o):
+                return None
+            removed.add(o)
+    conflicts = bool(table.keyed or table.plain)
+    if conflicts and len(fs) > len(removed):
+        if info.self_clash:
+            return None
+        nk = node.by_key
+        for k, e in info.eff_keys:
+            o = nk.get(k)
+            if o is not None and o != e and o not in removed:
+                return None
+        if table.plain:
+            for r in fs:
+                if r not in removed:
+                    for e in info.effs:
+                        if table.plain_conflict(r, e):
+                            return None
+    if not info.pre:
+        return fs.difference(removed) if removed else fs
+    fl = table.fluent
+    new: dict[int, int] = {}  # fluent -> fact, for facts not already in the subgoal
+    for p in info.pre:
+        flu = fl[p]
+        cur = new.get(flu)
+        if cur is None:
+            old = nf.get(flu)
+            if old is None or old in removed:
+                new[flu] = p
+                continue
+            if old == p:
+                continue
+            m = table.meet(old, p)
+            if m is None:
+                return None
+            if m != old:
+                removed.add(old)  # replaced by the merged fact
+                new[flu] = m
+        elif cur != p:
+            m = table.meet(cur, p)
+            if m is None:
+                return None
+            new[flu] = m
+    if not new:
+        return fs.difference(removed) if removed else fs
+    if conflicts:
+        nk = node.by_key
+        gk = table.gkeys
+        local: dict[Hashable, int] = {}
+        for n in new.values():
+            for k in gk[n]:
+                x = nk.get(k)
+                if x is not None and x != n and x not in removed:
+                    return None
+                x = local.get(k)
+                if x is not None and x != n:
+                    return None
+                local[k] = n
+        if table.plain:
+            kept = [r for r in fs if r not in removed]
+            news = list(new.values())
+            for i, n in enumerate(news):
+                for b in kept:
+                    if table.plain_conflict(n, b):
+                        return None
+                for b in news[i + 1 :]:
+                    if table.plain_conflict(n, b):
+                        return None
+    out = set(fs)
+    out.difference_update(removed)
+    out.update(new.values())
+    return frozenset(out)
