@@ -125,6 +125,35 @@ def test_abstract_levels_search_forward_with_conflicts_as_deletes() -> None:
 
     prob = generate(SIZES["small"], 1)
     res = plan(LOG, prob.objects, prob.init, prob.goal, LevelMap(LOG.top_level), PlannerConfig(engine="forward"))
-    assert res.solved and res.plan is not None and res.method == "forward:gbfs"
+    assert res.solved and res.plan is not None and res.method == "forward:lama"
     assert all(not a.name.startswith(("drive", "fly")) for a in res.plan.actions)
     replay(LOG, prob.init, res.plan, concrete=False)
+
+
+@pytest.mark.parametrize(("dom", "prob"), CASES)
+def test_lama_search_and_anytime_improvement_keep_the_contract(dom: str, prob: str) -> None:
+    p = load_pddl(DATA / dom / "domain.pddl", DATA / dom / prob)
+    first = plan(p.domain, p.objects, p.init, p.goal, flat_levels(), PlannerConfig(search="lama"))
+    better = plan(p.domain, p.objects, p.init, p.goal, flat_levels(), PlannerConfig(search="lama", improve=2.0))
+    assert first.plan is not None and better.plan is not None
+    assert better.plan.cost() <= first.plan.cost()  # improvement never makes a plan costlier
+    replay(p.domain, p.init, better.plan)
+
+
+def test_landmarks_of_a_chain_are_every_fact_on_it() -> None:
+    from nowplan.planning.landmarks import LandmarkCount
+
+    dom = Domain("chain", {n: Predicate(n, 1) for n in ("a", "b", "c", "d")}, (
+        _op("ab", [atom("a", X)], [atom("b", X)]),
+        _op("bc", [atom("b", X)], [atom("c", X)]),
+        _op("bd", [atom("b", X)], [atom("d", X)]),
+        _op("cd", [atom("c", X)], [atom("d", X)]),
+    ))
+    init = State([atom("a", "k")])
+    t = task_mod.build_task(dom, {"k": None}, init, Goal.of([atom("d", "k")]), flat_levels(), lambda a: 1.0)
+    lc = LandmarkCount(t)
+    names = {str(t.facts[f]) for f in lc.landmarks}
+    assert names == {"b(k)", "d(k)"}  # c(k) is avoidable (b -> d directly); a is static
+    acc = lc.initial_accepted()
+    h, preferred = lc.evaluate(t.init, acc)
+    assert h == 2 and [t.actions[a].name for a in preferred] == ["ab"]

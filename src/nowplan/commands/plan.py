@@ -28,6 +28,7 @@ ENGINES = ("nowplan", "forward", "regression", "fd")
 SEARCHES = {
     "forward:gbfs": "lazy greedy best-first search, h_FF with preferred operators",
     "forward:astar": "weighted A* forward, h_FF",
+    "forward:lama": "lazy greedy best-first search, h_FF and landmark count with preferred operators",
     "full": "regression A*",
     "serialization": "regression A*, serialization shortcut",
     "monotonic": "regression A*, monotonic shortcut",
@@ -56,9 +57,13 @@ def register(subparsers: Any) -> None:
                    help="nowplan (default): the executive's own planner, forward search where it applies "
                         "(PDDL always), else regression; forward | regression: force one; "
                         "fd: Fast Downward (needs the 'fd' extra)")
-    p.add_argument("--search", choices=("gbfs", "astar"), default="gbfs",
-                   help="forward search: gbfs (lazy greedy best-first with preferred operators, default) "
-                        "or astar (weighted by --weight; --weight 1 with --heuristic max is optimal)")
+    p.add_argument("--search", choices=("gbfs", "lama", "astar"), default="lama",
+                   help="forward search: lama (lazy greedy best-first on h_FF and landmark count with "
+                        "preferred operators, default), gbfs (h_FF only) or astar (weighted by --weight; "
+                        "--weight 1 with --heuristic max is optimal)")
+    p.add_argument("--improve", type=float, default=1.0, metavar="K",
+                   help="after the first forward plan, look for cheaper ones for K times the first "
+                        "search's CPU time + 0.05 s (weighted A*, falling weights; default 1, 0 = off)")
     p.add_argument("--heuristic", choices=("ff", "add", "max"), default="ff",
                    help="forward heuristic: h_FF (default), h_add or h_max")
     p.add_argument("--level", type=_level, default="flat",
@@ -107,6 +112,7 @@ def run(args: argparse.Namespace) -> int:
             engine="auto" if args.engine == "nowplan" else args.engine,
             search=args.search,
             forward_heuristic=args.heuristic,
+            improve=args.improve,
             max_nodes=args.max_nodes,
             time_limit=args.time_limit,
             weight=args.weight,

@@ -41,8 +41,9 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
-Search = Literal["gbfs", "astar"]
+Search = Literal["gbfs", "lama", "astar"]
 BOOST = 1000  # priority given to the preferred-operator queue on progress (FD's default)
+IMPROVE_BASE_S = 0.05  # CPU seconds the anytime improvement always gets (with ``improve`` > 0)
 
 
 @dataclass
@@ -92,6 +93,10 @@ def search(
     """Search ``task`` forward; the plan is a list of action ids mapped to actions."""
     if task.unsolvable:
         return ForwardResult(PlanStatus.UNSOLVABLE, None, task.unsolvable)
+    if method == "lama":
+        from nowplan.planning.lama import lama_search
+
+        return lama_search(task, cost_type=cost_type, max_nodes=max_nodes, out_of_time=out_of_time)
     h = RelaxedHeuristic(task, heuristic, cost_type)
     succ = _Successors(task)
     if method == "gbfs":
@@ -264,15 +269,23 @@ def forward_plan(
     weight: float = 1.0,
     max_nodes: int = 500_000,
     out_of_time: Callable[[], bool] = lambda: False,
+    improve: float = 0.0,
 ) -> tuple[ForwardResult, list[tuple[Action | None, Goal]] | None]:
     """Ground, search and regress: the result and the plan's steps (``None`` unless solved)."""
     task = build_task(domain, objects, belief, goal, levels, cost_of)
+    t0 = time.process_time()
     res = search(task, method=method, heuristic=heuristic, cost_type=cost_type, weight=weight,
                  max_nodes=max_nodes, out_of_time=out_of_time)
     if res.status is not PlanStatus.SOLVED or res.actions is None:
         return res, None
     ids = {act: i for i, act in enumerate(task.actions)}
-    res.actions = [task.actions[i] for i in eliminate_actions(task, [ids[a] for a in res.actions])]
+    found = eliminate_actions(task, [ids[a] for a in res.actions])
+    if improve > 0 and found:
+        from nowplan.planning.anytime import improve as improve_plan
+
+        budget = improve * (time.process_time() - t0) + IMPROVE_BASE_S
+        found = eliminate_actions(task, improve_plan(task, found, budget, cost_type, out_of_time))
+    res.actions = [task.actions[i] for i in found]
     steps = regress_actions(domain, belief, goal, res.actions, levels)
     if steps is None:
         log.warning("the forward plan for %s does not regress into pre-images at its levels", goal)
@@ -318,6 +331,7 @@ def plan_forward(
         domain, objects, belief, goal, levels, cost_of,
         method=config.search, heuristic=config.forward_heuristic, cost_type=config.cost_type,
         weight=config.weight, max_nodes=config.max_nodes, out_of_time=lambda: now() > deadline,
+        improve=config.improve,
     )
     method = f"forward:{config.search}"
     common: dict[str, Any] = dict(expanded=res.expanded, generated=res.generated, method=method,

@@ -1,0 +1,88 @@
+"""Anytime plan improvement: LAMA's later iterations, on a time budget.
+
+After the first (greedy) plan, weighted A* searches run with decreasing
+weights (5, 3, 2, 1) and h_FF, pruning every node whose path already costs
+as much as the best plan so far; each plan found lowers that bound.  The
+improvement stops when the budget is spent or the last weight finishes.
+Plans only ever get cheaper.
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import math
+import time
+from collections.abc import Callable
+
+from nowplan.planning.forward import _apply, _goal_reached, _Successors
+from nowplan.planning.hff import CostType, RelaxedHeuristic
+from nowplan.planning.task import Task
+
+WEIGHTS = (5.0, 3.0, 2.0, 1.0)
+
+
+def _bounded_wastar(task: Task, h: RelaxedHeuristic, succ: _Successors, weight: float, bound: float,
+                    stop: Callable[[], bool]) -> list[int] | None:
+    """A plan (action ids) cheaper than ``bound``, or ``None``."""
+    init = task.init
+    h0, _ = h.evaluate(init)
+    if h0 == math.inf:
+        return None
+    tick = itertools.count()
+    best_g: dict[frozenset[int], float] = {init: 0.0}
+    parent: dict[frozenset[int], tuple[frozenset[int], int] | None] = {init: None}
+    frontier = [(weight * h0, h0, next(tick), init)]
+    cost = task.cost
+    while frontier:
+        _, _, _, state = heapq.heappop(frontier)
+        g = best_g[state]
+        if _goal_reached(task, state):
+            if g >= bound:
+                continue
+            plan: list[int] = []
+            cur = parent[state]
+            while cur is not None:
+                plan.append(cur[1])
+                cur = parent[cur[0]]
+            plan.reverse()
+            return plan
+        if stop():
+            return None
+        for a in succ(state):
+            ng = g + cost[a]
+            if ng >= bound:
+                continue
+            nxt = _apply(task, state, a)
+            if ng >= best_g.get(nxt, math.inf):
+                continue
+            best_g[nxt] = ng
+            parent[nxt] = (state, a)
+            hv, _ = h.evaluate(nxt)
+            if hv == math.inf:
+                continue
+            heapq.heappush(frontier, (ng + weight * hv, hv, next(tick), nxt))
+    return None
+
+
+def improve(task: Task, plan: list[int], budget_s: float, cost_type: CostType = "plusone",
+            out_of_time: Callable[[], bool] = lambda: False) -> list[int]:
+    """A plan no costlier than ``plan``, searching for at most ``budget_s`` CPU seconds."""
+    end = time.process_time() + budget_s
+
+    def stop() -> bool:
+        return time.process_time() > end or out_of_time()
+
+    h = RelaxedHeuristic(task, "ff", cost_type)
+    succ = _Successors(task)
+    best = plan
+    for w in WEIGHTS:
+        if stop():
+            break
+        while True:
+            bound = sum(task.cost[a] for a in best)
+            found = _bounded_wastar(task, h, succ, w, bound, stop)
+            if found is None:
+                break
+            best = found
+    return best
