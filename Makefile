@@ -44,6 +44,7 @@ test-all: $(STAMP) test-deps
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/classical.py --time-limit 30 --out benchmarks/results/classical
+	$(BIN)/python benchmarks/logistics_hpn_fd.py --packages 8,14,20 --seeds 0,1
 	$(BIN)/python benchmarks/flat_logistics.py --time-limit 30 --seeds 0,1
 	$(BIN)/python benchmarks/summarize.py
 
