@@ -77,7 +77,7 @@ def main() -> int:
                 ok_h, t_h, c_h = run_hpn(prob, args.time_limit)
                 ok_f, t_f, c_f = run_flat(prob, args.time_limit)
                 fd = run_fd(DATA / "domain.pddl", prob, args.time_limit)
-                row = {"packages": n, "seed": seed, "hpn_ok": ok_h, "hpn_cpu_s": round(t_h, 3), "hpn_cost": c_h,
+                row: dict[str, object] = {"packages": n, "seed": seed, "hpn_ok": ok_h, "hpn_cpu_s": round(t_h, 3), "hpn_cost": c_h,
                        "flat_ok": ok_f, "flat_cpu_s": round(t_f, 3), "flat_cost": c_f,
                        "fd_ok": fd.solved, "fd_wall_s": round(fd.wall_s, 3), "fd_cost": fd.cost,
                        "hpn_over_fd": round(t_h / fd.wall_s, 3) if fd.solved else ""}
