@@ -43,7 +43,7 @@ def test_demo_namo_writes_trace_frames_and_animation(tmp_path, capsys):
     assert main(["demo", "namo", "--out", str(tmp_path), "--failure-prob", "0"]) == 0
     out = capsys.readouterr().out
     assert "outcome: reached" in out and "picks/places" in out
-    d = tmp_path / "namo"
+    d = tmp_path  # --out is the demo's own folder (default out/demo/namo)
     events = [json.loads(x) for x in (d / "trace.jsonl").read_text().splitlines()]
     assert any(e["event"] == "frame" for e in events)
     assert (d / "namo.gif").read_bytes()[:4] == b"GIF8"

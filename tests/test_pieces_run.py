@@ -103,7 +103,7 @@ def test_demo_writes_an_animation_and_a_trace_with_frames(tmp_path: Path) -> Non
         assert gif.n_frames >= 3
         cam_and_board = gif.size[0] > 1.8 * gif.size[1]  # two panels side by side
         assert cam_and_board
-    events = [json.loads(x) for x in (tmp_path / "pieces-trace.jsonl").read_text().splitlines()]
+    events = [json.loads(x) for x in (tmp_path / "trace.jsonl").read_text().splitlines()]
     frames = [e for e in events if e["event"] == "frame"]
     assert len(frames) >= 3 and all(f["image"].startswith("data:image/") for f in frames)
     assert events[-1]["event"] == "run_end" or any(e["event"] == "run_end" for e in events)

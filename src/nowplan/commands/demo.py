@@ -35,11 +35,14 @@ def register(sub: Any) -> None:
     p.add_argument("--seed", type=nonneg_int, default=0, help="problem and world seed (default 0)")
     p.add_argument("--size", default="medium", choices=["tiny", "small", "medium", "large"])
     p.add_argument("--failure-prob", type=probability, default=0.1, help="action failure probability (default 0.1)")
-    p.add_argument("--out", type=Path, default=Path("out/demo"), help="folder for the trace (default out/demo)")
+    p.add_argument("--out", type=Path, default=None,
+                   help="folder for the trace, viewer page and animation (default out/demo/DOMAIN)")
     p.set_defaults(func=main)
 
 
 def main(args: argparse.Namespace) -> int:
+    if args.out is None:  # one folder per domain: the demos never overwrite each other's files
+        args.out = Path("out/demo") / args.domain
     if args.domain != "logistics":
         spec = get_domain(args.domain)
         if spec.demo is None:

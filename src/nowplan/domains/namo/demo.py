@@ -36,7 +36,7 @@ def main(args: argparse.Namespace) -> int:
     if fail is not None:
         spec = replace(spec, noise=replace(spec.noise, grasp_fail=float(fail)))
     ep = episode(spec, seed)
-    out = Path(getattr(args, "out", None) or "out/demo") / "namo"
+    out = Path(getattr(args, "out", None) or "out/demo/namo")
     out.mkdir(parents=True, exist_ok=True)
     strategy = parse_strategy(DEMO_STRATEGY, max_actions=spec.max_actions, time_limit=300.0)
     print(f"nowplan demo namo: {ep.description}")

@@ -117,7 +117,7 @@ def main(args: argparse.Namespace) -> int:
     print(rec.summary())
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)
-    trace_path = out / "pieces-trace.jsonl"
+    trace_path = out / "trace.jsonl"
     with Trace(trace_path) as trace:
         ep = make_episode(task, args.seed, rate, rec=rec)
         recorder = _Recorder(ep.world, task.goal, trace)
@@ -148,7 +148,7 @@ def main(args: argparse.Namespace) -> int:
     if importlib.util.find_spec("nowplan.viz.viewer") is not None:
         from nowplan.viz.viewer import write_viewer
 
-        page = out / "pieces-trace.html"
+        page = out / "trace.html"
         write_viewer(trace_path, page)
         print(f"viewer: {page} (open it in a browser)")
     return 0 if done else 1
