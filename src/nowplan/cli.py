@@ -20,7 +20,7 @@ from typing import Any
 from nowplan.errors import NowplanError
 
 # subcommand modules under nowplan.commands, in --help order
-COMMANDS = ("plan", "run", "demo", "sweep", "report", "reproduce", "view")
+COMMANDS = ("plan", "run", "demo", "domains", "sweep", "report", "reproduce", "view")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -48,6 +48,9 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action=_Version, nargs=0, help="print the version and exit")
     parser.add_argument("-v", "--verbose", action="count", default=0, help="log more (-v info, -vv debug)")
+    parser.add_argument("--import", dest="imports", action="append", default=[], metavar="MOD",
+                        help="import a domain module (its SPEC) before running; repeatable "
+                             "(like NOWPLAN_DOMAINS=MOD,...)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name in COMMANDS if only is None else (only,):
         try:
@@ -70,6 +73,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         level=[logging.WARNING, logging.INFO, logging.DEBUG][min(args.verbose, 2)],
         format="%(levelname)s %(name)s: %(message)s",
     )
+    if args.imports:
+        from nowplan.domains.registry import load_module
+
+        try:
+            for mod in args.imports:
+                load_module(mod)
+        except NowplanError as err:
+            print(f"nowplan: error: {err}", file=sys.stderr)
+            return err.exit_code
     if not getattr(args, "func", None):
         parser.print_help()
         return 2

@@ -1,14 +1,26 @@
-"""Domains register themselves here: scenarios (seeded problem makers) and renderers.
+"""Domains as plugins: where nowplan finds each :class:`DomainSpec`.
 
-A domain package calls :func:`register` at import time with a
-:class:`DomainSpec`.  :func:`get_domain` imports the known domain packages
-lazily and gives a :class:`nowplan.errors.ScenarioError` listing the valid
-names for an unknown one.
+A domain is found, the built-in ones included, in one of two ways:
+
+* an entry point in the group ``nowplan.domains`` of an installed package
+  (its pyproject names it: ``[project.entry-points."nowplan.domains"]
+  house = "house_domain:SPEC"``); nowplan's own domains are declared so in
+  nowplan's pyproject;
+* a module named in the environment variable ``NOWPLAN_DOMAINS``
+  (``NOWPLAN_DOMAINS=house_domain,lab.domain``) or with ``nowplan --import
+  MOD``; the module's ``SPEC`` (a :class:`DomainSpec`) is used.
+
+Discovery runs once, on the first lookup; a module that cannot be imported
+or has no ``SPEC`` is an error naming it and the fix.  :func:`register`
+adds a spec by hand (a script's own domain, tests).  :func:`get_domain`
+gives a :class:`nowplan.errors.ScenarioError` listing the valid names for
+an unknown one.
 """
 
 from __future__ import annotations
 
 import importlib
+import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -16,8 +28,8 @@ from typing import Any
 from nowplan.core.domain import Domain, Problem
 from nowplan.errors import ScenarioError
 
-# domain packages under nowplan.domains that register a DomainSpec when imported
-KNOWN_PACKAGES = ("logistics", "namo", "pieces", "kitchen", "marsupial")
+ENTRY_POINT_GROUP = "nowplan.domains"
+ENV_VAR = "NOWPLAN_DOMAINS"
 
 
 @dataclass
@@ -44,6 +56,11 @@ class DomainSpec:
     default_scenario: str = ""
     demo: DemoFn | None = None  # `nowplan demo NAME` runs this
     extras: Mapping[str, Any] = field(default_factory=dict)
+    # the small seeded scenario the strategy-matrix test runs (default: default_scenario), and
+    # whether that run is slow (then the matrix marks it @slow)
+    matrix_scenario: str = ""
+    matrix_slow: bool = False
+    source: str = ""  # where it was found: an entry point or a module (set by discovery)
 
     def scenario(self, name: str) -> ScenarioFn:
         fn = self.scenarios.get(name)
@@ -56,6 +73,7 @@ class DomainSpec:
 
 
 _REGISTRY: dict[str, DomainSpec] = {}
+_DISCOVERED = False
 
 
 def register(spec: DomainSpec) -> DomainSpec:
@@ -63,23 +81,62 @@ def register(spec: DomainSpec) -> DomainSpec:
     return spec
 
 
-def _load_all() -> None:
-    for pkg in KNOWN_PACKAGES:
-        importlib.import_module(f"nowplan.domains.{pkg}")
+def _add(obj: Any, source: str) -> None:
+    if not isinstance(obj, DomainSpec):
+        raise ScenarioError(
+            f"{source} gives {type(obj).__name__}, not a nowplan DomainSpec; point it at the module's "
+            "DomainSpec (e.g. 'my_domain:SPEC')"
+        )
+    if not obj.source:
+        obj.source = source
+    _REGISTRY[obj.name] = obj
+
+
+def load_module(name: str) -> None:
+    """Import a domain module and add its ``SPEC`` (``NOWPLAN_DOMAINS`` and ``--import``)."""
+    try:
+        mod = importlib.import_module(name)
+    except ImportError as exc:
+        raise ScenarioError(
+            f"cannot import domain module '{name}' ({exc}); install its package or put it on PYTHONPATH"
+        ) from exc
+    spec = getattr(mod, "SPEC", None)
+    if spec is None:
+        raise ScenarioError(f"domain module '{name}' has no SPEC; define SPEC = DomainSpec(...) in it")
+    _add(spec, f"module {name}")
+
+
+def _discover() -> None:
+    global _DISCOVERED
+    if _DISCOVERED:
+        return
+    from importlib.metadata import entry_points
+
+    for ep in sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
+        try:
+            obj = ep.load()
+        except ImportError as exc:
+            raise ScenarioError(
+                f"the domain plugin '{ep.name}' ({ep.value}) cannot be imported: {exc}; "
+                "reinstall its package or uninstall it"
+            ) from exc
+        _add(obj, f"entry point {ep.name} = {ep.value}")
+    for name in filter(None, (m.strip() for m in os.environ.get(ENV_VAR, "").split(","))):
+        load_module(name)
+    _DISCOVERED = True
 
 
 def domain_names() -> list[str]:
-    _load_all()
+    _discover()
     return sorted(_REGISTRY)
 
 
 def get_domain(name: str) -> DomainSpec:
-    _load_all()
+    _discover()
     spec = _REGISTRY.get(name)
     if spec is None:
         raise ScenarioError(
             f"unknown domain '{name}'; valid domains: {', '.join(sorted(_REGISTRY)) or 'none'}"
+            f" (a domain of your own: an entry point in '{ENTRY_POINT_GROUP}' or {ENV_VAR}=your.module)"
         )
     return spec
-
-

@@ -42,6 +42,8 @@ SPEC = register(
         renderer=_render,
         default_scenario="inspect",
         demo=_demo,
+        matrix_scenario="inspect",
+        matrix_slow=True,
     )
 )
 

@@ -20,6 +20,7 @@ SPEC = register(
         description="packages moved by trucks within cities and airplanes between airports",
         scenarios=_scenarios,
         default_scenario="small",
+        matrix_scenario="tiny-failures",
     )
 )
 

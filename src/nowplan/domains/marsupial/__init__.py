@@ -58,6 +58,7 @@ SPEC = register(
         default_scenario="single-3",
         demo=demo,
         extras={"regimes": dict(REGIMES)},
+        matrix_scenario="single-2",
     )
 )
 

@@ -38,6 +38,7 @@ SPEC = register(
         renderer=_render,
         default_scenario="domain1",
         demo=_demo,
+        matrix_scenario="simple",
     )
 )
 

@@ -52,6 +52,8 @@ SPEC = register(
         renderer=_render,
         default_scenario="medium",
         demo=_demo,
+        matrix_scenario="tiny-disturbed",
+        matrix_slow=True,
     )
 )
 register_support(DOMAIN.name, SUPPORT)
