@@ -9,7 +9,10 @@ STAMP  := $(VENV)/.installed
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 
-$(STAMP): $(BIN)/python pyproject.toml
+# setup.py builds the forward engine's compiled kernel (optional: without gcc the Python code runs)
+KERNEL := setup.py $(wildcard src/nowplan/planning/_kernel*.[ch])
+
+$(STAMP): $(BIN)/python pyproject.toml $(KERNEL)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
@@ -49,4 +52,4 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/summarize.py
 
 clean:
-	rm -rf $(VENV) build *.egg-info src/*.egg-info
+	rm -rf $(VENV) build *.egg-info src/*.egg-info src/nowplan/planning/_kernel*.so

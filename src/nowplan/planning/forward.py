@@ -14,6 +14,11 @@ of backward from the goal (issue 19): the task is grounded once per problem
 and the plan's pre-images come from regressing the goal through the found
 action sequence at each action's level, exactly as the regression planner
 computes them (:func:`regress_actions`), so the executive can monitor them.
+
+When the compiled kernel is built (:mod:`nowplan.planning.native`), the
+whole lazy GBFS runs in C and A* uses its heuristic and successor
+generator; the Python code below is the reference and gives the same plans
+and counters.
 """
 
 from __future__ import annotations
@@ -37,6 +42,7 @@ from nowplan.planning.postprocess import eliminate_actions
 from nowplan.planning.task import Task, build_task, forward_unsupported
 
 if TYPE_CHECKING:
+    from nowplan.planning._kernel import Kernel
     from nowplan.planning.regression import PlannerConfig
 
 log = logging.getLogger(__name__)
@@ -57,9 +63,13 @@ class ForwardResult:
 
 
 class _Successors:
-    """A successor generator: each action is filed under one precondition (the rarest)."""
+    """A successor generator: each action is filed under one precondition (the rarest).
 
-    def __init__(self, task: Task) -> None:
+    ``native``: the compiled kernel's generator runs instead (same result).
+    """
+
+    def __init__(self, task: Task, native: Kernel | None = None) -> None:
+        self.native = native
         self.pre = task.pre
         self.always = list(task.no_pre)
         self.by_fact: dict[int, list[int]] = {}
@@ -69,6 +79,8 @@ class _Successors:
                 self.by_fact.setdefault(trigger, []).append(a)
 
     def __call__(self, state: frozenset[int]) -> list[int]:
+        if self.native is not None:
+            return self.native.applicable(state)
         pre = self.pre
         out = list(self.always)
         by_fact = self.by_fact
@@ -98,7 +110,11 @@ def search(
 
         return lama_search(task, cost_type=cost_type, max_nodes=max_nodes, out_of_time=out_of_time)
     h = RelaxedHeuristic(task, heuristic, cost_type)
-    succ = _Successors(task)
+    if method == "gbfs" and h.native is not None:
+        res = _native_gbfs(task, h.native, max_nodes, out_of_time)
+        h.evaluations += res.evaluated
+        return res
+    succ = _Successors(task, h.native)
     if method == "gbfs":
         res = _lazy_gbfs(task, h, succ, max_nodes, out_of_time)
     else:
@@ -125,6 +141,26 @@ def _path(task: Task, parent: Mapping[frozenset[int], tuple[frozenset[int], int]
         cur = parent[prev]
     acts.reverse()
     return acts
+
+
+def _native_gbfs(task: Task, kernel: Kernel, max_nodes: int, out_of_time: Callable[[], bool]) -> ForwardResult:
+    """:func:`_lazy_gbfs` in the compiled kernel: the same plan and counters."""
+    from nowplan.planning import _kernel as k
+
+    status, plan, expanded, generated, evaluated = kernel.gbfs(task.init, max_nodes, out_of_time, BOOST)
+    if status == k.SOLVED and plan is not None:
+        res = ForwardResult(PlanStatus.SOLVED, [task.actions[a] for a in plan], "", expanded, generated)
+    elif status == k.DEAD_INIT:
+        res = ForwardResult(PlanStatus.UNSOLVABLE, None, "the goal is unreachable even ignoring deletes")
+    elif status == k.NODE_LIMIT:
+        res = ForwardResult(PlanStatus.NODE_LIMIT, None, f"expanded {max_nodes} states without a plan",
+                            expanded, generated)
+    elif status == k.TIME_LIMIT:
+        res = ForwardResult(PlanStatus.TIME_LIMIT, None, "time limit reached", expanded, generated)
+    else:
+        res = ForwardResult(PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan", expanded, generated)
+    res.evaluated = evaluated
+    return res
 
 
 def _lazy_gbfs(task: Task, h: RelaxedHeuristic, succ: _Successors, max_nodes: int,

@@ -12,15 +12,27 @@ the *preferred operators* (FF's helpful actions) the search expands first.
 ``cost_type`` transforms action costs as FD's ``adapt_costs`` does: ``one``
 (unit costs, LAMA's first iteration), ``plusone`` (cost + 1: cost-aware
 but never blind to zero-cost actions) or ``normal``.
+
+Tie-breaking is part of the result: the exploration pops the lowest cost
+and, among equal costs, the entry pushed last; the state's facts are pushed
+in ascending id order (not in the frozenset's hash order, which depends on
+how the set was built); a fact's supporter is the first action to give it
+a strictly lower cost; h sums the costs in a fixed order.  The compiled
+kernel (:mod:`nowplan.planning.native`) computes the same numbers in C and
+is used when it is built; this Python code is the reference and fallback.
 """
 
 from __future__ import annotations
 
 import heapq
 import math
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
+from nowplan.planning.native import kernel_class
 from nowplan.planning.task import Task
+
+if TYPE_CHECKING:
+    from nowplan.planning._kernel import Kernel
 
 CostType = Literal["one", "plusone", "normal"]
 Kind = Literal["ff", "add", "max"]
@@ -46,8 +58,19 @@ class RelaxedHeuristic:
         self.goal = task.goal
         self.goalset = frozenset(task.goal)
         self.evaluations = 0
+        cls = kernel_class()
+        self.native: Kernel | None = None if cls is None else cls(
+            self.nfacts, task.pre, task.add, task.dele, self.acost, task.goal,
+            [task.by_pre.get(f, ()) for f in range(self.nfacts)], task.no_pre, kind)
 
     def evaluate(self, state: frozenset[int]) -> tuple[float, list[int]]:
+        if self.native is not None:
+            self.evaluations += 1
+            return self.native.evaluate(state)
+        return self.evaluate_py(state)
+
+    def evaluate_py(self, state: frozenset[int]) -> tuple[float, list[int]]:
+        """The Python computation of :meth:`evaluate` (the reference for the kernel)."""
         self.evaluations += 1
         task = self.task
         pre, add, by_pre, acost = task.pre, task.add, task.by_pre, self.acost
@@ -63,7 +86,7 @@ class RelaxedHeuristic:
         goalset = self.goalset
         heap: list[tuple[float, int, int]] = []
         tick = 0
-        for f in state:
+        for f in sorted(state):
             cost[f] = 0.0
             tick -= 1
             heap.append((0.0, tick, f))
@@ -102,11 +125,15 @@ class RelaxedHeuristic:
                             push(heap, (nc, tick, e))
         if left:
             return inf, []
+        h = 0.0
         if self.kind == "add":
-            return sum(cost[g] for g in self.goal), []
+            for g in self.goal:  # left to right, as the kernel does (sum() compensates from 3.12)
+                h += cost[g]
+            return h, []
         if use_max:
             return max(cost[g] for g in self.goal), []
-        chosen: set[int] = set()
+        chosen: list[int] = []  # in the order chosen
+        is_chosen: set[int] = set()
         marked: set[int] = set()
         stack = [g for g in self.goal if g not in state]
         while stack:
@@ -115,10 +142,12 @@ class RelaxedHeuristic:
                 continue
             marked.add(f)
             a = sup[f]
-            if a in chosen:
+            if a in is_chosen:
                 continue
-            chosen.add(a)
+            is_chosen.add(a)
+            chosen.append(a)
             stack.extend(p for p in pre[a] if p not in state and p not in marked)
-        h = sum(acost[a] for a in chosen)
+        for a in chosen:
+            h += acost[a]
         preferred = sorted(a for a in chosen if all(p in state for p in pre[a]))
         return h, preferred

@@ -1,0 +1,18 @@
+"""The compiled kernel of the forward engine; everything else is configured in pyproject.toml.
+
+``optional=True``: without a C compiler the install still succeeds and the
+forward search runs its pure-Python code (slower).
+"""
+
+from setuptools import Extension, setup
+
+setup(
+    ext_modules=[
+        Extension(
+            "nowplan.planning._kernel",
+            sources=["src/nowplan/planning/_kernel.c"],
+            depends=["src/nowplan/planning/_kernel_gbfs.h"],
+            optional=True,
+        )
+    ]
+)

@@ -1,0 +1,37 @@
+"""Type stub of the compiled kernel (``_kernel.c``); the Python reference is hff.py / forward.py."""
+
+from collections.abc import Callable, Iterable, Sequence
+
+API: int
+SOLVED: int
+EXHAUSTED: int
+NODE_LIMIT: int
+TIME_LIMIT: int
+DEAD_INIT: int
+
+class Kernel:
+    """One integer task (costs already transformed) and one heuristic kind ("ff", "add" or "max")."""
+
+    def __init__(
+        self,
+        nfacts: int,
+        pre: Sequence[Sequence[int]],
+        add: Sequence[Sequence[int]],
+        dele: Sequence[Sequence[int]],
+        cost: Sequence[float],
+        goal: Sequence[int],
+        by_pre: Sequence[Sequence[int]],
+        no_pre: Sequence[int],
+        kind: str,
+    ) -> None: ...
+    @property
+    def evaluations(self) -> int: ...
+    def evaluate(self, state: Iterable[int], /) -> tuple[float, list[int]]: ...
+    def applicable(self, state: Iterable[int], /) -> list[int]: ...
+    def gbfs(
+        self,
+        init: Iterable[int],
+        max_nodes: int,
+        out_of_time: Callable[[], object] | None = None,
+        boost: int = 1000,
+    ) -> tuple[int, list[int] | None, int, int, int]: ...

@@ -1,0 +1,264 @@
+"""The forward engine's compiled kernel against its Python reference.
+
+The kernel (``nowplan.planning._kernel``, built on install when a C compiler
+is present) must give exactly what the Python code gives: the same h and
+preferred operators for every state, heuristic and cost type, and the same
+search (status, plan, expanded, generated, evaluated) on the bundled PDDL
+problems, a generated logistics problem and random small integer tasks.
+``NOWPLAN_PURE_PYTHON=1`` selects the Python code; without a built kernel
+the comparisons skip (the Python tests still run).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import random
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any, cast
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from nowplan.core.atoms import Atom
+from nowplan.core.levels import flat_levels
+from nowplan.core.operators import Action
+from nowplan.io.logistics_gen import generate_logistics
+from nowplan.io.pddl_read import load_pddl
+from nowplan.planning import forward, native
+from nowplan.planning.hff import RelaxedHeuristic
+from nowplan.planning.plan import PlanStatus
+from nowplan.planning.task import Task, build_task
+
+PDDL = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl"
+PROBLEMS = sorted((d.name, p.name) for d in PDDL.iterdir() if d.is_dir() for p in d.glob("p*.pddl"))
+KINDS = ("ff", "add", "max")
+COST_TYPES = ("plusone", "one", "normal")
+
+_cls, _why = native._load()
+needs_kernel = pytest.mark.skipif(_cls is None, reason=f"{_why}: only the Python code can be tested")
+
+
+@pytest.fixture
+def mode(monkeypatch: pytest.MonkeyPatch) -> Iterator[Callable[[str], None]]:
+    """``mode("python")`` / ``mode("c")``: which code the next search or heuristic uses."""
+
+    def set_mode(m: str) -> None:
+        monkeypatch.setenv(native.ENV, "1" if m == "python" else "0")
+
+    yield set_mode
+
+
+def pddl_task(domain: str, problem: str) -> Task:
+    p = load_pddl(str(PDDL / domain / "domain.pddl"), str(PDDL / domain / problem))
+    return build_task(p.domain, p.objects, p.init, p.goal, flat_levels(), lambda a: a.cost(p.init))
+
+
+def summary(res: forward.ForwardResult, task: Task) -> tuple[Any, ...]:
+    plan = None if res.actions is None else [task.actions.index(a) for a in res.actions]
+    return res.status, plan, res.expanded, res.generated, res.evaluated, res.reason
+
+
+def both(mode: Callable[[str], None], task: Task, **kw: Any) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
+    out = []
+    for m in ("python", "c"):
+        mode(m)
+        out.append(summary(forward.search(task, **kw), task))
+    return out[0], out[1]
+
+
+def walk_states(task: Task, n: int, seed: int) -> list[frozenset[int]]:
+    """The initial state and states of random walks from it (restarting at dead ends)."""
+    rng = random.Random(seed)
+    succ = forward._Successors(task)
+    states, s = [task.init], task.init
+    for _ in range(n):
+        acts = succ(s)
+        s = task.init if not acts else forward._apply(task, s, rng.choice(acts))
+        states.append(s)
+    return states
+
+
+def same_evaluations(mode: Callable[[str], None], task: Task, states: list[frozenset[int]]) -> None:
+    for kind in KINDS:
+        for ct in COST_TYPES:
+            mode("c")
+            h = RelaxedHeuristic(task, kind, ct)  # type: ignore[arg-type]
+            assert h.native is not None
+            for s in states:
+                assert h.native.evaluate(s) == h.evaluate_py(s), (kind, ct, sorted(s))
+
+
+# --------------------------------------------------------------------------- PDDL problems
+
+
+@needs_kernel
+@pytest.mark.parametrize(("domain", "problem"), PROBLEMS)
+def test_pddl_heuristic_values_are_identical(mode: Callable[[str], None], domain: str, problem: str) -> None:
+    task = pddl_task(domain, problem)
+    same_evaluations(mode, task, walk_states(task, 60, seed=len(problem)))
+
+
+@needs_kernel
+@pytest.mark.parametrize(("domain", "problem"), PROBLEMS)
+@pytest.mark.parametrize(("method", "kind"), [("gbfs", "ff"), ("gbfs", "add"), ("astar", "ff"), ("astar", "max")])
+def test_pddl_searches_are_identical(mode: Callable[[str], None], domain: str, problem: str, method: str,
+                                     kind: str) -> None:
+    task = pddl_task(domain, problem)
+    py, c = both(mode, task, method=method, heuristic=kind, max_nodes=3000)
+    assert py == c
+    assert py[0] in (PlanStatus.SOLVED, PlanStatus.NODE_LIMIT)
+    if kind == "ff":
+        assert py[0] is PlanStatus.SOLVED
+
+
+@needs_kernel
+def test_generated_logistics_search_is_identical(mode: Callable[[str], None], tmp_path: Path) -> None:
+    prob = tmp_path / "l8.pddl"
+    prob.write_text(generate_logistics(6, 3, 2, 8, seed=3))
+    p = load_pddl(str(PDDL / "logistics" / "domain.pddl"), str(prob))
+    task = build_task(p.domain, p.objects, p.init, p.goal, flat_levels(), lambda a: a.cost(p.init))
+    py, c = both(mode, task)
+    assert py == c and py[0] is PlanStatus.SOLVED and py[2] > 50
+    same_evaluations(mode, task, walk_states(task, 30, seed=1))
+
+
+@needs_kernel
+@pytest.mark.parametrize("stop_after", [0, 1, 7])
+def test_node_and_time_limits_stop_at_the_same_expansion(mode: Callable[[str], None], stop_after: int) -> None:
+    task = pddl_task("logistics", "p04.pddl")
+    py, c = both(mode, task, max_nodes=stop_after)
+    assert py == c and py[0] is PlanStatus.NODE_LIMIT and py[2] == stop_after + 1
+    results = []
+    for m in ("python", "c"):
+        calls = [0]
+
+        def out_of_time() -> bool:
+            calls[0] += 1
+            return calls[0] > stop_after
+
+        mode(m)
+        results.append((summary(forward.search(task, out_of_time=out_of_time), task), calls[0]))
+    assert results[0] == results[1] and results[0][0][0] is PlanStatus.TIME_LIMIT
+
+
+@needs_kernel
+def test_an_error_in_the_time_callback_propagates(mode: Callable[[str], None]) -> None:
+    def boom() -> bool:
+        raise RuntimeError("clock broke")
+
+    mode("c")
+    with pytest.raises(RuntimeError, match="clock broke"):
+        forward.search(pddl_task("gripper", "p02.pddl"), out_of_time=boom)
+
+
+@needs_kernel
+def test_the_kernel_refuses_bad_input() -> None:
+    assert _cls is not None
+    k = _cls(2, [(0,)], [(1,)], [()], [1.0], [1], [[0], []], [], "ff")
+    assert k.evaluate(frozenset({0})) == (1.0, [0]) and k.evaluations == 1
+    assert k.applicable([0, 0]) == [0] and k.applicable([1]) == []
+    with pytest.raises(IndexError):
+        k.evaluate({2})
+    with pytest.raises(IndexError):
+        k.applicable({-1})
+    with pytest.raises(ValueError):
+        _cls(2, [(0,)], [], [()], [1.0], [1], [[0], []], [], "ff")
+    with pytest.raises(ValueError):
+        _cls(2, [(0,)], [(1,)], [()], [1.0], [1], [[0], []], [], "hmax")
+    with pytest.raises(IndexError):
+        _cls(2, [(5,)], [(1,)], [()], [1.0], [1], [[0], []], [], "ff")
+
+
+# --------------------------------------------------------------------------- random integer tasks
+
+
+def int_task(nfacts: int, actions: list[tuple[list[int], list[int], list[int], float]], init: list[int],
+             goal: list[int]) -> Task:
+    """A task in build_task's form (sorted ids, deletes not added) with stand-in atoms and actions."""
+    pre = [tuple(sorted(set(p))) for p, _, _, _ in actions]
+    add = [tuple(sorted(set(a))) for _, a, _, _ in actions]
+    dele = [tuple(sorted(set(d) - set(a))) for (_, _, d, _), a in zip(actions, add, strict=True)]
+    facts = [Atom(f"f{i}") for i in range(nfacts)]
+    task = Task(facts, {a: i for i, a in enumerate(facts)}, cast(list[Action], list(range(len(actions)))),
+                pre, add, dele, [c for _, _, _, c in actions], frozenset(init), tuple(sorted(set(goal))))
+    for k, p in enumerate(pre):
+        if not p:
+            task.no_pre.append(k)
+        for f in p:
+            task.by_pre.setdefault(f, []).append(k)
+    return task
+
+
+COSTS = st.sampled_from([0.0, 1.0, 1.0, 2.0, 3.0, 0.5, 0.1, 2.5, 3e6, math.inf])
+
+
+@st.composite
+def int_tasks(draw: st.DrawFn) -> Task:
+    n = draw(st.integers(1, 9))
+    fact = st.integers(0, n - 1)
+    ids = st.lists(fact, max_size=3)
+    actions = draw(st.lists(st.tuples(ids, st.lists(fact, min_size=1, max_size=3), ids, COSTS), max_size=14))
+    return int_task(n, actions, draw(st.lists(fact, max_size=4)), draw(st.lists(fact, min_size=1, max_size=3)))
+
+
+@needs_kernel
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(task=int_tasks(), seed=st.integers(0, 1000))
+def test_random_tasks_evaluate_identically(mode: Callable[[str], None], task: Task, seed: int) -> None:
+    same_evaluations(mode, task, walk_states(task, 8, seed))
+
+
+@needs_kernel
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(task=int_tasks(), kind=st.sampled_from(KINDS), cost_type=st.sampled_from(COST_TYPES),
+       method=st.sampled_from(["gbfs", "astar"]))
+def test_random_tasks_search_identically(mode: Callable[[str], None], task: Task, kind: str, cost_type: str,
+                                         method: str) -> None:
+    py, c = both(mode, task, method=method, heuristic=kind, cost_type=cost_type, max_nodes=200)
+    assert py == c
+
+
+@needs_kernel
+def test_costs_beyond_the_buckets_use_the_heap_in_order(mode: Callable[[str], None]) -> None:
+    # two routes to the goal fact 3, one via bucket costs and one via a cost above the bucket range
+    task = int_task(5, [([0], [1], [], 2.0**21), ([0], [2], [], 1.0), ([2], [4], [], 2.0**21 - 1.0),
+                        ([1], [3], [], 0.0), ([4], [3], [], 0.0), ([0], [3], [], 2.0**22)], [0], [3])
+    same_evaluations(mode, task, [task.init, frozenset({0, 2}), frozenset({1}), frozenset({4})])
+
+
+# --------------------------------------------------------------------------- switching
+
+
+def test_pure_python_is_forced_by_the_environment(mode: Callable[[str], None],
+                                                  caplog: pytest.LogCaptureFixture) -> None:
+    task = pddl_task("gripper", "p01.pddl")
+    mode("python")
+    with caplog.at_level(logging.DEBUG, logger="nowplan.planning.native"):
+        native._logged.clear()
+        assert RelaxedHeuristic(task).native is None
+        res = forward.search(task)
+    assert res.status is PlanStatus.SOLVED
+    assert sum(native.ENV in r.getMessage() for r in caplog.records) == 1  # logged once
+    mode("c")
+    assert (RelaxedHeuristic(task).native is None) == (_cls is None)
+
+
+@pytest.mark.parametrize("broken", ["missing", "stale"])
+def test_without_the_compiled_kernel_the_python_code_runs(mode: Callable[[str], None],
+                                                          monkeypatch: pytest.MonkeyPatch, broken: str) -> None:
+    task = pddl_task("logistics", "p02.pddl")
+    mode("python")
+    expected = summary(forward.search(task), task)
+    if broken == "missing":
+        monkeypatch.setitem(sys.modules, "nowplan.planning._kernel", None)  # import raises ImportError
+    else:
+        monkeypatch.setattr(native, "API", -1)
+    monkeypatch.setattr(native, "_loaded", None)
+    mode("c")
+    assert native.kernel_class() is None and RelaxedHeuristic(task).native is None
+    assert summary(forward.search(task), task) == expected
+    assert expected[0] is PlanStatus.SOLVED
