@@ -53,7 +53,7 @@ class PlannerConfig:
     # domain has no generators or tested predicates, else regress; "forward" | "regression" force one
     engine: Literal["auto", "forward", "regression"] = "auto"
     # the forward search: lazy greedy best-first with preferred operators, or (weighted) A*
-    search: Literal["gbfs", "lama", "astar"] = "lama"
+    search: Literal["gbfs", "lama", "astar"] = "gbfs"
     # anytime improvement after the first forward plan (weighted A* with falling weights, bounded by
     # the best cost): CPU budget = improve x the first search's CPU time + 0.05 s; 0 = off
     improve: float = 0.0
