@@ -121,6 +121,32 @@ def strategy_names() -> list[str]:
     return sorted(SWITCHES)
 
 
+# switches that contradict each other: at most one of each group, with why
+EXCLUSIVE: tuple[tuple[frozenset[str], str], ...] = (
+    (frozenset({"hpn", "flat"}), "hpn plans over criticality levels, flat plans every step concretely"),
+    (frozenset({"aggressive", "selective"}),
+     "aggressive replans after every action, selective only when a trigger fires"),
+    (frozenset({"monitor", "monitor-goal", "monitor-restore", "monitor-cost", "monitor-rule-cost"}),
+     "each monitor-* switch is a different replanning rule of the same monitor"),
+    (frozenset({"online", "aggressive"}), "the online policy already replans after every action"),
+)
+
+
+def _check_compatible(parts: list[str]) -> None:
+    seen: set[str] = set()
+    for p in parts:
+        if p in seen:
+            raise ScenarioError(f"strategy switch '{p}' is named twice; name each switch once")
+        seen.add(p)
+    for group, why in EXCLUSIVE:
+        both = [p for p in parts if p in group]
+        if len(both) > 1:
+            raise ScenarioError(
+                f"strategy switches {' and '.join(repr(b) for b in both)} contradict each other ({why}); "
+                "keep one"
+            )
+
+
 def parse_strategy(spec: str, **overrides: Any) -> Strategy:
     """``"hpn+aggressive"`` -> a :class:`Strategy`; unknown names list the valid ones."""
     _load()
@@ -144,6 +170,7 @@ def parse_strategy(spec: str, **overrides: Any) -> Strategy:
             s = replace(s, **dict(sw.fields))
         if sw.planner:
             s = replace(s, planner=replace(s.planner, **dict(sw.planner)))
+    _check_compatible(parts)
     if overrides:
         s = replace(s, **overrides)
     return s
