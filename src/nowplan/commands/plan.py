@@ -96,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
         level = domain.top_level
     else:
         level = int(args.level)
-        if not -1 <= level <= domain.top_level:
+        if not 0 <= level <= domain.top_level:
             raise UsageError(
                 f"--level {level} is out of range: this domain's levels are 0..{domain.top_level}"
                 " (or 'flat')"

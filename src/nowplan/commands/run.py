@@ -75,12 +75,17 @@ def main(args: argparse.Namespace) -> int:
     if args.time_limit is not None:
         overrides["time_limit"] = args.time_limit
     strategy = parse_strategy(args.strategy, **overrides)
+    if args.trace is not None and args.trace.is_dir():
+        raise UsageError(f"--trace {args.trace} is a directory; give a file path, e.g. {args.trace / 'trace.jsonl'}")
     episode = build_episode(args)
     for attr in ("failure_prob", "exogenous_prob"):
         val = getattr(args, attr)
         if val is not None:
             if not hasattr(episode.world, attr):
                 raise UsageError(f"--{attr.replace('_', '-')} is not supported by this domain's world")
+            if attr == "exogenous_prob" and val and getattr(episode.world, "exogenous", True) is None:
+                raise UsageError("--exogenous-prob: this world has no exogenous changes to make (a PDDL "
+                                 "problem has none); drop it, or use a domain scenario that has them")
             setattr(episode.world, attr, val)
     render = None
     if args.frames:

@@ -94,7 +94,12 @@ def parse_criticality(path: str | Path) -> CriticalitySpec:
     default = 1
     default_line: int | None = None
     rules: list[CriticalityRule] = []
-    for n, raw in enumerate(p.read_text(encoding="utf-8").splitlines(), start=1):
+    try:
+        text_all = p.read_text(encoding="utf-8")
+    except (UnicodeDecodeError, OSError) as exc:
+        raise PDDLError(f"cannot read the criticality file as UTF-8 text ({exc.__class__.__name__}); "
+                        "give a text file (see docs/pddl.md)", path=str(path)) from exc
+    for n, raw in enumerate(text_all.splitlines(), start=1):
         text = re.split(r"[#;]", raw, maxsplit=1)[0].strip().lower()
         if not text:
             continue

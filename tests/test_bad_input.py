@@ -1,0 +1,45 @@
+"""Bad input gets one line naming the place and the fix, exit 2, never a traceback (issue 14)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from nowplan.cli import main
+
+LOG = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl" / "logistics"
+
+
+def _err(capsys: pytest.CaptureFixture[str], *argv: str) -> str:
+    assert main(list(argv)) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1, err
+    return err
+
+
+def test_a_binary_criticality_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    crit = tmp_path / "bin.crit"
+    crit.write_bytes(bytes(range(256)))
+    err = _err(capsys, "plan", str(LOG / "domain.pddl"), str(LOG / "p01.pddl"), "--criticality", str(crit))
+    assert "bin.crit" in err and "UTF-8 text" in err
+
+
+def test_a_trace_path_that_is_a_directory(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    err = _err(capsys, "run", "--domain", "logistics", "--scenario", "tiny", "--trace", str(tmp_path))
+    assert "is a directory" in err and "trace.jsonl" in err
+
+
+def test_plan_level_below_zero(capsys: pytest.CaptureFixture[str]) -> None:
+    err = _err(capsys, "plan", str(LOG / "domain.pddl"), str(LOG / "p01.pddl"), "--level", "-1")
+    assert "--level -1 is out of range" in err and "'flat'" in err
+
+
+def test_exogenous_changes_on_a_world_without_any(capsys: pytest.CaptureFixture[str]) -> None:
+    err = _err(capsys, "run", str(LOG / "domain.pddl"), str(LOG / "p01.pddl"), "--exogenous-prob", "0.5")
+    assert "--exogenous-prob" in err and "drop it" in err
+
+
+def test_contradictory_strategy_on_the_command_line(capsys: pytest.CaptureFixture[str]) -> None:
+    err = _err(capsys, "run", "--domain", "logistics", "--scenario", "tiny", "--strategy", "flat+hpn")
+    assert "contradict" in err
