@@ -43,3 +43,10 @@ def test_exogenous_changes_on_a_world_without_any(capsys: pytest.CaptureFixture[
 def test_contradictory_strategy_on_the_command_line(capsys: pytest.CaptureFixture[str]) -> None:
     err = _err(capsys, "run", "--domain", "logistics", "--scenario", "tiny", "--strategy", "flat+hpn")
     assert "contradict" in err
+
+
+def test_a_sweep_with_a_refused_strategy_exits_non_zero(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    code = main(["sweep", "--domain", "marsupial", "--scenario", "single-2", "--strategies", "flat",
+                 "--seeds", "0", "--store", str(tmp_path / "runs.sqlite"), "--no-progress"])
+    out = capsys.readouterr().out
+    assert code == 1 and "does not apply to domain marsupial" in out

@@ -65,4 +65,9 @@ def main(args: argparse.Namespace) -> int:
             progress=not args.no_progress, progress_file=sys.stderr,
         )
     print(result.summary())
-    return 0 if result.state is SweepState.COMPLETE else 130
+    if result.state is not SweepState.COMPLETE:
+        return 130
+    from nowplan.experiments.records import RunStatus
+
+    crashed = sum(1 for r in result.records if r.status is not RunStatus.DONE)
+    return 1 if crashed else 0  # a crashed or killed run is a failure of the sweep, not of a strategy
