@@ -97,6 +97,14 @@ def test_scenario_files_load_by_path(tmp_path):
     broken.write_text("{")
     with pytest.raises(ScenarioError, match="invalid JSON"):
         get_domain("namo").scenario(str(broken))
+    binary = tmp_path / "binary.json"
+    binary.write_bytes(bytes(range(128, 256)))
+    with pytest.raises(ScenarioError, match="not UTF-8 text"):
+        get_domain("namo").scenario(str(binary))
+    odds = tmp_path / "odds.json"
+    odds.write_text(json.dumps({**BUILTIN["simple"], "noise": {"move_fail": 1.5}}))
+    with pytest.raises(ScenarioError, match=r"noise\.move_fail: a probability must be in \[0, 1\]"):
+        get_domain("namo").scenario(str(odds))
 
 
 def test_unknown_scenario_lists_the_valid_ones():

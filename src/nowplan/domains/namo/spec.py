@@ -113,6 +113,8 @@ class _Reader:
                 vals[k] = int(self.num(v, f"{path}.{k}", nonneg=True))
             else:
                 val = self.num(v, f"{path}.{k}", nonneg=True)
+                if (k.endswith(("_fail", "_prob")) or k == "miss_prob") and val > 1.0:
+                    raise self.fail(f"{path}.{k}", f"a probability must be in [0, 1], got {v!r}")
                 vals[k] = math.radians(val) if (cls is Sensor and k == "fov") else val
         return replace(cls(), **vals)
 
@@ -205,6 +207,9 @@ def load_file(path: str | Path) -> ScenarioSpec:
         text = p.read_text(encoding="utf-8")
     except OSError as exc:
         raise ScenarioError(f"cannot read scenario file '{p}': {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise ScenarioError(f"scenario file '{p}' is not UTF-8 text; give a JSON scenario file "
+                            "(docs/namo.md)") from None
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
