@@ -50,3 +50,14 @@ def test_a_sweep_with_a_refused_strategy_exits_non_zero(tmp_path: Path, capsys: 
                  "--seeds", "0", "--store", str(tmp_path / "runs.sqlite"), "--no-progress"])
     out = capsys.readouterr().out
     assert code == 1 and "does not apply to domain marsupial" in out
+
+
+def test_an_action_defined_twice(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    grip = LOG.parent / "gripper"
+    text = (grip / "domain.pddl").read_text()
+    first = text.index("(:action")
+    second = text.index("(:action", first + 1)
+    dup = tmp_path / "dup.pddl"
+    dup.write_text(text[:second] + text[first:second] + text[second:])
+    err = _err(capsys, "plan", str(dup), str(grip / "p01.pddl"))
+    assert "defined twice" in err and "dup.pddl" in err

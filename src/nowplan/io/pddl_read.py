@@ -235,10 +235,22 @@ def _ordered(items: Iterable[Any], src: Source, pattern: str) -> list[Any]:
     return sorted(items, key=pos)
 
 
+def _check_unique_actions(src: Source) -> None:
+    """Two actions of one name (the parser would keep only one of them silently)."""
+    seen: set[str] = set()
+    for m in re.finditer(r"\(\s*:action\s+([^\s()]+)", src.code, flags=re.IGNORECASE):
+        name = m.group(1).lower()
+        if name in seen:
+            raise src.error(f"the action '{name}' is defined twice; rename or remove one",
+                            src.code.count("\n", 0, m.start()) + 1)
+        seen.add(name)
+
+
 def read_domain(domain_path: str | Path) -> Domain:
     """Read a PDDL domain file (flat: every precondition has criticality 1, no mutexes)."""
     src = read_source(domain_path)
     d = parse_source(src, "domain")
+    _check_unique_actions(src)
     reqs = _check_requirements(d.requirements, src)
     if d.derived_predicates:
         raise src.error(f"derived predicates are {_FRAGMENT}", src.line_of(r"\(:derived"),
