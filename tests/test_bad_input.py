@@ -61,3 +61,21 @@ def test_an_action_defined_twice(tmp_path: Path, capsys: pytest.CaptureFixture[s
     dup.write_text(text[:second] + text[first:second] + text[second:])
     err = _err(capsys, "plan", str(dup), str(grip / "p01.pddl"))
     assert "defined twice" in err and "dup.pddl" in err
+
+
+def test_a_store_damaged_in_its_middle_pages(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    store = tmp_path / "runs.sqlite"
+    assert main(["sweep", "--domain", "logistics", "--scenario", "tiny", "--strategies", "hpn,flat",
+                 "--seeds", "0-9", "--store", str(store), "--no-progress"]) == 0
+    capsys.readouterr()
+    data = bytearray(store.read_bytes())
+    page = 4096
+    assert len(data) >= 5 * page
+    for i in range(3 * page, 4 * page):  # a data page, not the schema's
+        data[i] = (i * 37) % 256
+    store.write_bytes(bytes(data))
+    for argv in (["report", str(store), "-o", str(tmp_path / "rep")],
+                 ["sweep", "--domain", "logistics", "--scenario", "tiny", "--strategies", "hpn",
+                  "--seeds", "0-11", "--store", str(store), "--no-progress"]):
+        err = _err(capsys, *argv)
+        assert "runs.sqlite" in err and ("damaged" in err or "malformed" in err)

@@ -73,6 +73,13 @@ class Store:
         self._db = sqlite3.connect(str(self.path), timeout=30.0, isolation_level=None)
         try:
             self._check_or_init()
+            # a damaged page anywhere (not only the schema's) is found now, not in the middle of a sweep
+            problems = [" ".join(str(r[0]).split()) for r in self._db.execute("PRAGMA quick_check(3)")]
+            if problems != ["ok"]:
+                raise StoreError(
+                    f"{self.path}: the run store is damaged ({'; '.join(problems)}); restore it from a copy "
+                    "or give a new --store file"
+                )
             self._db.execute("PRAGMA journal_mode=WAL")  # readers (a report) never block the sweep
             self._db.execute("PRAGMA synchronous=FULL")
         except sqlite3.DatabaseError as exc:
