@@ -115,6 +115,9 @@ def marsupial_run(regime: str, n: int, trial: int, strategy: str, limit: float, 
     return row("marsupial", f"{regime}-{n}", trial, strategy, m, cpu, ok, executed, ctr)
 
 
+LOGISTICS_PLANNER: dict[str, Any] = {}
+
+
 def logistics_run(n: int, seed: int, limit: float, ctr: Counter) -> dict[str, Any]:
     c, loc, a, _ = LOGISTICS[n]
     with tempfile.TemporaryDirectory() as tmp:
@@ -124,7 +127,8 @@ def logistics_run(n: int, seed: int, limit: float, ctr: Counter) -> dict[str, An
     ep = Episode(p, SymbolicWorld(p.domain, p.init), SymbolicBelief(p.init))
     executed = record(ep)
     ctr.reset()
-    st = parse_strategy("hpn", time_limit=limit, max_actions=10_000, planner=PlannerConfig(time_limit=limit))
+    cfg = PlannerConfig(time_limit=limit, **LOGISTICS_PLANNER)
+    st = parse_strategy("hpn", time_limit=limit, max_actions=10_000, planner=cfg)
     c0 = time.process_time()
     m = run_episode(ep, st)
     cpu = time.process_time() - c0
@@ -143,6 +147,16 @@ def row(domain: str, problem: str, trial: int, strategy: str, m: Any, cpu: float
     }
 
 
+def overrides(spec: str) -> dict[str, Any]:
+    """``"heuristic=hff,weight=2"`` as PlannerConfig keyword arguments (typed like the defaults)."""
+    kw: dict[str, Any] = {}
+    for item in filter(None, spec.split(",")):
+        k, v = item.split("=")
+        kind = type(getattr(PlannerConfig(), k))
+        kw[k] = (v.lower() in ("1", "true", "yes")) if kind is bool else kind(v)
+    return kw
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--regimes", default="single,both")
@@ -156,7 +170,17 @@ def main() -> int:
     ap.add_argument("--limit-s", type=float, default=600.0, help="CPU s per run")
     ap.add_argument("--profile", type=Path, help="write a cProfile top 20 here")
     ap.add_argument("--out", type=Path, help="append the rows (JSON lines) here")
+    ap.add_argument("--planner", default="", help="marsupial PlannerConfig overrides, e.g. heuristic=hff,weight=1")
+    ap.add_argument("--logistics-planner", default="", help="logistics PlannerConfig overrides")
+    ap.add_argument("--tag", default="", help="a label stored in each row")
     args = ap.parse_args()
+    if args.planner:
+        import dataclasses
+
+        import nowplan.domains.marsupial.model as model
+
+        model.PLANNER = dataclasses.replace(model.PLANNER, **overrides(args.planner))
+    LOGISTICS_PLANNER.update(overrides(args.logistics_planner))
     ctr = Counter()
     ctr.install()
     jobs: list[Any] = []
@@ -178,6 +202,8 @@ def main() -> int:
         r = job()
         if prof is not None:
             prof.disable()
+        if args.tag:
+            r["tag"] = args.tag
         rows.append(r)
         print(json.dumps(r), flush=True)
         if args.out:

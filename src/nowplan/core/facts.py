@@ -49,6 +49,8 @@ class FactTable:
         # ground actions by (operator index, arguments): one object per instance, so what a
         # planner keeps on an action (its facts' ids) outlives one call
         self.actions: dict[tuple[int, tuple[Any, ...]], Action] = {}
+        # grounding answers shared by the planner calls of one problem (planning.grounding)
+        self.grounding: dict[Hashable, Any] = {}
 
     def __len__(self) -> int:
         return len(self.atoms)

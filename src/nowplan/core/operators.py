@@ -65,7 +65,13 @@ class Generator:
     inputs: tuple[Var, ...] = ()
     # optional: ``reads(bindings, goal) -> key``, all the values depend on besides the bindings of
     # ``inputs``, the belief and the context; a planner may then keep the values per key
+    # (``reads_nothing``: they do not depend on the goal, so a planner may rely on them everywhere)
     reads: ReadsFn | None = field(default=None, compare=False, hash=False)
+
+
+def reads_nothing(bindings: Mapping[Var, Any], goal: Any) -> tuple[()]:
+    """``Generator.reads`` for a generator whose values do not depend on the goal at all."""
+    return ()
 
 
 CostFn = Callable[[Bindings, Any], float]

@@ -18,7 +18,7 @@ from typing import Any
 
 from nowplan.core.atoms import Atom, Goal, Var
 from nowplan.core.domain import Domain
-from nowplan.core.operators import Action, Operator
+from nowplan.core.operators import Action, Operator, reads_nothing
 from nowplan.planning.context import PlanningContext
 
 
@@ -75,6 +75,11 @@ class Grounder:
         self._facts_ok = hasattr(belief, "facts")
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
         self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+        if self.memo and self._facts_ok:
+            # both depend only on the objects and the static facts: share them between the calls
+            # of one problem (the executive plans many times with the same static facts)
+            shared = _shared(domain, self._signature())
+            self._op_cache, self._fills = shared.op_cache, shared.fills
         # per predicate: the operators (in order) with an effect of it, and those effects
         self._by_pred: dict[str, list[tuple[int, Operator, tuple[Atom, ...]]]] = {}
         for i, op in enumerate(domain.operators):
@@ -83,10 +88,17 @@ class Grounder:
                 per.setdefault(e.predicate, []).append(e)
             for pred, effs in per.items():
                 self._by_pred.setdefault(pred, []).append((i, op, tuple(effs)))
-        self._gen_cache: dict[tuple[Atom, tuple[Hashable, ...]], list[Action]] = {}
+        self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
         self._unify_cache: dict[tuple[tuple[Atom, ...], Atom], list[dict[Var, Any]]] = {}
+        self._goal_free: dict[Atom, bool] = {}
         # ground actions of the domain, one object per instance (planners keep data on them)
         self._actions: dict[tuple[int, tuple[Any, ...]], Action] = domain.facts.actions
+
+    def _signature(self) -> Hashable:
+        """The objects and the facts of the static predicates that ``_fill`` joins and checks."""
+        preds = sorted(n for n in self.domain.static_predicates if self.domain.predicates[n].test is None)
+        facts = tuple((n, frozenset(map(tuple, self.belief.facts(n)))) for n in preds)
+        return (frozenset(self.objects.items()), facts)
 
     # -- helpers -------------------------------------------------------------
     def objects_of(self, t: str | None) -> list[str]:
@@ -121,19 +133,14 @@ class Grounder:
             return cached
         entries = self._by_pred.get(target.predicate, ())
         gen_entries = [e for e in entries if e[1].generators]
-        key: tuple[Atom, tuple[Hashable, ...]] | None = None
-        if gen_entries and self.memo:
+        key: tuple[Atom, Hashable] | None = None
+        free = self.goal_free(target)
+        if gen_entries and self.memo and not free:
             g = goal() if callable(goal) else goal
             goal = g
-            readings: list[Hashable] = []
-            for i, op, effs in gen_entries:
-                r = self._reading(op, effs, target, g)
-                if r is None:
-                    readings = []
-                    break
-                readings.append((i, r))
-            if readings:
-                key = (target, tuple(readings))
+            r = self._readings(gen_entries, target, g)
+            if r is not None:
+                key = (target, r)
                 hit = self._gen_cache.get(key)
                 if hit is not None:
                     return hit
@@ -151,12 +158,42 @@ class Grounder:
                 if act.key not in seen:
                     seen.add(act.key)
                     out.append(act)
-        # generators see the goal: keep the answer per atom only when none takes part
-        if not gen_entries:
+        # generators see the goal: keep the answer per atom only when none that reads it takes part
+        if not gen_entries or free and self.memo:
             self._cache[target] = out
         elif key is not None:
             self._gen_cache[key] = out
         return out
+
+    def _readings(
+        self, gen_entries: list[tuple[int, Operator, tuple[Atom, ...]]], target: Atom, goal: Goal
+    ) -> tuple[Hashable, ...] | None:
+        readings: list[Hashable] = []
+        for i, op, effs in gen_entries:
+            r = self._reading(op, effs, target, goal)
+            if r is None:
+                return None
+            readings.append((i, r))
+        return tuple(readings)
+
+    def reading(self, target: Atom, goal: Goal) -> Hashable:
+        """A key for what ``target``'s achievers depend on in ``goal``: equal keys, equal achievers."""
+        gen_entries = [e for e in self._by_pred.get(target.predicate, ()) if e[1].generators]
+        r = self._readings(gen_entries, target, goal)
+        return ("goal", goal) if r is None else r
+
+    def goal_free(self, target: Atom) -> bool:
+        """Do ``target``'s achievers not depend on the goal (no generator that reads it takes part)?"""
+        r = self._goal_free.get(target)
+        if r is None:
+            r = True
+            for _, op, effs in self._by_pred.get(target.predicate, ()):
+                if op.generators and self._unified(effs, target):
+                    if any(g.reads is not reads_nothing for g in op.generators):
+                        r = False
+                        break
+            self._goal_free[target] = r
+        return r
 
     def _unified(self, effs: tuple[Atom, ...], target: Atom) -> list[dict[Var, Any]]:
         """The bindings that make each of ``effs`` entail ``target`` (kept: the caller must not change them)."""
@@ -312,3 +349,24 @@ def _is_plain(domain: Domain, a: Atom) -> bool:
     pred = domain.predicates.get(a.predicate)
     return pred is not None and pred.test is None and a.value in (True, False)
 
+
+
+class _Shared:
+    """Grounding answers that depend only on a problem's objects and static facts."""
+
+    def __init__(self) -> None:
+        self.op_cache: dict[tuple[int, Atom], list[Action]] = {}
+        self.fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+
+
+_SHARED_PER_DOMAIN = 4
+
+
+def _shared(domain: Domain, signature: Hashable) -> _Shared:
+    store: dict[Hashable, _Shared] = domain.facts.grounding
+    hit = store.get(signature)
+    if hit is None:
+        if len(store) >= _SHARED_PER_DOMAIN:
+            store.pop(next(iter(store)))
+        hit = store[signature] = _Shared()
+    return hit

@@ -137,3 +137,4 @@ class HAdd:
             if total == math.inf:
                 return total
         return total
+

@@ -17,7 +17,7 @@ import itertools
 import logging
 import random
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Hashable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -29,6 +29,7 @@ from nowplan.core.operators import Action
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.heuristics import HAdd, can_relax, hadd_table
+from nowplan.planning.relaxed import LazyRelaxed, Supporter
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.subgoals import NodeIndex, action_facts, regress
 
@@ -48,7 +49,14 @@ class PlannerConfig:
     shortcut_nodes: int = 2_000  # expansions allowed to each shortcut
     max_generator_values: int = 8
     seed: int = 0
-    heuristic: str = "hadd"  # hadd (HSPr-style, when the belief lists its facts) | count
+    # hadd | hmax | hff | lmcut: relaxed costs from the belief (HSPr-style; h_max and LM-cut admissible);
+    # count: unmet atoms x cheapest cost.
+    # Without lazy_relaxation the relaxed ones need the whole ground task (a belief that lists its
+    # facts, no generators or tested predicates) and fall back to count otherwise.
+    heuristic: str = "hadd"
+    # relax over the achievers the grounder finds, explored on demand from the subgoals' atoms
+    # (works with generators and tested predicates; heuristics.LazyRelaxed)
+    lazy_relaxation: bool = False
     # "auto": search forward (nowplan.planning.forward) where the belief lists its facts and the
     # domain has no generators or tested predicates, else regress; "forward" | "regression" force one
     engine: Literal["auto", "forward", "regression"] = "auto"
@@ -60,6 +68,9 @@ class PlannerConfig:
     forward_heuristic: Literal["ff", "add", "max"] = "ff"
     # action costs as the forward heuristic sees them (FD's adapt_costs): one | plusone | normal
     cost_type: Literal["one", "plusone", "normal"] = "plusone"
+
+
+_RELAXED = {"hadd": "add", "hmax": "max", "hff": "ff", "lmcut": "lmcut"}
 
 
 def preimage(
@@ -137,10 +148,42 @@ class _Search:
         )
         self.min_cost = max(self.min_cost, 0.0)
         self.hadd: HAdd | None = None
+        self.relaxed: LazyRelaxed | None = None
         # a domain's own estimate, fn(goal, belief, holds) -> cost, passed as context.extras["heuristic"]
         self.domain_h = context.extras.get("heuristic") if context is not None else None
-        if config.heuristic == "hadd" and can_relax(self.grounder, belief):
+        kind = _RELAXED.get(config.heuristic)
+        if config.heuristic not in (*_RELAXED, "count"):
+            from nowplan.errors import UsageError
+
+            raise UsageError(f"PlannerConfig.heuristic is {config.heuristic!r}; use hadd, hmax, hff, lmcut or count")
+        if callable(self.domain_h) or kind is None:
+            pass
+        elif config.lazy_relaxation or (kind != "add" and can_relax(self.grounder, belief)):
+            self.relaxed = LazyRelaxed(self._supporters, self.fholds, kind, self._context_key)
+        elif can_relax(self.grounder, belief):
             self.hadd = HAdd(hadd_table(self.grounder, levels, self.drop, self.cost), self.holds)
+        self._ctx: tuple[frozenset[int], Goal] | None = None
+
+    def _goal_of(self, context: frozenset[int]) -> Goal:
+        if self._ctx is None or self._ctx[0] is not context:
+            self._ctx = (context, self.table.goal(context))
+        return self._ctx[1]
+
+    def _context_key(self, f: int, context: frozenset[int]) -> Hashable | None:
+        """What the generators behind fact ``f``'s achievers read of ``context`` (``None``: nothing)."""
+        a = self.table.atoms[f]
+        if self.grounder.goal_free(a):
+            return None
+        return self.grounder.reading(a, self._goal_of(context))
+
+    def _supporters(self, f: int, context: frozenset[int]) -> list[Supporter]:
+        """The relaxation's achievers of fact ``f``: the grounder's, with ``context`` as their goal."""
+        a = self.table.atoms[f]
+        out: list[Supporter] = []
+        for act in self.grounder.achievers(a, lambda: self._goal_of(context)):
+            info = action_facts(self.table, act, self.levels.level(act), self.drop)
+            out.append((act, self.cost(act), info.pre))
+        return out
 
     def holds(self, a: Atom) -> bool:
         r = self._holds.get(a)
@@ -159,6 +202,10 @@ class _Search:
         return all(self.fholds(f) for f in fs)
 
     def h(self, fs: frozenset[int]) -> float:
+        if callable(self.domain_h):
+            return float(self.domain_h(self.table.goal(fs), self.belief, self.holds))
+        if self.relaxed is not None:
+            return self.relaxed.estimate(fs)
         if self.hadd is not None:
             hv = self._hv
             total = 0.0
@@ -168,8 +215,6 @@ class _Search:
                     x = hv[f] = 0.0 if self.fholds(f) else self.hadd.table.get(self.table.atoms[f], math.inf)
                 total += x
             return total
-        if callable(self.domain_h):
-            return float(self.domain_h(self.table.goal(fs), self.belief, self.holds))
         unmet = sum(1 for f in fs if not self.fholds(f))
         return unmet * (self.min_cost if self.min_cost > 0 else 1.0)
 

@@ -46,7 +46,9 @@ from typing import Any
 from nowplan.acting.resources import ResourceModel, register_resource_model
 from nowplan.core.atoms import AtMostOne, Atom, Var, atom
 from nowplan.core.domain import Domain, Predicate
-from nowplan.core.operators import Action, Generator, Operator, Precondition, Resource, ResourceUse
+from nowplan.core.operators import (
+    Action, Generator, Operator, Precondition, Resource, ResourceUse, reads_nothing,
+)
 from nowplan.domains.marsupial import loader as lp
 from nowplan.domains.marsupial.grid import NONE, Hold, can_share, door_package, is_packed
 from nowplan.planning.regression import PlannerConfig
@@ -134,10 +136,6 @@ def _bay_wanted(bind: Mapping[Var, Any], goal: Any) -> tuple[Any, Any]:
     return table.get(("cargo", (veh,))), table.get(("door", (veh,)))
 
 
-def _nothing(bind: Mapping[Var, Any], goal: Any) -> tuple[()]:
-    return ()
-
-
 def _pack_gen(bind: Mapping[Var, Any], goal: Any, belief: Any, context: Any) -> Iterator[dict[Var, Any]]:
     veh = bind.get(v)
     if veh is None or isinstance(veh, Var):
@@ -209,7 +207,7 @@ def operators(where: Where) -> tuple[Operator, ...]:
             (atom("packed", v),),
             cost=INFERENCE_COST, param_types=("vehicle", None),
             resources=(Resource(("storage", v), CT),),
-            generators=(Generator("pack", (L,), _pack_gen, (v,), reads=_nothing),),
+            generators=(Generator("pack", (L,), _pack_gen, (v,), reads=reads_nothing),),
         ),
     )
 

@@ -1,0 +1,427 @@
+"""Relaxed costs explored on demand, over the achievers the grounder finds (h_add, h_max, h_FF, LM-cut).
+
+:class:`LazyRelaxed` estimates a subgoal from the current belief in the
+delete relaxation: a fact that holds costs 0 (a fact of a predicate with a
+test holds if the test says so), any other the cheapest achiever's cost
+plus the sum (h_add) or the maximum (h_max) of its kept preconditions'
+costs.  h_FF adds the costs of the union of the facts' relaxed plans (best
+supporters by h_add, so an action two facts need is counted once); LM-cut
+(Helmert & Domshlak 2009) sums the costs of disjoint action landmarks found
+by repeated h_max cuts.
+
+The achievers are the search's own (``achievers(f, context)``: the
+grounder's, at the actions' levels), found on demand: asking for a fact
+explores backwards from it until facts that hold, and the new achievers'
+costs are propagated (label-correcting, cheapest first).  Nothing needs the
+whole ground task, so it works with generators and tested predicates.
+
+Generators see a goal, and what they give may depend on it: the
+relaxation shows them the facts asked for together (the preconditions of
+the action that needs the fact, or the subgoal first estimated).  For a
+fact whose achievers read the goal (``context_key(f, context)`` is not
+``None``) the exploration is repeated for every new reading met while
+exploring (with ``recontext``, also for every subgoal estimated), and the
+estimate is over the union of all achievers found so far: a fact's cost only
+decreases as contexts are seen.  A fact the relaxation does not reach is a
+dead end (``inf``) when no fact behind it had achievers that read the goal;
+otherwise it costs ``unknown`` (0: nothing is known about it).
+
+With every achiever found (no generators that read the goal) h_max and
+LM-cut are admissible; h_add and h_FF are not.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from collections.abc import Callable, Hashable, Iterable
+
+from nowplan.core.operators import Action
+
+# a relaxed achiever of a fact: the action, its cost and its kept preconditions' fact ids
+Supporter = tuple[Action, float, tuple[int, ...]]
+AchieversFn = Callable[[int, frozenset[int]], list[Supporter]]
+ContextKeyFn = Callable[[int, frozenset[int]], Hashable | None]
+
+KINDS = ("add", "max", "ff", "lmcut")
+
+
+class LazyRelaxed:
+    """Relaxed costs of facts (see the module docstring)."""
+
+    def __init__(
+        self,
+        achievers: AchieversFn,
+        holds: Callable[[int], bool],
+        kind: str = "add",
+        context_key: ContextKeyFn | None = None,
+        unknown: float = 0.0,
+        recontext: bool = False,
+    ) -> None:
+        if kind not in KINDS:
+            raise ValueError(f"relaxed estimate {kind!r}: use add, max, ff or lmcut")
+        self.achievers = achievers
+        self.holds = holds
+        self.kind = kind
+        self.context_key = context_key
+        self.unknown = unknown
+        self.recontext = recontext
+        self.val: dict[int, float] = {}  # facts reached so far (others explored: inf)
+        self.sup: dict[int, int] = {}  # best supporter of a reached fact that does not hold
+        self._seen: set[int] = set()  # facts explored (in some context)
+        self._dependent: set[int] = set()  # explored facts whose achievers read the goal
+        self._contexts: set[tuple[int, Hashable]] = set()
+        self._dead: set[int] = set()  # proven dead ends
+        self._index: dict[int, int] = {}  # id(action) -> index
+        self._acts: list[Action] = []  # (keeps the actions alive while their ids are keys)
+        self._cost: list[float] = []
+        self._pre: list[tuple[int, ...]] = []
+        self._targets: list[list[int]] = []
+        self._users: dict[int, list[int]] = {}
+        self._achieved_by: dict[int, list[int]] = {}
+        self._plans: dict[int, frozenset[int]] = {}
+        self.facts_explored = 0
+
+    # -- queries ---------------------------------------------------------------
+    def value(self, f: int, context: frozenset[int] = frozenset()) -> float:
+        """The relaxed cost of ``f`` (``context``: the facts asked for with it, for generators)."""
+        self._ensure(f, context or frozenset((f,)))
+        return self._final(f)
+
+    def estimate(self, fs: frozenset[int]) -> float:
+        for f in fs:
+            self._ensure(f, fs)
+        if self.kind == "lmcut":
+            return self.lmcut(fs)
+        if self.kind == "ff":
+            acts: set[int] = set()
+            extra = 0.0
+            for f in fs:
+                v = self._final(f)
+                if v == math.inf:
+                    return v
+                if f not in self.val:
+                    extra += v
+                elif v > 0.0:
+                    acts |= self.plan_of(f)
+            return extra + float(sum(self._cost[a] for a in acts))
+        total = 0.0
+        for f in fs:
+            v = self._final(f)
+            if self.kind == "add":
+                total += v
+            elif v > total:
+                total = v
+        return total
+
+    def lmcut(self, fs: frozenset[int]) -> float:
+        """Helmert and Domshlak's LM-cut over the explored achievers of ``fs``'s facts.
+
+        Repeatedly: h_max with the current costs, the cut of actions leading
+        from the facts that hold into the goal zone of the justification graph
+        (each action's most expensive precondition), add the cheapest cost in
+        the cut and take it off every action of the cut.  Admissible where
+        h_max is; facts not reached and not proven dead count 0.
+        """
+        val = self.val
+        goal: list[int] = []
+        for f in fs:
+            v = self._final(f)
+            if v == math.inf:
+                return v
+            if v > 0.0 and f in val:
+                goal.append(f)
+        if not goal:
+            return 0.0
+        facts, acts, init = self._relevant(goal)
+        cost = {a: self._cost[a] for a in acts}
+        users: dict[int, list[int]] = {}
+        for a in acts:
+            for p in self._pre[a]:
+                users.setdefault(p, []).append(a)
+        targets = {a: [t for t in self._targets[a] if t in facts] for a in acts}
+        achieved: dict[int, list[int]] = {}
+        for a in acts:
+            for t in targets[a]:
+                achieved.setdefault(t, []).append(a)
+        total = 0.0
+        for _ in range(len(acts) + 1):
+            h, pcf = self._hmax_over(init, acts, cost, users, targets)
+            top = max(goal, key=lambda u: h.get(u, math.inf))
+            g = h.get(top, math.inf)
+            if g == 0.0 or g == math.inf:
+                break
+            zone, todo = {top}, [top]  # facts from which the goal is reached at zero cost
+            while todo:
+                e = todo.pop()
+                for a in achieved.get(e, ()):
+                    x = pcf.get(a)
+                    if cost[a] == 0.0 and x is not None and x >= 0 and x not in zone:
+                        zone.add(x)
+                        todo.append(x)
+            by_pcf: dict[int, list[int]] = {}
+            for a, x in pcf.items():
+                by_pcf.setdefault(x, []).append(a)
+            reach = set(init)
+            reach.add(-1)
+            todo = [*init, -1]
+            cut: list[int] = []
+            while todo:
+                x = todo.pop()
+                for a in by_pcf.get(x, ()):
+                    into = False
+                    for e in targets[a]:
+                        if e in zone:
+                            into = True
+                        elif e not in reach:
+                            reach.add(e)
+                            todo.append(e)
+                    if into:
+                        cut.append(a)
+            if not cut:
+                break
+            m = min(cost[a] for a in cut)
+            total += m
+            for a in cut:
+                cost[a] -= m
+        return total
+
+    def _relevant(self, goal: list[int]) -> tuple[set[int], list[int], list[int]]:
+        """The facts behind ``goal``, the actions achieving them that can fire, and the facts that hold."""
+        val = self.val
+        facts, stack = set(goal), list(goal)
+        acts: list[int] = []
+        seen: set[int] = set()
+        init: list[int] = []
+        while stack:
+            f = stack.pop()
+            if self.holds(f):
+                init.append(f)
+                continue
+            for a in self._achieved_by.get(f, ()):
+                if a in seen:
+                    continue
+                pre = self._pre[a]
+                if any(p not in val for p in pre):
+                    continue  # never fires
+                seen.add(a)
+                acts.append(a)
+                for p in pre:
+                    if p not in facts:
+                        facts.add(p)
+                        stack.append(p)
+        return facts, acts, init
+
+    def _hmax_over(
+        self,
+        init: list[int],
+        acts: list[int],
+        cost: dict[int, float],
+        users: dict[int, list[int]],
+        targets: dict[int, list[int]],
+    ) -> tuple[dict[int, float], dict[int, int]]:
+        """h_max of the facts with ``cost``; each fired action's most expensive precondition (-1: none)."""
+        h: dict[int, float] = {}
+        pcf: dict[int, int] = {}
+        missing = {a: len(self._pre[a]) for a in acts}
+        heap: list[tuple[float, int, int]] = []
+        tick = 0
+        for f in init:
+            heap.append((0.0, tick, f))
+            tick += 1
+        for a in acts:
+            if not self._pre[a]:
+                pcf[a] = -1
+                for t in targets[a]:
+                    heap.append((cost[a], tick, t))
+                    tick += 1
+        heapq.heapify(heap)
+        while heap:
+            v, _, f = heapq.heappop(heap)
+            if f in h:
+                continue
+            h[f] = v
+            for a in users.get(f, ()):
+                missing[a] -= 1
+                if missing[a] == 0:
+                    pcf[a] = f  # popped last: the most expensive precondition
+                    x = cost[a] + v
+                    for t in targets[a]:
+                        if t not in h:
+                            heapq.heappush(heap, (x, tick, t))
+                            tick += 1
+        return h, pcf
+
+    def plan_of(self, f: int) -> frozenset[int]:
+        """The actions of ``f``'s relaxed plan (best supporters, recursively)."""
+        hit = self._plans.get(f)
+        if hit is not None:
+            return hit
+        stack = [f]
+        while stack:  # post-order without recursion (chains can be long)
+            g = stack[-1]
+            if g in self._plans:
+                stack.pop()
+                continue
+            a = self.sup.get(g)
+            if a is None:
+                self._plans[g] = frozenset()
+                stack.pop()
+                continue
+            todo = [p for p in self._pre[a] if p not in self._plans]
+            if todo:
+                stack.extend(todo)
+                continue
+            out = {a}
+            for p in self._pre[a]:
+                out |= self._plans[p]
+            self._plans[g] = frozenset(out)
+            stack.pop()
+        return self._plans[f]
+
+    def dead(self, f: int) -> bool:
+        """Is ``f`` unreachable whatever the goal shown to generators (nothing behind it read it)?"""
+        if f in self._dead:
+            return True
+        if f in self.val:
+            return False
+        todo, seen = [f], {f}
+        while todo:
+            g = todo.pop()
+            if g in self._dependent:
+                return False
+            for a in self._achievers_of(g):
+                for p in self._pre[a]:
+                    if p not in self.val and p not in seen:
+                        seen.add(p)
+                        todo.append(p)
+        self._dead |= seen
+        return True
+
+    # -- internals -------------------------------------------------------------
+    def _final(self, f: int) -> float:
+        v = self.val.get(f)
+        if v is not None:
+            return v
+        return math.inf if self.dead(f) else self.unknown
+
+    def _achievers_of(self, g: int) -> Iterable[int]:
+        return self._achieved_by.get(g, ())
+
+    def _ensure(self, f: int, context: frozenset[int]) -> None:
+        if f in self._seen and (f not in self._dependent or not self.recontext):
+            return
+        if f in self.val and self.val[f] == 0.0:
+            return
+        if f in self._seen:
+            key = self.context_key(f, context) if self.context_key is not None else None
+            if key is None or (f, key) in self._contexts:
+                return
+        self._explore(f, context)
+
+    def _register(self, sup: Supporter, target: int, fresh: list[int]) -> int:
+        act, c, pre = sup
+        k = id(act)
+        a = self._index.get(k)
+        if a is None:
+            a = self._index[k] = len(self._acts)
+            self._acts.append(act)
+            self._cost.append(c)
+            pre = tuple(dict.fromkeys(pre))
+            self._pre.append(pre)
+            self._targets.append([])
+            for p in pre:
+                self._users.setdefault(p, []).append(a)
+        tg = self._targets[a]
+        if target not in tg:
+            tg.append(target)
+            self._achieved_by.setdefault(target, []).append(a)
+            fresh.append(a)
+        return a
+
+    def _explore(self, f0: int, context: frozenset[int]) -> None:
+        fresh: list[int] = []  # actions with a new target
+        reached: list[int] = []  # facts that hold, newly seen
+        stack = [(f0, context)]
+        while stack:
+            f, ctx = stack.pop()
+            first = f not in self._seen
+            if first:
+                self._seen.add(f)
+                self.facts_explored += 1
+                if self.holds(f):
+                    reached.append(f)
+                    continue
+            elif f not in self._dependent:
+                continue
+            key = self.context_key(f, ctx) if self.context_key is not None else None
+            if key is not None:
+                if (f, key) in self._contexts:
+                    continue
+                self._contexts.add((f, key))
+                self._dependent.add(f)
+            elif not first:
+                continue
+            for sup in self.achievers(f, ctx):
+                a = self._register(sup, f, fresh)
+                pre = self._pre[a]
+                pctx: frozenset[int] | None = None
+                for p in pre:
+                    if p not in self._seen or p in self._dependent:
+                        if pctx is None:
+                            pctx = frozenset(pre)
+                        stack.append((p, pctx))
+        self._propagate(reached, fresh)
+
+    def _propagate(self, reached: list[int], fresh: list[int]) -> None:
+        val = self.val
+        heap: list[tuple[float, int, int, int]] = []
+        tick = 0
+        for f in reached:
+            if f not in val:
+                val[f] = 0.0
+                heap.append((0.0, tick, f, -1))
+                tick += 1
+        for a in fresh:
+            v = self._action_value(a)
+            if v < math.inf:
+                for t in self._targets[a]:
+                    if v < val.get(t, math.inf):
+                        heap.append((v, tick, t, a))
+                        tick += 1
+        if not heap:
+            return
+        self._plans.clear()
+        heapq.heapify(heap)
+        while heap:
+            v, _, f, a = heapq.heappop(heap)
+            if a >= 0:
+                if v >= val.get(f, math.inf):
+                    continue
+                val[f] = v
+                self.sup[f] = a
+            for u in self._users.get(f, ()):
+                x = self._action_value(u)
+                if x < math.inf:
+                    for t in self._targets[u]:
+                        if x < val.get(t, math.inf):
+                            heapq.heappush(heap, (x, tick, t, u))
+                            tick += 1
+
+    def _action_value(self, a: int) -> float:
+        val = self.val
+        x = 0.0
+        if self.kind in ("max", "lmcut"):
+            for p in self._pre[a]:
+                v = val.get(p)
+                if v is None:
+                    return math.inf
+                if v > x:
+                    x = v
+        else:
+            for p in self._pre[a]:
+                v = val.get(p)
+                if v is None:
+                    return math.inf
+                x += v
+        return self._cost[a] + x
