@@ -1,6 +1,8 @@
-"""Shared helpers for the tests: replaying plans in a symbolic state."""
+"""Shared helpers for the tests: replaying plans in a symbolic state, process states."""
 
 from __future__ import annotations
+
+from pathlib import Path
 
 from nowplan.core.domain import Domain
 from nowplan.core.state import State
@@ -20,3 +22,12 @@ def replay(domain: Domain, state: State, plan: Plan, concrete: bool = True) -> S
         assert domain.satisfies(state, plan.preimage(i)), f"g_{i} false after step {i} ({act})"
     assert domain.satisfies(state, plan.goal)
     return state
+
+
+def process_alive(pid: int) -> bool:
+    """Is the process running (Linux /proc; a zombie not yet reaped counts as dead)?"""
+    try:
+        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (FileNotFoundError, ProcessLookupError, IndexError):
+        return False
+    return fields[0] != "Z"

@@ -144,6 +144,7 @@ def test_flat_initial_state_is_a_core_state() -> None:
 
 @pytest.mark.slow
 @pytest.mark.skipif(not (HAVE_FD and HAVE_UP), reason="needs the fd and validate extras")
+@pytest.mark.timeout(3600)  # three flat planners with 30-s caps (lmcut among them), then HPN twice
 def test_comparison_on_the_ff_instance() -> None:
     from nowplan.domains.marsupial.flatcmp import compare
 

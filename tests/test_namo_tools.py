@@ -137,6 +137,7 @@ def test_avg_time_ratio_is_summed_time_over_summed_baseline_as_in_table_1():
     assert (sel["planning_ratio"], sel["planning_ratio_mean"]) == (0.82, 0.84)
 
 @pytest.mark.slow
+@pytest.mark.timeout(3600)  # a reproduction: minutes, well past the default time-out
 def test_reproduce_000_quick_prints_the_table(tmp_path, capsys):
     assert main(["reproduce", "000", "--quick", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out

@@ -117,6 +117,7 @@ def test_cli_run_on_pieces(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.timeout(3600)  # a reproduction: minutes, well past the default time-out
 def test_reproduce_003_quick_prints_the_table(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
     code = cli_main(["reproduce", "003", "--quick", "--json", "--out", str(tmp_path)])
     doc = json.loads(capsys.readouterr().out)

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import os
 import sqlite3
-import time
+import threading
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -17,6 +18,7 @@ from nowplan.experiments.records import RunConfig, RunRecord, RunStatus
 from nowplan.experiments.runner import LocalBackend, execute
 from nowplan.experiments.store import Store
 from nowplan.experiments.sweep import SweepSpec, SweepState, parse_seeds, run_sweep
+from tests.helpers import process_alive
 
 
 def test_parse_seeds() -> None:
@@ -94,7 +96,9 @@ def _boom(seed: int) -> Episode:
 
 
 def _hang(seed: int) -> Episode:
-    time.sleep(60)
+    # note the worker's pid, then block for good: only the backend's kill ends this run
+    Path(os.environ["NOWPLAN_TEST_HANG_DIR"], f"{seed}.pid").write_text(str(os.getpid()))
+    threading.Event().wait()
     raise AssertionError("unreachable")
 
 
@@ -112,18 +116,26 @@ def test_execute_records_a_crash(broken_domain: str) -> None:
     assert rec.error is not None and "Traceback" in rec.error
 
 
-def test_sweep_crash_and_timeout_are_recorded_and_the_sweep_goes_on(tmp_path: Path, broken_domain: str) -> None:
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads process states from /proc")
+@pytest.mark.timeout(120)  # the hung runs never end by themselves: a backend waiting for them hangs here
+def test_sweep_crash_and_timeout_are_recorded_and_the_sweep_goes_on(
+    tmp_path: Path, broken_domain: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    hang_dir = tmp_path / "hung"
+    hang_dir.mkdir()
+    monkeypatch.setenv("NOWPLAN_TEST_HANG_DIR", str(hang_dir))  # the forked workers inherit it
     with Store(tmp_path / "runs.sqlite") as st:
         boom = run_sweep(SweepSpec(broken_domain, ("boom",), ("hpn",), (0, 1, 2), 10.0), st,
                          LocalBackend(jobs=2), progress=False)
         assert boom.state is SweepState.COMPLETE and boom.ran == 3
         assert {r.status for r in boom.records} == {RunStatus.CRASHED}
-        t0 = time.monotonic()
-        hang = run_sweep(SweepSpec(broken_domain, ("hang",), ("hpn",), (0, 1), 0.2), st,
-                         LocalBackend(jobs=2, grace=0.3), progress=False)
-        assert time.monotonic() - t0 < 10
+        hang = run_sweep(SweepSpec(broken_domain, ("hang",), ("hpn",), (0, 1), 0.5), st,
+                         LocalBackend(jobs=2, grace=1.5), progress=False)
         assert [r.status for r in hang.records] == [RunStatus.TIMEOUT] * 2
-        assert all(r.outcome == "limit" and "time limit" in r.reason for r in hang.records)
+        assert all(r.outcome == "limit" and "(hard limit 2 s)" in r.reason for r in hang.records)
+        # both runs reached their scenario, and the backend killed (and reaped) both workers
+        pids = [int(f.read_text()) for f in sorted(hang_dir.glob("*.pid"))]
+        assert len(pids) == 2 and not any(process_alive(pid) for pid in pids)
         assert len(st) == 5
         # crashed runs are finished runs: a resume skips them unless asked to retry
         again = run_sweep(SweepSpec(broken_domain, ("boom",), ("hpn",), (0, 1, 2), 10.0), st,

@@ -1,4 +1,12 @@
-"""A sweep killed with SIGKILL part-way resumes with exactly one record per configuration."""
+"""A sweep killed with SIGKILL part-way resumes with exactly one record per configuration.
+
+The sweep runs the logistics ``small`` scenario through tests/gated_sweep.py, whose runs of
+seeds >= 2 wait while a gate file exists: with two workers, the first four configurations
+(seeds 0 and 1, both strategies) finish and the next two hang at the gate, so the kill
+always lands after exactly four stored runs, whatever the machine's speed.  Every run logs
+its start, so the test counts executions: a resumed sweep must not run a stored
+configuration again.
+"""
 
 from __future__ import annotations
 
@@ -8,18 +16,24 @@ import sqlite3
 import subprocess
 import sys
 import time
+from collections import Counter
 from pathlib import Path
+
+import pytest
 
 from nowplan.experiments.store import Store
 from nowplan.experiments.sweep import SweepSpec, parse_seeds
+from tests.helpers import process_alive
 
 STRATEGIES = "hpn,hpn+aggressive"
 SEEDS = "0-9"  # 2 strategies x 10 seeds = 20 runs of the small logistics scenario
+GATE_FROM = 2  # runs of seeds 0 and 1 (the first four configurations) pass; the rest wait
+HELPER = Path(__file__).with_name("gated_sweep.py")
 
 
 def _sweep_cmd(store: Path) -> list[str]:
     return [
-        sys.executable, "-m", "nowplan.cli", "sweep", "--domain", "logistics", "--scenario", "small",
+        sys.executable, str(HELPER), "sweep", "--domain", "logistics-gated", "--scenario", "small",
         "--strategies", STRATEGIES, "--seeds", SEEDS, "--store", str(store), "--jobs", "2",
         "--time-limit", "60",
     ]
@@ -38,38 +52,65 @@ def _count(store: Path) -> int:
         return 0
 
 
-def test_sigkill_mid_sweep_then_resume(tmp_path: Path) -> None:
-    store = tmp_path / "runs.sqlite"
-    spec = SweepSpec("logistics", ("small",), tuple(STRATEGIES.split(",")), tuple(parse_seeds(SEEDS)), 60.0)
-    expected = {c.key for c in spec.configs()}
-    assert len(expected) == 20
+def _starts(runlog: Path) -> list[tuple[int, int]]:
+    """(seed, worker pid) of every run started so far."""
+    if not runlog.exists():
+        return []
+    complete = runlog.read_text().split("\n")[:-1]  # a line being written has no newline yet
+    return [(int(s), int(p)) for s, p in (line.split() for line in complete)]
 
-    proc = subprocess.Popen(_sweep_cmd(store), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            start_new_session=True)
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers die with the sweep via PR_SET_PDEATHSIG")
+@pytest.mark.timeout(240)  # the waits below have no clock of their own
+def test_sigkill_mid_sweep_then_resume(tmp_path: Path) -> None:
+    store, gate, runlog = tmp_path / "runs.sqlite", tmp_path / "gate", tmp_path / "runs.log"
+    gate.touch()
+    env = {**os.environ, "NOWPLAN_TEST_GATE": str(gate), "NOWPLAN_TEST_RUNLOG": str(runlog),
+           "NOWPLAN_TEST_GATE_FROM": str(GATE_FROM)}
+    spec = SweepSpec("logistics-gated", ("small",), tuple(STRATEGIES.split(",")), tuple(parse_seeds(SEEDS)), 60.0)
+    configs = spec.configs()
+    expected = {c.key for c in configs}
+    assert len(expected) == 20
+    first = {c.key for c in configs if c.seed < GATE_FROM}
+    assert {c.key for c in configs[:4]} == first  # the first four dispatched (seeds outermost)
+
+    err = tmp_path / "sweep.err"
+    with err.open("w") as fh:
+        proc = subprocess.Popen(_sweep_cmd(store), stdout=subprocess.DEVNULL, stderr=fh,
+                                start_new_session=True, env=env)
     try:
-        deadline = time.monotonic() + 60
-        while _count(store) < 4:
-            assert proc.poll() is None, "the sweep ended before it could be killed"
-            assert time.monotonic() < deadline, "the sweep stored nothing within 60 s"
-            time.sleep(0.01)
-        os.kill(proc.pid, signal.SIGKILL)
+        # both workers are held at the gate: the four runs before them are stored, no more can be
+        while not (_count(store) >= 4 and sum(s >= GATE_FROM for s, _ in _starts(runlog)) == 2):
+            assert proc.poll() is None, f"the sweep ended before it could be killed: {err.read_text()}"
+            time.sleep(0.02)
+        held = [pid for s, pid in _starts(runlog) if s >= GATE_FROM]
+        assert all(process_alive(pid) for pid in held)
+        os.kill(proc.pid, signal.SIGKILL)  # the sweep only: its workers must die with it
+        proc.wait()
     finally:
-        proc.wait(timeout=30)
+        if proc.poll() is None:  # a failed check above: stop the whole session
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
     assert proc.returncode == -signal.SIGKILL
-    time.sleep(0.2)  # the workers die with their parent (PR_SET_PDEATHSIG)
+    while any(process_alive(pid) for pid in held):  # PR_SET_PDEATHSIG; the test's time-out bounds this
+        time.sleep(0.02)
 
     db = sqlite3.connect(store)
     assert db.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
     db.close()
     with Store(store) as st:
         before = {r.key: r.to_dict() for r in st.records()}
-    assert 4 <= len(before) < 20, f"kill landed after {len(before)} of 20 runs"
-    assert set(before) <= expected
+    assert set(before) == first  # exactly the runs that could finish
+    assert Counter(s for s, _ in _starts(runlog)) == {0: 2, 1: 2, 2: 2}
 
-    done = subprocess.run(_sweep_cmd(store) + ["--no-progress"], capture_output=True, text=True, timeout=300, check=False)
+    gate.unlink()
+    done = subprocess.run(_sweep_cmd(store) + ["--no-progress"], capture_output=True, text=True,
+                          check=False, env=env)
     assert done.returncode == 0, done.stderr
-    assert f"20/20 runs stored ({len(before)} already there, {20 - len(before)} run now" in done.stdout
+    assert "20/20 runs stored (4 already there, 16 run now" in done.stdout
 
+    # each stored configuration ran once; the two killed at the gate ran again, once
+    assert Counter(s for s, _ in _starts(runlog)) == {0: 2, 1: 2, 2: 4, **{s: 2 for s in range(3, 10)}}
     db = sqlite3.connect(store)
     rows = db.execute("SELECT key, COUNT(*) FROM runs GROUP BY key").fetchall()
     db.close()
@@ -77,5 +118,5 @@ def test_sigkill_mid_sweep_then_resume(tmp_path: Path) -> None:
     with Store(store) as st:
         after = {r.key: r.to_dict() for r in st.records()}
     assert set(after) == expected  # none lost, none extra
-    assert all(after[k] == v for k, v in before.items())  # runs finished before the kill were not redone
-    assert all(r["status"] == "done" for r in after.values())
+    assert all(after[k] == v for k, v in before.items())  # the stored records were kept as they were
+    assert all(r["status"] == "done" and r["outcome"] == "reached" for r in after.values())

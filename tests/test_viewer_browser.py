@@ -29,6 +29,9 @@ webdriver = pytest.importorskip(
     "selenium.webdriver", reason="selenium is not installed: pip install -e '.[test]'"
 )
 
+# starting chromium and chromedriver has no time-out of its own
+pytestmark = pytest.mark.timeout(120)
+
 FLAGS = (
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
     "--disable-background-networking", "--disable-component-update", "--disable-sync",
