@@ -64,7 +64,7 @@ def register(subparsers: Any) -> None:
                         "--heuristic max is optimal)")
     p.add_argument("--improve", type=float, default=1.0, metavar="K",
                    help="after the first forward plan, look for cheaper ones for K times the first "
-                        "search's CPU time + 0.05 s (weighted A*, falling weights; default 1, 0 = off)")
+                        "search's CPU time + 0.02 s (weighted A*, falling weights; default 1, 0 = off)")
     p.add_argument("--heuristic", choices=("ff", "add", "max"), default="ff",
                    help="forward heuristic: h_FF (default), h_add or h_max")
     p.add_argument("--level", type=_level, default="flat",

@@ -49,7 +49,7 @@ log = logging.getLogger(__name__)
 
 Search = Literal["gbfs", "lama", "astar"]
 BOOST = 1000  # priority given to the preferred-operator queue on progress (FD's default)
-IMPROVE_BASE_S = 0.05  # CPU seconds the anytime improvement always gets (with ``improve`` > 0)
+IMPROVE_BASE_S = 0.02  # CPU seconds the anytime improvement always gets (with ``improve`` > 0)
 
 
 @dataclass

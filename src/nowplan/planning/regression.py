@@ -63,7 +63,7 @@ class PlannerConfig:
     # the forward search: lazy greedy best-first with preferred operators, or (weighted) A*
     search: Literal["gbfs", "lama", "astar"] = "gbfs"
     # anytime improvement after the first forward plan (weighted A* with falling weights, bounded by
-    # the best cost): CPU budget = improve x the first search's CPU time + 0.05 s; 0 = off
+    # the best cost): CPU budget = improve x the first search's CPU time + 0.02 s; 0 = off
     improve: float = 0.0
     forward_heuristic: Literal["ff", "add", "max"] = "ff"
     # action costs as the forward heuristic sees them (FD's adapt_costs): one | plusone | normal
