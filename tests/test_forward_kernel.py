@@ -185,11 +185,7 @@ def int_task(nfacts: int, actions: list[tuple[list[int], list[int], list[int], f
     facts = [Atom(f"f{i}") for i in range(nfacts)]
     task = Task(facts, {a: i for i, a in enumerate(facts)}, cast(list[Action], list(range(len(actions)))),
                 pre, add, dele, [c for _, _, _, c in actions], frozenset(init), tuple(sorted(set(goal))))
-    for k, p in enumerate(pre):
-        if not p:
-            task.no_pre.append(k)
-        for f in p:
-            task.by_pre.setdefault(f, []).append(k)
+    task.index_preconditions()
     return task
 
 

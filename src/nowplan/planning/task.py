@@ -276,6 +276,16 @@ class Task:
     by_pre: dict[int, list[int]] = field(default_factory=dict)  # fact -> actions that need it
     no_pre: list[int] = field(default_factory=list)  # actions with no preconditions
 
+    def index_preconditions(self) -> None:
+        """Fill ``by_pre`` and ``no_pre`` from ``pre``."""
+        self.by_pre.clear()
+        self.no_pre.clear()
+        for k, p in enumerate(self.pre):
+            if not p:
+                self.no_pre.append(k)
+            for f in p:
+                self.by_pre.setdefault(f, []).append(k)
+
 
 def build_task(
     domain: Domain,
@@ -350,11 +360,7 @@ def build_task(
             continue
         goal_ids.append(i)
     task.goal = tuple(sorted(goal_ids))
-    for k, p in enumerate(pre):
-        if not p:
-            task.no_pre.append(k)
-        for f in p:
-            task.by_pre.setdefault(f, []).append(k)
+    task.index_preconditions()
     return task
 
 
