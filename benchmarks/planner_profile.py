@@ -152,9 +152,50 @@ def overrides(spec: str) -> dict[str, Any]:
     kw: dict[str, Any] = {}
     for item in filter(None, spec.split(",")):
         k, v = item.split("=")
-        kind = type(getattr(PlannerConfig(), k))
+        default = getattr(PlannerConfig(), k)
+        kind = str if default is None else type(default)
         kw[k] = (v.lower() in ("1", "true", "yes")) if kind is bool else kind(v)
     return kw
+
+
+def summarize(paths: list[Path]) -> None:
+    """Per regime and size: mean planning CPU and nodes/s of HPN and RCHPN, the CPU ratio and cost decrease."""
+    import statistics as st
+    from collections import defaultdict
+
+    runs: dict[tuple[str, int, str], dict[str, Any]] = {}
+    for path in paths:
+        for line in path.read_text().splitlines():
+            r = json.loads(line)
+            runs[(r["problem"], r["trial"], r["strategy"])] = r
+    table: dict[tuple[str, str], list[tuple[dict[str, Any], dict[str, Any] | None]]] = defaultdict(list)
+    for (problem, trial, strategy), r in runs.items():
+        if strategy == "hpn":
+            regime, _, size = problem.rpartition("-")
+            q = runs.get((problem, trial, "hpn+peephole"))
+            table[(regime, size)].append((r, q))
+            table[(regime, "all")].append((r, q))
+    print("| regime | packages | problems | HPN CPU s | HPN plan CPU s | HPN nodes/s | RCHPN CPU s | "
+          "RCHPN nodes/s | RCHPN/HPN CPU (ratio of means) | cost decrease % | unsolved R/H |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for (regime, size), pairs in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1] == "all",
+                                                                       kv[0][1].zfill(3))):
+        h = [r for r, _ in pairs]
+        q = [x for _, x in pairs if x is not None]
+        row = f"| {regime} | {size} | {len(pairs)} | {st.mean(r['cpu'] for r in h):.3f} | " \
+              f"{st.mean(r['plan_cpu'] for r in h):.3f} | " \
+              f"{sum(r['nodes'] for r in h) / max(sum(r['plan_cpu'] for r in h), 1e-9):.0f} |"
+        if q:
+            ok = [(r, x) for r, x in pairs if x is not None and r["goal_holds"] and x["goal_holds"]]
+            dec = [100 * (1 - x["cost"] / r["cost"]) for r, x in ok]
+            row += f" {st.mean(x['cpu'] for x in q):.3f} | " \
+                   f"{sum(x['nodes'] for x in q) / max(sum(x['plan_cpu'] for x in q), 1e-9):.0f} | " \
+                   f"{st.mean(x['cpu'] for x in q) / st.mean(r['cpu'] for r, x in pairs if x is not None):.2f} | " \
+                   f"{st.mean(dec) if dec else float('nan'):.1f} | " \
+                   f"{sum(not x['goal_holds'] for x in q)}/{sum(not r['goal_holds'] for r in h)} |"
+        else:
+            row += " | | | | |"
+        print(row)
 
 
 def main() -> int:
@@ -173,7 +214,11 @@ def main() -> int:
     ap.add_argument("--planner", default="", help="marsupial PlannerConfig overrides, e.g. heuristic=hff,weight=1")
     ap.add_argument("--logistics-planner", default="", help="logistics PlannerConfig overrides")
     ap.add_argument("--tag", default="", help="a label stored in each row")
+    ap.add_argument("--summarize", type=Path, nargs="+", help="print tables from stored rows and stop")
     args = ap.parse_args()
+    if args.summarize:
+        summarize(args.summarize)
+        return 0
     if args.planner:
         import dataclasses
 

@@ -166,3 +166,42 @@ def test_marsupial_hpn_plans_the_same_first_plan_with_every_relaxed_estimate():
         costs[h] = (res.plan.cost(ep.belief), res.expanded)
     assert costs["hmax"][0] == costs["count"][0] == costs["hff"][0]
     assert costs["hmax"][1] < costs["count"][1] and costs["hff"][1] < costs["count"][1]
+
+
+def test_lmcut_adds_up_over_independent_facts_as_the_whole_cut_does():
+    """LM-cut over groups of goal facts whose relevant actions do not overlap equals LM-cut of the union."""
+    prob = load_pddl(DATA / "logistics" / "domain.pddl", DATA / "logistics" / "p03.pddl")
+    rng = random.Random(5)
+    places = ("city1-loc1", "city2-airport", "city3-loc1", "city3-airport")
+    atoms = sorted({a for a in prob.goal.atoms} | {atom("at", p, q) for p in ("pkg1", "pkg2", "pkg3")
+                                                   for q in places}, key=str)
+    parts = 0
+    for levels in (flat_levels(), LevelMap(0)):
+        srch = _search(prob, prob.init, "lmcut", levels=levels)
+        r = srch.relaxed
+        assert r is not None
+        for _ in range(40):
+            fs = srch.table.ids_of(rng.sample(atoms, rng.randint(1, 4)))
+            h = srch.h(fs)
+            goal = [f for f in fs if r.val.get(f, 0.0) > 0.0]
+            assert all(r.val.get(f, math.inf) < math.inf for f in fs)
+            whole = r._lmcut(goal) if goal else 0.0
+            assert h == whole, (fs, h, whole)
+            parts += len(r._parts(goal)) > 1 if goal else 0
+    # marsupial's top level: each package's route has its own actions
+    from nowplan.domains.marsupial.model import PLANNER
+    from nowplan.domains.marsupial.scenarios import episode
+
+    ep = episode("both", 4, 0)
+    dom = ep.problem.domain
+    srch = _Search(dom, ep.problem.objects, ep.belief, LevelMap(dom.top_level), PLANNER, None)
+    r = srch.relaxed
+    assert r is not None and r.kind == "lmcut"
+    goal_atoms = sorted(ep.problem.goal.atoms)
+    for k in range(1, len(goal_atoms) + 1):
+        fs = srch.table.ids_of(goal_atoms[:k])
+        h = srch.h(fs)
+        goal = [f for f in fs if r.val.get(f, 0.0) > 0.0]
+        assert h == r._lmcut(goal) > 0.0
+        parts += len(r._parts(goal)) > 1
+    assert parts >= 3

@@ -215,6 +215,26 @@ class Goal:
     def by_key(self) -> dict[tuple[str, tuple[Term, ...]], Atom]:
         return {a.key: a for a in self.atoms}
 
+    def get(self, key: tuple[str, tuple[Term, ...]]) -> Atom | None:
+        """The atom of fluent ``key``, if the goal constrains it (an index made on the first call)."""
+        table: dict[tuple[str, tuple[Term, ...]], Atom] | None = self.__dict__.get("_by_key")
+        if table is None:
+            table = self.by_key()
+            object.__setattr__(self, "_by_key", table)
+        return table.get(key)
+
+    def with_first(self, predicate: str, first: Term) -> tuple[Atom, ...]:
+        """The atoms of ``predicate`` whose first argument is ``first`` (an index made on the first call)."""
+        index: dict[tuple[str, Term], tuple[Atom, ...]] | None = self.__dict__.get("_by_first")
+        if index is None:
+            grouped: dict[tuple[str, Term], list[Atom]] = {}
+            for a in self.atoms:
+                if a.args:
+                    grouped.setdefault((a.predicate, a.args[0]), []).append(a)
+            index = {k: tuple(v) for k, v in grouped.items()}
+            object.__setattr__(self, "_by_first", index)
+        return index.get((predicate, first), ())
+
     def __str__(self) -> str:
         if not self.atoms:
             return "True"

@@ -13,12 +13,12 @@ at the plan's level).
 from __future__ import annotations
 
 import itertools
-from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping
+from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal, Var
 from nowplan.core.domain import Domain
-from nowplan.core.operators import Action, Operator, reads_nothing
+from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
 
 
@@ -75,10 +75,13 @@ class Grounder:
         self._facts_ok = hasattr(belief, "facts")
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
         self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+        self.signature: Hashable = None  # the objects and static facts (with a belief that lists facts)
+        if self._facts_ok:
+            self.signature = self._signature()
         if self.memo and self._facts_ok:
             # both depend only on the objects and the static facts: share them between the calls
             # of one problem (the executive plans many times with the same static facts)
-            shared = _shared(domain, self._signature())
+            shared = _shared(domain, self.signature)
             self._op_cache, self._fills = shared.op_cache, shared.fills
         # per predicate: the operators (in order) with an effect of it, and those effects
         self._by_pred: dict[str, list[tuple[int, Operator, tuple[Atom, ...]]]] = {}
@@ -89,8 +92,13 @@ class Grounder:
             for pred, effs in per.items():
                 self._by_pred.setdefault(pred, []).append((i, op, tuple(effs)))
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
-        self._unify_cache: dict[tuple[tuple[Atom, ...], Atom], list[dict[Var, Any]]] = {}
+        self._unify_cache: dict[tuple[int, Atom], list[dict[Var, Any]]] = {}
+        self._gen_by_pred = {
+            pred: tuple(e for e in entries if e[1].generators) for pred, entries in self._by_pred.items()
+        }
         self._goal_free: dict[Atom, bool] = {}
+        self._read_plans: dict[Atom, Any] = {}
+        self.kept = False  # was the last answer of achievers() kept (the same list object next time)?
         # ground actions of the domain, one object per instance (planners keep data on them)
         self._actions: dict[tuple[int, tuple[Any, ...]], Action] = domain.facts.actions
 
@@ -128,11 +136,12 @@ class Grounder:
         ``memo``, those of operators whose generators all declare what they
         read of the goal (``Generator.reads``) are kept per atom and reading.
         """
+        self.kept = True  # the answer is kept: the same list comes back for the same question
         cached = self._cache.get(target)
         if cached is not None:
             return cached
         entries = self._by_pred.get(target.predicate, ())
-        gen_entries = [e for e in entries if e[1].generators]
+        gen_entries = self._gen_by_pred.get(target.predicate, ())
         key: tuple[Atom, Hashable] | None = None
         free = self.goal_free(target)
         if gen_entries and self.memo and not free:
@@ -163,23 +172,37 @@ class Grounder:
             self._cache[target] = out
         elif key is not None:
             self._gen_cache[key] = out
+        else:
+            self.kept = False
         return out
 
     def _readings(
-        self, gen_entries: list[tuple[int, Operator, tuple[Atom, ...]]], target: Atom, goal: Goal
+        self, gen_entries: Sequence[tuple[int, Operator, tuple[Atom, ...]]], target: Atom, goal: Goal
     ) -> tuple[Hashable, ...] | None:
-        readings: list[Hashable] = []
+        """What the generators that achieve ``target`` read of ``goal``; ``None``: unknown."""
+        plan = self._read_plans.get(target, _UNSET)
+        if plan is _UNSET:
+            plan = self._read_plans[target] = self._read_plan(gen_entries, target)
+        if plan is None:
+            return None
+        return tuple([reads(b, goal) for reads, b in plan])
+
+    def _read_plan(
+        self, gen_entries: Sequence[tuple[int, Operator, tuple[Atom, ...]]], target: Atom
+    ) -> tuple[tuple[ReadsFn, dict[Var, Any]], ...] | None:
+        """The (reads, bindings) pairs to ask for ``target``'s readings, or ``None`` if one is unknown."""
+        out: list[tuple[ReadsFn, dict[Var, Any]]] = []
         for i, op, effs in gen_entries:
-            r = self._reading(op, effs, target, goal)
-            if r is None:
-                return None
-            readings.append((i, r))
-        return tuple(readings)
+            for b in self._unified(i, effs, target):
+                for gen in op.generators:
+                    if gen.reads is None or not all(v in b for v in gen.inputs):
+                        return None
+                    out.append((gen.reads, b))
+        return tuple(out)
 
     def reading(self, target: Atom, goal: Goal) -> Hashable:
         """A key for what ``target``'s achievers depend on in ``goal``: equal keys, equal achievers."""
-        gen_entries = [e for e in self._by_pred.get(target.predicate, ()) if e[1].generators]
-        r = self._readings(gen_entries, target, goal)
+        r = self._readings(self._gen_by_pred.get(target.predicate, ()), target, goal)
         return ("goal", goal) if r is None else r
 
     def goal_free(self, target: Atom) -> bool:
@@ -187,17 +210,17 @@ class Grounder:
         r = self._goal_free.get(target)
         if r is None:
             r = True
-            for _, op, effs in self._by_pred.get(target.predicate, ()):
-                if op.generators and self._unified(effs, target):
+            for i, op, effs in self._gen_by_pred.get(target.predicate, ()):
+                if self._unified(i, effs, target):
                     if any(g.reads is not reads_nothing for g in op.generators):
                         r = False
                         break
             self._goal_free[target] = r
         return r
 
-    def _unified(self, effs: tuple[Atom, ...], target: Atom) -> list[dict[Var, Any]]:
-        """The bindings that make each of ``effs`` entail ``target`` (kept: the caller must not change them)."""
-        key = (effs, target)
+    def _unified(self, i: int, effs: tuple[Atom, ...], target: Atom) -> list[dict[Var, Any]]:
+        """The bindings that make each of operator ``i``'s ``effs`` entail ``target`` (kept: do not change them)."""
+        key = (i, target)
         out = self._unify_cache.get(key)
         if out is None:
             out = self._unify_cache[key] = [
@@ -205,20 +228,10 @@ class Grounder:
             ]
         return out
 
-    def _reading(self, op: Operator, effs: tuple[Atom, ...], target: Atom, goal: Goal) -> Hashable | None:
-        """What ``op``'s generators read of ``goal`` when achieving ``target``; ``None``: unknown."""
-        out: list[Hashable] = []
-        for b in self._unified(effs, target):
-            for gen in op.generators:
-                if gen.reads is None or not all(v in b for v in gen.inputs):
-                    return None
-                out.append(gen.reads(b, goal))
-        return tuple(out)
-
     def _op_achievers(
         self, i: int, op: Operator, effs: tuple[Atom, ...], target: Atom, goal: Goal | Callable[[], Goal]
     ) -> Iterator[Action]:
-        for b in self._unified(effs, target):
+        for b in self._unified(i, effs, target):
             for full in self._complete(i, op, dict(b), goal):
                 yield self.instantiate(i, op, full)
 
@@ -351,6 +364,9 @@ def _is_plain(domain: Domain, a: Atom) -> bool:
 
 
 
+_UNSET = object()
+
+
 class _Shared:
     """Grounding answers that depend only on a problem's objects and static facts."""
 
@@ -370,3 +386,4 @@ def _shared(domain: Domain, signature: Hashable) -> _Shared:
             store.pop(next(iter(store)))
         hit = store[signature] = _Shared()
     return hit
+

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal
+from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.grounding import Grounder
@@ -70,50 +71,116 @@ def ground_all(grounder: Grounder, drop: frozenset[str]) -> tuple[GroundAction, 
     return _CACHE[key]
 
 
-def hadd_table(
+class GroundTask:
+    """The ground actions of a problem as fact ids, for one relaxed exploration per planner call."""
+
+    def __init__(self, table: FactTable, acts: tuple[GroundAction, ...]) -> None:
+        self.acts = acts
+        self.index = {ga.action.key: k for k, ga in enumerate(acts)}
+        self.pre: list[tuple[tuple[int, int, int], ...]] = []  # (fact, criticality, positive twin or -1)
+        self.effects: list[tuple[int, ...]] = []
+        self.fixed_cost: list[float | None] = []
+        for ga in acts:
+            pre = []
+            for a, crit in ga.pre:
+                twin = table.id(Atom(a.predicate, a.args, True)) if a.value is False else -1
+                pre.append((table.id(a), crit, twin))
+            self.pre.append(tuple(pre))
+            self.effects.append(tuple(table.id(e) for e in ga.effects))
+            c = ga.action.operator.cost
+            self.fixed_cost.append(None if callable(c) else float(c))
+        self._kept: dict[int, tuple[list[tuple[tuple[int, int], ...]], dict[int, list[int]]]] = {}
+
+    def kept(self, level: int) -> tuple[list[tuple[tuple[int, int], ...]], dict[int, list[int]]]:
+        """Per action the (fact, twin) preconditions kept at ``level``; per fact the actions waiting for it."""
+        hit = self._kept.get(level)
+        if hit is None:
+            kept = [tuple((f, t) for f, c, t in pre if c > level) for pre in self.pre]
+            waiting: dict[int, list[int]] = {}
+            for k, pre in enumerate(kept):
+                for f, _ in pre:
+                    waiting.setdefault(f, []).append(k)
+            hit = self._kept[level] = (kept, waiting)
+        return hit
+
+
+def ground_task(grounder: Grounder, drop: frozenset[str]) -> GroundTask:
+    """:func:`ground_all` as fact ids, kept with the problem's shared grounding answers."""
+    store = grounder.domain.facts.grounding
+    key = ("task", grounder.signature, drop)
+    hit = store.get(key)
+    if not isinstance(hit, GroundTask):
+        hit = store[key] = GroundTask(grounder.domain.facts, ground_all(grounder, drop))
+    return hit
+
+
+def hadd_ids(
     grounder: Grounder, levels: LevelMap, drop: frozenset[str], cost: Callable[[Action], float]
-) -> dict[Atom, float]:
-    """Additive relaxed cost of each reachable atom (true ones cost 0)."""
-    acts = ground_all(grounder, drop)
-    true_now = set(grounder.belief.atoms())
-    table: dict[Atom, float] = {a: 0.0 for a in true_now}
-    waiting: dict[Atom, list[int]] = {}  # atom -> actions that need it
-    missing = [0] * len(acts)
-    total = [0.0] * len(acts)
-    queue: list[tuple[float, int, Atom]] = []
+) -> dict[int, float]:
+    """Additive relaxed cost of each reachable fact id (true ones cost 0): one exploration of every action.
+
+    A negative precondition whose atom is already false is free: it is settled at cost 0
+    with the true facts (the values are those of a table of atoms, ``hadd_table``).
+    """
+    task = ground_task(grounder, drop)
+    table_ids = grounder.domain.facts
+    top = levels.top
+    kept, waiting = task.kept(top)
+    over: dict[int, tuple[tuple[int, int], ...]] = {}
+    for key, lv in levels.overrides:
+        k = task.index.get(key)
+        if k is not None and lv != top:
+            over[k] = tuple((f, t) for f, c, t in task.pre[k] if c > lv)
+    true_now = table_ids.ids_of(grounder.belief.atoms())
+    settled = set(true_now)
+    for pre in (kept, over.values()):
+        for p in pre:
+            for f, t in p:
+                if t >= 0 and t not in true_now:
+                    settled.add(f)  # already false
+    n = len(task.acts)
+    missing = [len(p) for p in kept]
+    for k, p in over.items():
+        missing[k] = len(p)
+    extra: dict[int, list[int]] = {}
+    for k, p in over.items():
+        for f, _ in p:
+            extra.setdefault(f, []).append(k)
+    total = [0.0] * n
+    fixed = task.fixed_cost
+    acts = task.acts
+    for k in range(n):
+        c = fixed[k]
+        total[k] = cost(acts[k].action) if c is None else c
+    table: dict[int, float] = {}
+    queue: list[tuple[float, int, int]] = []
     tick = 0
-    for k, ga in enumerate(acts):
-        total[k] = cost(ga.action)
-        level = levels.level(ga.action)
-        for atom, crit in ga.pre:
-            if crit <= level:
-                continue  # hidden at this abstraction level
-            if atom.value is False and Atom(atom.predicate, atom.args, True) not in true_now:
-                continue  # already false
-            missing[k] += 1
-            waiting.setdefault(atom, []).append(k)
-    for a in true_now:
-        queue.append((0.0, tick, a))
+    for f in settled:
+        table[f] = 0.0
+        queue.append((0.0, tick, f))
         tick += 1
-    for k, ga in enumerate(acts):
+    effects = task.effects
+    for k in range(n):
         if missing[k] == 0:
-            for e in ga.effects:
+            for e in effects[k]:
                 if total[k] < table.get(e, math.inf):
                     table[e] = total[k]
                     queue.append((total[k], tick, e))
                     tick += 1
     heapq.heapify(queue)
-    done: set[Atom] = set()
+    done: set[int] = set()
     while queue:
-        c, _, a = heapq.heappop(queue)
-        if a in done or c > table.get(a, math.inf):
+        c, _, f = heapq.heappop(queue)
+        if f in done or c > table.get(f, math.inf):
             continue
-        done.add(a)
-        for k in waiting.get(a, ()):
+        done.add(f)
+        ready = [k for k in waiting.get(f, ()) if k not in over]  # overridden: their own preconditions
+        ready.extend(extra.get(f, ()))
+        for k in ready:
             missing[k] -= 1
             total[k] += c
             if missing[k] == 0:
-                for e in acts[k].effects:
+                for e in effects[k]:
                     if total[k] < table.get(e, math.inf):
                         table[e] = total[k]
                         heapq.heappush(queue, (total[k], tick, e))
@@ -121,20 +188,10 @@ def hadd_table(
     return table
 
 
-class HAdd:
-    """``h(G) = Σ h_add(a)``; ``inf`` for an unreachable atom."""
-
-    def __init__(self, table: dict[Atom, float], holds: Callable[[Atom], bool]) -> None:
-        self.table = table
-        self.holds = holds
-
-    def __call__(self, g: Goal) -> float:
-        total = 0.0
-        for a in g.atoms:
-            if self.holds(a):
-                continue
-            total += self.table.get(a, math.inf)
-            if total == math.inf:
-                return total
-        return total
-
+def hadd_table(
+    grounder: Grounder, levels: LevelMap, drop: frozenset[str], cost: Callable[[Action], float]
+) -> dict[Atom, float]:
+    """:func:`hadd_ids` by atom (false atoms that are free left out)."""
+    atoms = grounder.domain.facts.atoms
+    return {atoms[f]: v for f, v in hadd_ids(grounder, levels, drop, cost).items()
+            if not (atoms[f].value is False and v == 0.0)}

@@ -28,10 +28,10 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding import Grounder
-from nowplan.planning.heuristics import HAdd, can_relax, hadd_table
+from nowplan.planning.heuristics import can_relax, hadd_ids
 from nowplan.planning.relaxed import LazyRelaxed, Supporter
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
-from nowplan.planning.subgoals import NodeIndex, action_facts, regress
+from nowplan.planning.subgoals import ActionFacts, NodeIndex, action_facts, regress
 
 log = logging.getLogger(__name__)
 
@@ -57,6 +57,9 @@ class PlannerConfig:
     # relax over the achievers the grounder finds, explored on demand from the subgoals' atoms
     # (works with generators and tested predicates; heuristics.LazyRelaxed)
     lazy_relaxation: bool = False
+    # the estimate for the random-serialization shortcut (None: ``heuristic``); e.g. h_max there, where
+    # one conjunct at a time is searched, and LM-cut for the searches of whole conjunctions
+    shortcut_heuristic: str | None = None
     # "auto": search forward (nowplan.planning.forward) where the belief lists its facts and the
     # domain has no generators or tested predicates, else regress; "forward" | "regression" force one
     engine: Literal["auto", "forward", "regression"] = "auto"
@@ -147,22 +150,39 @@ class _Search:
             (float(o.cost) for o in domain.operators if not callable(o.cost)), default=1.0
         )
         self.min_cost = max(self.min_cost, 0.0)
-        self.hadd: HAdd | None = None
+        self.hadd: dict[int, float] | None = None  # the ground h_add table by fact id
         self.relaxed: LazyRelaxed | None = None
         # a domain's own estimate, fn(goal, belief, holds) -> cost, passed as context.extras["heuristic"]
         self.domain_h = context.extras.get("heuristic") if context is not None else None
-        kind = _RELAXED.get(config.heuristic)
-        if config.heuristic not in (*_RELAXED, "count"):
-            from nowplan.errors import UsageError
-
-            raise UsageError(f"PlannerConfig.heuristic is {config.heuristic!r}; use hadd, hmax, hff, lmcut or count")
-        if callable(self.domain_h) or kind is None:
-            pass
-        elif config.lazy_relaxation or (kind != "add" and can_relax(self.grounder, belief)):
-            self.relaxed = LazyRelaxed(self._supporters, self.fholds, kind, self._context_key)
-        elif can_relax(self.grounder, belief):
-            self.hadd = HAdd(hadd_table(self.grounder, levels, self.drop, self.cost), self.holds)
+        self._can_relax = can_relax(self.grounder, belief)
+        self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
+        self._ground_hadd: dict[int, float] | None = None
         self._ctx: tuple[frozenset[int], Goal] | None = None
+        self._templates: dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] = {}
+        for name in (config.heuristic, config.shortcut_heuristic or config.heuristic):
+            if name not in (*_RELAXED, "count"):
+                from nowplan.errors import UsageError
+
+                raise UsageError(f"PlannerConfig heuristic {name!r}: use hadd, hmax, hff, lmcut or count")
+        self.use(config.heuristic)
+
+    def use(self, name: str) -> None:
+        """Estimate with ``name`` from now on (explorations are shared: h_max with LM-cut, h_add with h_FF)."""
+        self.relaxed = self.hadd = None
+        kind = _RELAXED.get(name)
+        if callable(self.domain_h) or kind is None:
+            return
+        if self.config.lazy_relaxation or (kind != "add" and self._can_relax):
+            additive = kind in ("add", "ff")
+            r = self._relaxers.get(additive)
+            if r is None:
+                r = self._relaxers[additive] = LazyRelaxed(self._supporters, self.fholds, kind, self._context_key)
+            r.kind = kind
+            self.relaxed = r
+        elif self._can_relax:
+            if self._ground_hadd is None:
+                self._ground_hadd = hadd_ids(self.grounder, self.levels, self.drop, self.cost)
+            self.hadd = self._ground_hadd
 
     def _goal_of(self, context: frozenset[int]) -> Goal:
         if self._ctx is None or self._ctx[0] is not context:
@@ -212,7 +232,7 @@ class _Search:
             for f in fs:
                 x = hv.get(f)
                 if x is None:
-                    x = hv[f] = 0.0 if self.fholds(f) else self.hadd.table.get(self.table.atoms[f], math.inf)
+                    x = hv[f] = 0.0 if self.fholds(f) else self.hadd.get(f, math.inf)
                 total += x
             return total
         unmet = sum(1 for f in fs if not self.fholds(f))
@@ -227,6 +247,22 @@ class _Search:
             c = act.cost(self.belief)
             self._costs[act.key] = c
         return c
+
+    def _successors(self, target: int, goal_of: Callable[[], Goal]) -> list[tuple[Action, ActionFacts, float]]:
+        """The achievers of fact ``target`` with their facts at their level and their cost.
+
+        Kept per achiever list (the grounder keeps one list per atom, or per atom and
+        what generators read of the goal); the lists are held, so their ids stay theirs.
+        """
+        acts = self.grounder.achievers(self.table.atoms[target], goal_of)
+        hit = self._templates.get(id(acts))
+        if hit is not None and hit[0] is acts:
+            return hit[1]
+        levels, drop, T = self.levels, self.drop, self.table
+        out = [(act, action_facts(T, act, levels.level(act), drop), self.cost(act)) for act in acts]
+        if self.grounder.kept:
+            self._templates[id(acts)] = (acts, out)
+        return out
 
     def run(
         self,
@@ -280,18 +316,12 @@ class _Search:
             goal_of = _GoalOf(T, fs)
             legacy = not root_ok and fs == root
             tried: set[int] = set()  # by identity: the grounder makes one object per instance
-            alive = []  # (and the lists stay alive while ids are compared)
             for target in allowed:
-                acts = self.grounder.achievers(T.atoms[target], goal_of)
-                alive.append(acts)
-                for act in acts:
+                for act, info, cost in self._successors(target, goal_of):
                     if id(act) in tried:
                         continue
                     tried.add(id(act))
-                    info = action_facts(T, act, levels.level(act), drop)
-                    if guard and any(
-                        guard.get(fluent[e], e) != e for e in info.all_effs
-                    ):
+                    if guard and any(guard.get(fluent[e], e) != e for e in info.all_effs):
                         continue
                     if not legacy:
                         pre = regress(T, index, info)
@@ -301,7 +331,7 @@ class _Search:
                     if pre is None:
                         continue
                     child = (pre, focus)
-                    ng = gcost + self.cost(act)
+                    ng = gcost + cost
                     if child in closed or ng >= best_g.get(child, math.inf):
                         continue
                     best_g[child] = ng
@@ -408,7 +438,9 @@ def plan(
     if config.serialization and len(goal) > 1:
         order = sorted(goal.atoms)
         rng.shuffle(order)
+        search.use(config.shortcut_heuristic or config.heuristic)
         result = search.run(goal, config.shortcut_nodes, order=order)
+        search.use(config.heuristic)
         attempts.append(f"serialization:{result[0].value}")
         method = "serialization"
     if result[0] is not PlanStatus.SOLVED and config.monotonic and len(goal) > 1 and unmet != list(goal.atoms):

@@ -80,7 +80,10 @@ class LazyRelaxed:
         self._users: dict[int, list[int]] = {}
         self._achieved_by: dict[int, list[int]] = {}
         self._plans: dict[int, frozenset[int]] = {}
+        self._cuts: dict[frozenset[int], float] = {}  # LM-cut per set of unmet facts (while costs stand)
+        self._closures: dict[int, frozenset[int]] = {}
         self.facts_explored = 0
+        self.cut_hits = 0
 
     # -- queries ---------------------------------------------------------------
     def value(self, f: int, context: frozenset[int] = frozenset()) -> float:
@@ -133,6 +136,57 @@ class LazyRelaxed:
                 goal.append(f)
         if not goal:
             return 0.0
+        key = frozenset(goal)
+        hit = self._cuts.get(key)
+        if hit is not None:
+            self.cut_hits += 1
+            return hit
+        # facts whose explored achievers share no action are independent: LM-cut adds up over them
+        total = 0.0
+        for part in self._parts(goal):
+            pk = frozenset(part)
+            known = self._cuts.get(pk)
+            if known is None:
+                known = self._cuts[pk] = self._lmcut(part)
+            else:
+                self.cut_hits += 1
+            total += known
+        self._cuts[key] = total
+        return total
+
+    def _parts(self, goal: list[int]) -> list[list[int]]:
+        """``goal``'s facts grouped so that no two groups' relevant actions overlap."""
+        if len(goal) == 1:
+            return [goal]
+        owner: dict[int, int] = {}  # action -> the group that needs it
+        group = list(range(len(goal)))
+
+        def find(i: int) -> int:
+            while group[i] != i:
+                group[i] = group[group[i]]
+                i = group[i]
+            return i
+
+        for i, f in enumerate(goal):
+            for a in self._closure(f):
+                j = owner.setdefault(a, i)
+                if j != i:
+                    ri, rj = find(i), find(j)
+                    if ri != rj:
+                        group[ri] = rj
+        parts: dict[int, list[int]] = {}
+        for i, f in enumerate(goal):
+            parts.setdefault(find(i), []).append(f)
+        return list(parts.values())
+
+    def _closure(self, f: int) -> frozenset[int]:
+        """The actions that can fire behind ``f`` (kept until new achievers are found)."""
+        hit = self._closures.get(f)
+        if hit is None:
+            hit = self._closures[f] = frozenset(self._relevant([f])[1])
+        return hit
+
+    def _lmcut(self, goal: list[int]) -> float:
         facts, acts, init = self._relevant(goal)
         cost = {a: self._cost[a] for a in acts}
         users: dict[int, list[int]] = {}
@@ -389,9 +443,12 @@ class LazyRelaxed:
                     if v < val.get(t, math.inf):
                         heap.append((v, tick, t, a))
                         tick += 1
+        if fresh or reached:  # new achievers or facts: cached plans, cuts and closures may change
+            self._plans.clear()
+            self._cuts.clear()
+            self._closures.clear()
         if not heap:
             return
-        self._plans.clear()
         heapq.heapify(heap)
         while heap:
             v, _, f, a = heapq.heappop(heap)
