@@ -37,14 +37,18 @@ def test_forward_plans_replay_with_exact_preimages(dom: str, prob: str, search_k
     assert again is not None and [g for _, g in again] == [s.goal for s in res.plan.steps]
 
 
-def test_astar_with_hmax_is_optimal_on_small_problems() -> None:
-    p = load_pddl(DATA / "gripper" / "domain.pddl", DATA / "gripper" / "p01.pddl")
+@pytest.mark.parametrize(("dom", "prob"), [("gripper", "p02.pddl"), ("blocksworld", "p02.pddl"),
+                                           ("logistics", "p01.pddl")])
+def test_astar_with_hmax_is_optimal_on_small_problems(dom: str, prob: str) -> None:
+    p = load_pddl(DATA / dom / "domain.pddl", DATA / dom / prob)
     opt = plan(p.domain, p.objects, p.init, p.goal, flat_levels(),
                PlannerConfig(search="astar", weight=1.0, forward_heuristic="max", cost_type="normal"))
-    regr = plan(p.domain, p.objects, p.init, p.goal, flat_levels(),
-                PlannerConfig(engine="regression", weight=1.0, serialization=False, monotonic=False))
-    assert opt.plan is not None and regr.plan is not None
-    assert opt.plan.cost() <= regr.plan.cost()
+    # uniform-cost search (weight 0: the heuristic is ignored) is optimal by construction
+    ucs = plan(p.domain, p.objects, p.init, p.goal, flat_levels(), PlannerConfig(search="astar", weight=0.0))
+    greedy = plan(p.domain, p.objects, p.init, p.goal, flat_levels())
+    assert opt.plan is not None and ucs.plan is not None and greedy.plan is not None
+    assert opt.plan.cost() == ucs.plan.cost() <= greedy.plan.cost()
+    assert opt.expanded < ucs.expanded  # h_max prunes
 
 
 def test_the_same_call_gives_the_same_plan_whatever_the_cache_saw_before() -> None:

@@ -63,11 +63,25 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
+def _subcommand(argv: list[str]) -> str | None:
+    """The subcommand ``argv`` names, if it comes before any help flag (then only it is loaded)."""
+    i = 0
+    while i < len(argv):
+        a = argv[i]
+        if a in ("-h", "--help"):
+            return None
+        if a == "--import":
+            i += 2  # its value is a module name, not a subcommand
+            continue
+        if not a.startswith("-"):
+            return a if a in COMMANDS else None
+        i += 1
+    return None
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
-    # the first word naming a subcommand (options such as -v may come before it)
-    named = next((a for a in argv if not a.startswith("-")), None)
-    parser = build_parser(named if named in COMMANDS and "-h" not in argv[: argv.index(named)] else None)
+    parser = build_parser(_subcommand(argv))
     args = parser.parse_args(argv)
     logging.basicConfig(
         level=[logging.WARNING, logging.INFO, logging.DEBUG][min(args.verbose, 2)],

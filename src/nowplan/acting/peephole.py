@@ -38,7 +38,7 @@ from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
-from nowplan.planning.regression import PlannerConfig, preimage
+from nowplan.planning.regression import PlannerConfig, preimage, static_drop
 
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame
@@ -63,13 +63,6 @@ class PeepholeConfig:
     )
 
 
-def drop_set(domain: Domain, belief: Any) -> frozenset[str]:
-    """Static predicates the planner leaves out of pre-images (checked at grounding)."""
-    return frozenset(
-        n for n in domain.static_predicates if domain.predicates[n].test is None and hasattr(belief, "facts")
-    )
-
-
 class Reorderer:
     """Alg. 3 and 4 on the tail of one plan, for one belief."""
 
@@ -89,7 +82,7 @@ class Reorderer:
         self.levels = levels
         self.model = model or resource_model(domain)
         self.config = config or PeepholeConfig()
-        self.drop = drop_set(domain, belief)
+        self.drop = static_drop(domain, belief)
         self.estimator = Estimator(domain, objects, belief, self.model, self.config.estimate_search)
         self.moves: list[str] = []
         self.validity_checks = 0

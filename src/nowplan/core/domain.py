@@ -91,6 +91,12 @@ class Domain:
         return max(crits, default=0)
 
     @cached_property
+    def min_criticality(self) -> float:
+        """The lowest precondition criticality (``inf`` with no preconditions): below it all is concrete."""
+        crits = [p.criticality for o in self.operators for p in o.preconditions]
+        return min(crits, default=float("inf"))
+
+    @cached_property
     def top_level(self) -> int:
         """The most abstract level: only preconditions of maximal criticality are kept."""
         return self.max_criticality - 1

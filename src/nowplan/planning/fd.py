@@ -24,7 +24,7 @@ from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.operators import Action
 from nowplan.errors import ModelError, require
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
-from nowplan.planning.regression import preimage
+from nowplan.planning.regression import regress_through, static_drop
 
 log = logging.getLogger(__name__)
 
@@ -66,19 +66,9 @@ def plan_from_actions(
     domain = problem.domain
     goal = goal if goal is not None else problem.goal
     belief = problem.init
-    drop = frozenset(
-        n
-        for n in domain.static_predicates
-        if domain.predicates[n].test is None and hasattr(belief, "facts")
-    )
-    goals = [goal]
-    for i in range(len(actions) - 1, -1, -1):
-        a = actions[i]
-        g = preimage(goals[-1], a, levels.level(a), domain, drop)
-        if g is None:
-            raise ModelError(f"step {i + 1} ({a.pddl()}) destroys an atom its successors need")
-        goals.append(g)
-    goals.reverse()
+    goals, failed = regress_through(goal, actions, levels, domain, static_drop(domain, belief))
+    if failed is not None:
+        raise ModelError(f"step {failed + 1} ({actions[failed].pddl()}) destroys an atom its successors need")
     missing = [str(x) for x in goals[0].atoms if not domain.holds(x, belief)]
     if missing:
         raise ModelError("the initial state does not satisfy the plan's pre-image: " + ", ".join(missing))

@@ -273,20 +273,10 @@ def regress_actions(
     ``None`` if an action destroys a pre-image atom or the belief does not
     satisfy ``g0`` (the sequence is then not a plan at these levels).
     """
-    from nowplan.planning.regression import preimage
+    from nowplan.planning.regression import regress_through, static_drop
 
-    drop = frozenset(
-        n for n in domain.static_predicates
-        if domain.predicates[n].test is None and hasattr(belief, "facts")
-    )
-    goals = [goal]
-    for a in reversed(actions):
-        g = preimage(goals[-1], a, levels.level(a), domain, drop)
-        if g is None:
-            return None
-        goals.append(g)
-    goals.reverse()
-    if not domain.satisfies(belief, goals[0]):
+    goals, failed = regress_through(goal, actions, levels, domain, static_drop(domain, belief))
+    if failed is not None or not domain.satisfies(belief, goals[0]):
         return None
     return [(None, goals[0]), *zip(actions, goals[1:], strict=True)]
 

@@ -105,6 +105,33 @@ def preimage(
     return conjoin(Goal(frozenset(remaining)), pre, rules)
 
 
+def static_drop(domain: Domain, belief: Any) -> frozenset[str]:
+    """Static predicates checked at grounding and kept out of pre-images (when the belief lists facts)."""
+    if not hasattr(belief, "facts"):
+        return frozenset()
+    return frozenset(n for n in domain.static_predicates if domain.predicates[n].test is None)
+
+
+def regress_through(
+    goal: Goal, actions: Sequence[Action], levels: LevelMap, domain: Domain, drop: frozenset[str]
+) -> tuple[list[Goal], int | None]:
+    """The pre-images ``[g0, …, gn = goal]`` of an action sequence at its levels.
+
+    On failure, the goals regressed so far (``[g_k, …, gn]``) and the index
+    of the action that destroys an atom its successors need; else ``None``.
+    """
+    goals = [goal]
+    for i in range(len(actions) - 1, -1, -1):
+        a = actions[i]
+        g = preimage(goals[-1], a, levels.level(a), domain, drop)
+        if g is None:
+            goals.reverse()
+            return goals, i
+        goals.append(g)
+    goals.reverse()
+    return goals, None
+
+
 def achieves(goal: Goal, action: Action, domain: Domain) -> bool:
     rules = domain.rules
     table = goal.by_key()
@@ -135,11 +162,7 @@ class _Search:
         self.deadline = self.now() + config.time_limit
         self.table = domain.facts
         self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values)
-        self.drop = frozenset(
-            n
-            for n in domain.static_predicates
-            if domain.predicates[n].test is None and hasattr(belief, "facts")
-        )
+        self.drop = static_drop(domain, belief)
         self._holds: dict[Atom, bool] = {}
         self._fholds: dict[int, bool] = {}
         self._hv: dict[int, float] = {}
@@ -370,8 +393,7 @@ def concrete(domain: Domain, levels: LevelMap) -> bool:
     engine grounds and relaxes the whole task on every call (logistics with
     20 packages, HPN: 1.9 CPU s of planning by regression, 9.3 s forward).
     """
-    crits = [p.criticality for o in domain.operators for p in o.preconditions]
-    return not crits or levels.top < min(crits)
+    return levels.top < domain.min_criticality
 
 
 def context_allows_forward(context: PlanningContext | None) -> bool:
