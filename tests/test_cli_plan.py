@@ -90,10 +90,10 @@ def test_missing_file_is_one_line(capsys: pytest.CaptureFixture[str], tmp_path: 
 
 def test_bad_pddl_is_one_line(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
     bad = tmp_path / "d.pddl"
-    bad.write_text((LOG / "domain.pddl").read_text().replace(":typing)", ":typing :conditional-effects)"))
+    bad.write_text((LOG / "domain.pddl").read_text().replace("(:action", "(:durative-action", 1))
     code, _, err = run(capsys, str(bad), str(LOG / "p01.pddl"))
     assert code == 2 and err.count("\n") == 1
-    assert "requirement :conditional-effects is outside the supported STRIPS fragment" in err
+    assert "durative actions (temporal planning) (:durative-action) are not supported" in err
 
 
 @pytest.mark.parametrize(

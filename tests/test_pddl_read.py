@@ -122,38 +122,35 @@ def test_parser_leaves_tracebacklimit_alone(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize(
     "requirement", [":conditional-effects", ":adl", ":disjunctive-preconditions", ":derived-predicates",
-                    ":numeric-fluents", ":universal-preconditions"],
+                    ":numeric-fluents", ":universal-preconditions", ":durative-actions"],
 )
-def test_unsupported_requirement(tmp_path: Path, requirement: str) -> None:
+def test_declared_requirements_are_accepted(tmp_path: Path, requirement: str) -> None:
+    """A requirement only declares; refusals are for constructs the file uses (issue 18)."""
     text = GOOD_DOMAIN.replace(":action-costs)", f":action-costs {requirement})")
-    with pytest.raises(UnsupportedPDDLError) as info:
-        load_texts(tmp_path, text)
-    msg = str(info.value)
-    assert msg.startswith(f"{tmp_path / 'd.pddl'}:2: requirement {requirement}")
-    assert "outside the supported STRIPS fragment" in msg
+    assert load_texts(tmp_path, text).domain.name == "toy"
 
 
-@pytest.mark.parametrize(
-    ("effect", "construct", "line"),
-    [
-        ("(when (clear ?x) (marked ?x))", "conditional effect", 14),
-        ("(forall (?y - block) (marked ?y))", "universally quantified effect", 14),
-        ("(and (marked ?x) (increase (total-cost) (total-cost)))", "numeric effect", 14),
-    ],
-)
-def test_unsupported_constructs(tmp_path: Path, effect: str, construct: str, line: int) -> None:
+def test_unknown_requirement_is_a_warning(tmp_path: Path, caplog: pytest.LogCaptureFixture) -> None:
+    text = GOOD_DOMAIN.replace(":action-costs)", ":action-costs :made-up)")
+    assert load_texts(tmp_path, text).domain.name == "toy"
+    assert "unknown requirement :made-up" in caplog.text
+
+
+def test_numeric_effect_is_refused(tmp_path: Path) -> None:
+    effect = "(and (marked ?x) (increase (total-cost) (total-cost)))"
     text = GOOD_DOMAIN.replace(":effect (marked ?x)))", f":effect {effect}))")
     with pytest.raises(UnsupportedPDDLError) as info:
         load_texts(tmp_path, text)
-    assert construct in str(info.value) and "action mark" in str(info.value)
-    assert info.value.line == line
+    assert "numeric effect" in str(info.value) and "action mark" in str(info.value)
+    assert info.value.line == 14
 
 
-def test_missing_requirement_for_disjunction(tmp_path: Path) -> None:
+def test_undeclared_disjunction_is_a_warning(tmp_path: Path, caplog: pytest.LogCaptureFixture) -> None:
     text = GOOD_DOMAIN.replace(":precondition (clear ?x)", ":precondition (or (clear ?x) (marked ?x))")
-    with pytest.raises(PDDLError, match="disjunctive-preconditions") as info:
-        load_texts(tmp_path, text)
-    assert info.value.line == 13
+    prob = load_texts(tmp_path, text)
+    assert "d.pddl:13: the domain uses :disjunctive-preconditions without declaring it" in caplog.text
+    marks = [o for o in prob.domain.operators if o.pddl_name == "mark"]
+    assert len(marks) == 2  # one operator per disjunct
 
 
 def test_unknown_predicate_in_action(tmp_path: Path) -> None:

@@ -124,7 +124,8 @@ def run(args: argparse.Namespace) -> int:
         levels = flat_levels() if level is None else LevelMap(level)
         result = plan(domain, problem.objects, problem.init, problem.goal, levels, config)
     elapsed = time.perf_counter() - t0
-    actions = [a.pddl() for a in result.plan.actions] if result.plan is not None else []
+    # auxiliary operators (reaching a disjunctive goal) print as "" and are left out
+    actions = [s for s in (a.pddl() for a in result.plan.actions) if s] if result.plan is not None else []
     if args.json:
         doc: dict[str, Any] = {
             "plan": actions,

@@ -87,6 +87,9 @@ class Operator:
     param_types: tuple[str | None, ...] = ()
     resources: tuple[Resource, ...] = ()
     generators: tuple[Generator, ...] = ()
+    # the name plans print (a PDDL action compiled into several operators prints its own name);
+    # None: ``name``; "": an auxiliary operator that plans do not print (e.g. reaching a disjunctive goal)
+    pddl_name: str | None = field(default=None, compare=False, hash=False)
 
     def __post_init__(self) -> None:
         if self.param_types and len(self.param_types) != len(self.params):
@@ -169,7 +172,11 @@ class Action:
         return all(p.criticality > level for p in self.operator.preconditions)
 
     def pddl(self) -> str:
-        return "(" + " ".join([self.name, *(fmt_term(a) for a in self.args)]) + ")"
+        """The action as PDDL, e.g. ``(move a b)``; "" for an auxiliary operator (see Operator.pddl_name)."""
+        name = self.operator.pddl_name
+        if name == "":
+            return ""
+        return "(" + " ".join([name or self.name, *(fmt_term(a) for a in self.args)]) + ")"
 
     def __str__(self) -> str:
         return f"{self.name}({', '.join(fmt_term(a) for a in self.args)})"

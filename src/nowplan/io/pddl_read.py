@@ -1,51 +1,58 @@
-"""Read a STRIPS PDDL domain and problem into nowplan's core model.
+"""Read a PDDL domain and problem into nowplan's core model.
 
-The maintained ``pddl`` parser does the syntax; this module translates the
-result into :class:`nowplan.core.domain.Domain` / :class:`Problem` and checks
-what the parser does not (declared predicates, arities, known objects).
-
-Supported fragment: ``:strips``, ``:typing``, ``:negative-preconditions``,
-``:equality`` and ``:action-costs`` with constant ``(increase (total-cost) N)``
-effects.  Negative goals are allowed.  Anything else (conditional effects,
-quantifiers, disjunctions, derived predicates, numeric fluents, ...) raises
-:class:`nowplan.errors.UnsupportedPDDLError`.
+nowplan's own front end (:mod:`nowplan.io.sexpr`, :mod:`nowplan.io.pddl_syntax`)
+reads the text leniently, as planners do in practice (see docs/pddl.md):
+keywords in any case, requirements used but not declared (a warning),
+``(either ...)`` types, ``object`` in ``:types``, ``total-cost`` with or
+without ``:action-costs``, action costs that are constants or expressions
+over static numeric functions of the action's parameters (their values come
+from the problem's ``(= (f a b) 5)``).  :mod:`nowplan.io.pddl_check` checks
+names, arities and types; :mod:`nowplan.io.pddl_adl` compiles quantifiers,
+disjunctions and conditional effects to STRIPS operators over the problem's
+objects.  What stays outside (durative actions, numeric fluents that change,
+derived predicates, ...) raises :class:`nowplan.errors.UnsupportedPDDLError`
+naming the construct and its line.
 
 Modelling choices:
 
 * equality is the static predicate ``=`` and the initial state lists
-  ``=(o, o)`` for every object and constant: the grounder then joins and
-  checks equalities like any static precondition (they never enter a
-  pre-image) and relaxed heuristics see them as ordinary facts;
-* effects are stored deletes first, then adds, so that applying them in
-  order (``State.apply``) gives PDDL's "add wins" semantics;
-* without a criticality file every precondition has criticality 1, so the
-  domain is flat (``top_level`` 0: every instance is primitive);
+  ``=(o, o)`` for every object and constant;
+* effects are stored deletes first, then adds (PDDL's "add wins" under
+  ``State.apply``);
+* an action compiled into several operators (a disjunctive precondition,
+  conditional effects, an ``(either ...)`` parameter) gives operators named
+  ``NAME-v1``, ``NAME-v2``, ...; each has ``pddl_name`` NAME, which plans print;
+* a disjunctive goal becomes the auxiliary atom ``(goal-reached)`` with one
+  auxiliary operator (cost 0, not printed in plans) per disjunct;
+* without a criticality file every precondition has criticality 1 (flat);
 * names are lower-cased (PDDL is case-insensitive).
 """
 
 from __future__ import annotations
 
+import itertools
 import logging
-import re
 from collections.abc import Iterable, Mapping
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
 
 from nowplan.core.atoms import Atom, Goal, Term, Var
 from nowplan.core.domain import Domain, Predicate, Problem
 from nowplan.core.operators import Operator, Precondition
 from nowplan.core.state import State
-from nowplan.errors import ContradictoryGoalError, PDDLError
-from nowplan.io.pddl_source import Source, parse_source, read_source
+from nowplan.errors import ContradictoryGoalError, PDDLError, UnsupportedPDDLError
+from nowplan.io import pddl_adl as adl
+from nowplan.io.pddl_ast import TOTAL_COST, TRUE, EAnd, Effect, EForall, ELit, EWhen, FAnd, FAtom, FNot, Formula
+from nowplan.io.pddl_check import EQUALITY, Checker, warn_undeclared
+from nowplan.io.pddl_cost import FunctionCost, constant_cost
+from nowplan.io.pddl_source import read_source
+from nowplan.io.pddl_syntax import ActionDef, DomainDef, ProblemDef, parse_domain, parse_problem
+from nowplan.io.sexpr import SList, Token
 
 log = logging.getLogger(__name__)
 
-EQUALITY = "="
-SUPPORTED_REQUIREMENTS = ("strips", "typing", "negative-preconditions", "equality", "action-costs")
-_FRAGMENT = "outside the supported STRIPS fragment (" + ", ".join(
-    ":" + r for r in SUPPORTED_REQUIREMENTS
-) + ")"
+GOAL_REACHED = "goal-reached"
+MAX_TYPE_VARIANTS = 64  # operators from the (either ...) parameters of one action
 
 
 def equality_predicate() -> Predicate:
@@ -57,269 +64,192 @@ def equality_facts(objects: Iterable[str]) -> list[Atom]:
     return [Atom(EQUALITY, (o, o)) for o in sorted(objects)]
 
 
-# --------------------------------------------------------------------------- formulas
+@dataclass(frozen=True)
+class World:
+    """What the compilation knows of the problem: objects, static facts, function values."""
 
-
-def _name(x: Any) -> str:
-    return str(x).lower()
-
-
-def _type_of(tags: Iterable[Any], src: Source, what: str) -> str | None:
-    tags = sorted(_name(t) for t in tags)
-    if not tags:
-        return None
-    if len(tags) > 1:
-        raise src.error(
-            f"{what} has an (either ...) type {tags}, which is {_FRAGMENT}",
-            src.line_of(r"\(\s*either[\s)]"),
-            unsupported=True,
-        )
-    return None if tags[0] == "object" else tags[0]
-
-
-def _term(t: Any) -> Term:
-    from pddl.logic.terms import Variable
-
-    return Var(_name(t.name)) if isinstance(t, Variable) else _name(t.name)
-
-
-_CONSTRUCTS = {
-    "Or": "a disjunction (or ...)",
-    "Imply": "an implication (imply ...)",
-    "ForallCondition": "a universal quantifier (forall ...)",
-    "ExistsCondition": "an existential quantifier (exists ...)",
-    "When": "a conditional effect (when ...)",
-    "Forall": "a universally quantified effect (forall ...)",
-    "OneOf": "a non-deterministic effect (oneof ...)",
-    "DerivedPredicate": "a derived predicate",
-}
-
-
-def _construct(f: Any) -> str:
-    cls = type(f).__name__
-    if cls in _CONSTRUCTS:
-        return _CONSTRUCTS[cls]
-    mod = type(f).__module__
-    if mod.endswith("functions"):
-        return f"a numeric expression ({f})"
-    return f"the construct {f}"
-
-
-def _unsupported(src: Source, f: Any, where: str, start: int) -> PDDLError:
-    keyword = {
-        "Or": "or", "Imply": "imply", "ForallCondition": "forall", "ExistsCondition": "exists",
-        "When": "when", "Forall": "forall", "OneOf": "oneof",
-    }.get(type(f).__name__)
-    line = src.line_of_atom(keyword, start) if keyword else None
-    return src.error(f"{where} uses {_construct(f)}, which is {_FRAGMENT}", line, unsupported=True)
-
-
-def _literals(f: Any, src: Source, where: str, start: int) -> list[Atom]:
-    """A conjunction of literals (atoms, negated atoms, equalities) as atoms."""
-    from pddl.logic.base import And, Not
-    from pddl.logic.predicates import EqualTo
-    from pddl.logic.predicates import Predicate as PPred
-
-    if f is None:
-        return []
-    if isinstance(f, And):
-        return [a for op in f.operands for a in _literals(op, src, where, start)]
-    value = True
-    if isinstance(f, Not):
-        value, f = False, f.argument
-    if isinstance(f, PPred):
-        return [Atom(_name(f.name), tuple(_term(t) for t in f.terms), value)]
-    if isinstance(f, EqualTo):
-        return [Atom(EQUALITY, (_term(f.left), _term(f.right)), value)]
-    if type(f).__name__ == "Or" and not getattr(f, "operands", True):
-        return []  # the parser's encoding of an empty precondition "()"
-    raise _unsupported(src, f, where, start)
-
-
-def _effects(f: Any, src: Source, where: str, start: int) -> tuple[list[Atom], float | None]:
-    """Literal effects and the constant ``total-cost`` increase (or None)."""
-    from pddl.logic.base import And
-    from pddl.logic.functions import Increase, NumericFunction, NumericValue
-
-    if f is None:
-        return [], None
-    parts = list(f.operands) if isinstance(f, And) else [f]
-    atoms: list[Atom] = []
-    cost: float | None = None
-    for p in parts:
-        if isinstance(p, Increase):
-            fn, amount = p.operands
-            if (
-                isinstance(fn, NumericFunction)
-                and _name(fn.name) == "total-cost"
-                and isinstance(amount, NumericValue)
-                and cost is None
-            ):
-                cost = float(amount.value)
-                if cost < 0:
-                    raise src.error(f"{where}: action costs must be >= 0, got {cost:g}",
-                                    src.line_of(r"total-cost", start))
-                continue
-            raise src.error(
-                f"{where} uses the numeric effect {p}; only a constant "
-                f"(increase (total-cost) N) is supported, anything else is {_FRAGMENT}",
-                src.line_of(r"\(\s*increase[\s(]", start),
-                unsupported=True,
-            )
-        atoms.extend(_literals(p, src, where, start))
-    return atoms, cost
+    objects: Mapping[str, str | None]
+    init: frozenset[tuple[str, tuple[str, ...]]]
+    values: Mapping[tuple[str, tuple[str, ...]], float]
 
 
 # --------------------------------------------------------------------------- domain
 
 
-def _check_atom(
-    a: Atom,
-    predicates: Mapping[str, Predicate],
-    src: Source,
-    where: str,
-    start: int,
-    variables: Iterable[Var] | None = None,
-    objects: Mapping[str, str | None] | None = None,
-) -> None:
-    pred = predicates.get(a.predicate)
-    if pred is None:
-        known = ", ".join(sorted(p for p in predicates if p != EQUALITY)) or "none"
-        raise src.error(
-            f"unknown predicate '{a.predicate}' in {where}; declared predicates: {known}",
-            src.line_of_atom(a.predicate, start),
-        )
-    if len(a.args) != pred.arity:
-        raise src.error(
-            f"predicate '{a.predicate}' takes {pred.arity} argument(s) but {where} gives "
-            f"{len(a.args)} in {_show(a)}",
-            src.line_of_atom(a.predicate, start),
-        )
-    for t in a.args:
-        if isinstance(t, Var):
-            if variables is not None and t not in variables:
-                raise src.error(
-                    f"{where} uses the variable ?{t.name}, which is not a parameter",
-                    src.line_of_token("?" + t.name, start),
-                )
-        elif objects is not None and t not in objects:
-            raise src.error(
-                f"unknown object '{t}' in {where} ({_show(a)}); declare it in (:objects ...)",
-                src.line_of_token(str(t), start),
-            )
+def _read_domain_def(path: str | Path) -> tuple[DomainDef, Checker]:
+    src = read_source(path)
+    d = parse_domain(src.text, src.path)
+    checker = Checker(d)
+    warn_undeclared(d)
+    if d.derived:
+        raise UnsupportedPDDLError(f"derived predicates ((:derived ({d.derived[0].pred} ...) ...)) are not "
+                                   "supported yet; compile them into the actions' conditions",
+                                   path=d.path, line=d.derived[0].line)
+    seen: dict[str, int] = {}
+    for act in d.actions:
+        if act.name in seen:
+            raise PDDLError(f"the action '{act.name}' is defined twice (first on line {seen[act.name]}); "
+                            "rename or remove one", path=d.path, line=act.line)
+        seen[act.name] = act.line
+        names = [p.name for p in act.params]
+        if len(set(names)) != len(names):
+            raise PDDLError(f"action {act.name} repeats a parameter name", path=d.path, line=act.line)
+        scope = checker.bind(act.params, {}, f"action {act.name}", d.path)
+        checker.formula(act.precondition, f"the precondition of action {act.name}", scope, checker.constants,
+                        d.path)
+        checker.effect(act.effect, f"the effect of action {act.name}", scope, checker.constants, d.path)
+    return d, checker
 
 
-def _show(a: Atom) -> str:
-    body = "(" + " ".join([a.predicate, *(str(t) if not isinstance(t, Var) else f"?{t.name}" for t in a.args)]) + ")"
-    return body if a.value is not False else f"(not {body})"
+def _changed(e: Effect | None, out: set[str]) -> None:
+    if isinstance(e, ELit):
+        out.add(e.atom.pred)
+    elif isinstance(e, EAnd):
+        for p in e.parts:
+            _changed(p, out)
+    elif isinstance(e, EWhen | EForall):
+        _changed(e.effect, out)
 
 
-def _check_requirements(reqs: Iterable[Any], src: Source) -> set[str]:
-    names = {_name(r.value if hasattr(r, "value") else r).lstrip(":") for r in reqs}
-    for r in sorted(names):
-        if r not in SUPPORTED_REQUIREMENTS:
-            raise src.error(
-                f"requirement :{r} is {_FRAGMENT}",
-                src.line_of(r":" + re.escape(r) + r"(?![\w-])"),
-                unsupported=True,
-            )
-    return names
+def _uses_equality(f: Formula | Effect | None) -> bool:
+    if isinstance(f, FAtom):
+        return f.pred == EQUALITY
+    if isinstance(f, FNot):
+        return _uses_equality(f.arg)
+    if f is None or isinstance(f, ELit):
+        return False
+    if isinstance(f, EWhen):
+        return _uses_equality(f.cond) or _uses_equality(f.effect)
+    if isinstance(f, EForall):
+        return _uses_equality(f.effect)
+    parts = getattr(f, "parts", None)
+    if parts is not None:
+        return any(_uses_equality(p) for p in parts)
+    body = getattr(f, "body", None)
+    return _uses_equality(body) if body is not None else False
 
 
-def _ordered(items: Iterable[Any], src: Source, pattern: str) -> list[Any]:
-    """Items (named) in the order they appear in the file, for deterministic models."""
-    def pos(x: Any) -> tuple[int, str]:
-        m = re.search(pattern.format(re.escape(_name(x.name))), src.code)
-        return (m.start() if m else len(src.code), _name(x.name))
-
-    return sorted(items, key=pos)
+class _NeedsObjects(Exception):
+    pass
 
 
-def _check_unique_actions(src: Source) -> None:
-    """Two actions of one name (the parser would keep only one of them silently)."""
-    seen: set[str] = set()
-    for m in re.finditer(r"\(\s*:action\s+([^\s()]+)", src.code, flags=re.IGNORECASE):
-        name = m.group(1).lower()
-        if name in seen:
-            raise src.error(f"the action '{name}' is defined twice; rename or remove one",
-                            src.code.count("\n", 0, m.start()) + 1)
-        seen.add(name)
+def _objects_of(checker: Checker, world: World | None):  # type: ignore[no-untyped-def]
+    def objects_of(types: tuple[str, ...]) -> list[str]:
+        if world is None:
+            raise _NeedsObjects()
+        return sorted(o for o, t in world.objects.items() if checker.is_a(t, types))
+
+    return objects_of
+
+
+def _static_value(static: frozenset[str], world: World | None):  # type: ignore[no-untyped-def]
+    def value(lit: adl.Lit) -> bool | None:
+        pred, args, v = lit
+        if any(a.startswith("?") for a in args):
+            return None
+        if pred == EQUALITY:
+            return (args[0] == args[1]) == v
+        if world is None or pred not in static:
+            return None
+        return ((pred, args) in world.init) == v
+
+    return value
+
+
+def _atom(lit: adl.Lit) -> Atom:
+    pred, args, v = lit
+    terms: tuple[Term, ...] = tuple(Var(a[1:]) if a.startswith("?") else a for a in args)
+    return Atom(pred, terms, v)
+
+
+def _compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: frozenset[str],
+                    world: World | None) -> tuple[list[Operator], bool]:
+    """The operators of one action, and whether it increases total-cost."""
+    where = f"action {act.name}"
+    objects_of = _objects_of(checker, world)
+    value = _static_value(static, world)
+    try:
+        pre = adl.to_nnf(act.precondition or TRUE, {}, objects_of, value)
+        flat = adl.flatten_effects(act.effect, objects_of, value, where)
+        variants = adl.compile_action(pre, flat, where)
+    except _NeedsObjects:
+        raise UnsupportedPDDLError(f"{where} quantifies over objects; quantifiers are compiled over a problem's "
+                                   "objects: read the domain together with a problem (load_pddl)",
+                                   path=d.path, line=act.line) from None
+    except adl.TooLarge as exc:
+        raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=d.path, line=act.line) from None
+    type_choices: list[list[str | None]] = []
+    for p in act.params:
+        alts: list[str | None] = [t for t in p.types if not any(o != t and o in checker.ancestors(t) for o in p.types)]
+        type_choices.append(alts or [None])
+    combos = list(itertools.islice(itertools.product(*type_choices), MAX_TYPE_VARIANTS + 1))
+    if len(combos) > MAX_TYPE_VARIANTS:
+        raise UnsupportedPDDLError(f"{where} has (either ...) parameters with more than {MAX_TYPE_VARIANTS} "
+                                   "combinations of types", path=d.path, line=act.line)
+    params = tuple(Var(p.name[1:]) for p in act.params)
+    if flat.costs:
+        exprs = flat.costs
+        const = constant_cost(exprs)
+        if const is not None and const < 0:
+            raise PDDLError(f"{where}: action costs must be >= 0, got {const:g}", path=d.path, line=act.line)
+        cost: float | FunctionCost | None = const if const is not None else FunctionCost(
+            act.name, tuple(p.name for p in act.params), exprs,
+            world.values if world is not None else None, d.path)
+    else:
+        cost = None
+    ops = []
+    n = len(variants) * len(combos)
+    for k, (var, types) in enumerate(itertools.product(variants, combos)):
+        dels = [_atom(lit) for lit in var.effects if not lit[2]]
+        adds = [_atom(lit) for lit in var.effects if lit[2]]
+        ops.append(Operator(
+            act.name if n == 1 else f"{act.name}-v{k + 1}",
+            params,
+            tuple(Precondition(_atom(lit), 1) for lit in sorted(var.pre)),
+            tuple(dels + adds),
+            cost=cost if cost is not None else 1.0,
+            param_types=tuple(types),
+            pddl_name=None if n == 1 else act.name,
+        ))
+    return ops, cost is not None
+
+
+def _compile_domain(d: DomainDef, checker: Checker, world: World | None) -> Domain:
+    changed: set[str] = set()
+    for act in d.actions:
+        _changed(act.effect, changed)
+    static = frozenset(p for p in d.predicates if p not in changed)
+    predicates: dict[str, Predicate] = {}
+    for name, (args, _) in d.predicates.items():
+        predicates[name] = Predicate(name, len(args), tuple(a.types[0] if len(a.types) == 1 else None
+                                                           for a in args))
+    if "equality" in d.requirements or any(_uses_equality(a.precondition) or _uses_equality(a.effect)
+                                           for a in d.actions):
+        predicates[EQUALITY] = equality_predicate()
+    operators: list[Operator] = []
+    costed: list[bool] = []
+    for act in d.actions:
+        ops, has_cost = _compile_action(act, d, checker, static, world)
+        operators.extend(ops)
+        costed.extend([has_cost] * len(ops))
+    # PDDL :action-costs semantics: once costs are used, an action without an increase costs 0
+    if any(costed):
+        operators = [op if c else replace(op, cost=0.0) for op, c in zip(operators, costed, strict=True)]
+    taken = {a.name for a in d.actions}
+    for op in operators:
+        if op.pddl_name is not None and op.name in taken:
+            raise PDDLError(f"the action '{op.pddl_name}' compiles to the operator '{op.name}', which is also an "
+                            "action of the domain; rename that action", path=d.path)
+    return Domain(d.name, predicates, tuple(operators), dict(checker.parent), dict(checker.constants))
 
 
 def read_domain(domain_path: str | Path) -> Domain:
-    """Read a PDDL domain file (flat: every precondition has criticality 1, no mutexes)."""
-    src = read_source(domain_path)
-    d = parse_source(src, "domain")
-    _check_unique_actions(src)
-    reqs = _check_requirements(d.requirements, src)
-    if d.derived_predicates:
-        raise src.error(f"derived predicates are {_FRAGMENT}", src.line_of(r"\(:derived"),
-                        unsupported=True)
-    for fn in d.functions:
-        if _name(fn.name) != "total-cost":
-            raise src.error(
-                f"the numeric fluent ({fn.name}) is {_FRAGMENT}; only (total-cost) is supported",
-                src.line_of(r"\(:functions"),
-                unsupported=True,
-            )
-    types: dict[str, str | None] = {}
-    for t, parent in d.types.items():
-        if _name(t) == "object":
-            continue
-        types[_name(t)] = None if parent is None or _name(parent) == "object" else _name(parent)
-    constants = {
-        _name(c.name): _type_of(c.type_tags, src, f"constant {c.name}") for c in d.constants
-    }
-    predicates: dict[str, Predicate] = {}
-    for p in _ordered(d.predicates, src, r"\(\s*{}[\s)]"):
-        name = _name(p.name)
-        predicates[name] = Predicate(
-            name,
-            len(p.terms),
-            tuple(_type_of(t.type_tags, src, f"predicate {name}") for t in p.terms),
-        )
-    uses_eq = "equality" in reqs or re.search(r"\(\s*=\s*[?\w]", src.code) is not None
-    if uses_eq:
-        predicates[EQUALITY] = equality_predicate()
-    operators: list[Operator] = []
-    costs: list[float | None] = []
-    for act in _ordered(d.actions, src, r"\(:action\s+{}[\s)]"):
-        name = _name(act.name)
-        start = src.offset_of(r"\(:action\s+" + re.escape(name) + r"[\s)]")
-        where = f"action {name}"
-        params = tuple(Var(_name(v.name)) for v in act.parameters)
-        if len(set(params)) != len(params):
-            raise src.error(f"{where} repeats a parameter name", src.line_of(r":parameters", start))
-        ptypes = tuple(_type_of(v.type_tags, src, f"parameter ?{v.name} of {where}") for v in act.parameters)
-        pre = _literals(act.precondition, src, f"the precondition of {where}", start)
-        eff, cost = _effects(act.effect, src, f"the effect of {where}", start)
-        for a in pre:
-            _check_atom(a, predicates, src, f"the precondition of {where}", start, params, constants)
-        for a in eff:
-            if a.predicate == EQUALITY:
-                raise src.error(f"{where} has an equality in its effect", src.line_of(r"\(\s*=", start))
-            _check_atom(a, predicates, src, f"the effect of {where}", start, params, constants)
-        costs.append(cost)
-        effects = [a for a in eff if a.value is False] + [a for a in eff if a.value is not False]
-        operators.append(
-            Operator(
-                name,
-                params,
-                tuple(Precondition(a, 1) for a in pre),
-                tuple(effects),
-                param_types=ptypes,
-            )
-        )
-    # PDDL :action-costs semantics: once costs are used, an action without an increase costs 0
-    default = 0.0 if any(c is not None for c in costs) else 1.0
-    operators = [
-        replace(op, cost=c if c is not None else default) for op, c in zip(operators, costs, strict=True)
-    ]
-    return Domain(_name(d.name), predicates, tuple(operators), types, constants)
+    """Read a PDDL domain file (flat: every precondition has criticality 1, no mutexes).
 
-
-
-# --------------------------------------------------------------------------- problem
+    Quantifiers need a problem's objects: such a domain is read with :func:`load_pddl`.
+    """
+    d, checker = _read_domain_def(domain_path)
+    return _compile_domain(d, checker, None)
 
 
 def load_domain(domain_path: str | Path, criticality_path: str | Path | None = None) -> Domain:
@@ -330,6 +260,100 @@ def load_domain(domain_path: str | Path, criticality_path: str | Path | None = N
 
         domain = apply_criticality(domain, criticality_path)
     return domain
+
+
+# --------------------------------------------------------------------------- problem
+
+
+def _read_init(p: ProblemDef, d: DomainDef, checker: Checker, known: Mapping[str, str | None]
+               ) -> tuple[list[Atom], dict[tuple[str, tuple[str, ...]], float]]:
+    atoms: list[Atom] = []
+    values: dict[tuple[str, tuple[str, ...]], float] = {}
+    for item, line in p.init:
+        if not isinstance(item, SList):
+            raise PDDLError(f"expected a fact in parentheses in the initial state, got '{item}'", path=p.path,
+                            line=line)
+        head = item.head()
+        if head == "=" and len(item) == 3 and isinstance(item.items[1], SList):
+            fn = item.items[1]
+            fname = fn.head()
+            val = item.items[2]
+            if fname == TOTAL_COST:
+                continue
+            if fname not in checker.functions:
+                raise PDDLError(f"unknown function '{fname or fn}' in the initial state; declared functions: "
+                                f"{', '.join(sorted(f for f in checker.functions if f != TOTAL_COST)) or 'none'}",
+                                path=p.path, line=line)
+            args = tuple(str(a) for a in fn.items[1:])
+            if any(isinstance(a, SList) for a in fn.items[1:]) or len(args) != len(checker.functions[fname]):
+                raise PDDLError(f"function '{fname}' takes {len(checker.functions[fname])} object argument(s), "
+                                f"got {fn} in the initial state", path=p.path, line=line)
+            checker.args(args, checker.functions[fname], fname, "the initial state", {}, known, p.path, line)
+            try:
+                number = float(val.text) if isinstance(val, Token) else None
+            except ValueError:
+                number = None
+            if number is None:
+                raise PDDLError(f"the value of {fn} in the initial state must be a number, got {val}",
+                                path=p.path, line=line)
+            if (fname, args) in values and values[(fname, args)] != number:
+                raise PDDLError(f"the initial state gives {fn} two values", path=p.path, line=line)
+            values[(fname, args)] = number
+            continue
+        value = True
+        if head == "not" and len(item) == 2 and isinstance(item.items[1], SList):
+            value, item = False, item.items[1]
+            head = item.head()
+        if head == "at" and len(item) == 3 and isinstance(item.items[1], Token) and \
+                item.items[1].text.replace(".", "", 1).isdigit():
+            raise UnsupportedPDDLError(f"the initial state has the timed initial literal {item}; timed initial "
+                                       "literals are not supported", path=p.path, line=line)
+        if head in ("and", "or", "not", "forall", "exists", "when"):
+            raise PDDLError(f"the initial state lists facts, not ({head} ...)", path=p.path, line=line)
+        r = adl_reader(p.path)
+        a = r.atom(item, "the initial state")
+        if a.pred == EQUALITY:
+            raise PDDLError("equalities cannot be listed in the initial state", path=p.path, line=line)
+        checker.atom(a, "the initial state", {}, known, p.path)
+        atoms.append(Atom(a.pred, a.args, value))
+    positives = {a.key for a in atoms if a.value is True}
+    for a in atoms:
+        if a.value is False and a.key in positives:
+            raise PDDLError(f"the initial state lists both {a.negate()} and its negation", path=p.path)
+    return atoms, values
+
+
+def adl_reader(path: str):  # type: ignore[no-untyped-def]
+    from nowplan.io.pddl_ast import Reader
+
+    return Reader(path)
+
+
+def _is_conjunction(f: Formula) -> bool:
+    if isinstance(f, FAtom):
+        return True
+    if isinstance(f, FNot):
+        return isinstance(f.arg, FAtom)
+    return isinstance(f, FAnd) and all(_is_conjunction(x) for x in f.parts)
+
+
+def _literals(f: Formula) -> list[Atom]:
+    if isinstance(f, FAtom):
+        return [Atom(f.pred, f.args)]
+    if isinstance(f, FNot):
+        return [a.negate() for a in _literals(f.arg)]
+    assert isinstance(f, FAnd)
+    return [a for x in f.parts for a in _literals(x)]
+
+
+def _goal_operators(disjuncts: list[frozenset[adl.Lit]], taken: Iterable[str]) -> tuple[str, list[Operator]]:
+    names = set(taken)
+    pred = GOAL_REACHED
+    while pred in names:
+        pred += "_"
+    ops = [Operator(f"{pred}-{i + 1}", (), tuple(Precondition(_atom(lit), 1) for lit in sorted(d)),
+                    (Atom(pred, ()),), cost=0.0, pddl_name="") for i, d in enumerate(disjuncts)]
+    return pred, ops
 
 
 def load_pddl(
@@ -345,45 +369,51 @@ def load_pddl(
     :mod:`nowplan.planning.invariants` that hold in the initial state are
     added to ``domain.conflicts``, so regression prunes impossible subgoals.
     """
-    domain = load_domain(domain_path, criticality_path)
+    d, checker = _read_domain_def(domain_path)
     src = read_source(problem_path)
-    p = parse_source(src, "problem")
-    _check_requirements(p.requirements or (), src)
-    if _name(p.domain_name) != domain.name:
+    p = parse_problem(src.text, src.path)
+    if p.domain_name and p.domain_name != d.name:
         log.warning("%s: problem is for domain '%s' but the domain file defines '%s'",
-                    src.path, _name(p.domain_name), domain.name)
-    objects: dict[str, str | None] = {}
-    for o in sorted(p.objects, key=lambda c: _name(c.name)):
-        t = _type_of(o.type_tags, src, f"object {o.name}")
-        if t is not None and t not in domain.types:
-            raise src.error(
-                f"object '{_name(o.name)}' has the unknown type '{t}'; domain types: "
-                f"{', '.join(sorted(domain.types)) or 'none'}",
-                src.line_of_token(t, src.offset_of(r"\(:objects")),
-            )
-        objects[_name(o.name)] = t
-    known = {**dict(domain.constants), **objects}
-    init_start = src.offset_of(r"\(:init")
-    init_atoms = _init_atoms(p.init, src, init_start)
-    for a in init_atoms:
-        _check_atom(a, domain.predicates, src, "the initial state", init_start, (), known)
-        if a.predicate == EQUALITY:
-            raise src.error("equalities cannot be listed in the initial state",
-                            src.line_of(r"\(\s*=", init_start))
-    positives = {a.key for a in init_atoms if a.value is True}
-    for a in init_atoms:
-        if a.value is False and a.key in positives:
-            raise src.error(f"the initial state lists both {_show(a.negate())} and {_show(a)}",
-                            src.line_of_atom(a.predicate, init_start))
-    goal_start = src.offset_of(r"\(:goal")
-    goal_atoms = _literals(p.goal, src, "the goal", goal_start)
-    for a in goal_atoms:
-        _check_atom(a, domain.predicates, src, "the goal", goal_start, (), known)
+                    src.path, p.domain_name, d.name)
+    objects = dict(sorted(checker.objects_from(p.objects, "object", p.path).items()))
+    known = {**checker.constants, **objects}
+    init_atoms, values = _read_init(p, d, checker, known)
+    assert p.goal is not None
+    checker.formula(p.goal, "the goal", {}, known, p.path)
     if p.metric is not None:
-        expr = " ".join(str(p.metric).split()).lower()
-        if expr not in ("minimize (total-cost)", "(minimize (total-cost))"):
-            raise src.error(f"the metric '{expr}' is {_FRAGMENT}; only (minimize (total-cost)) is "
-                            "supported", src.line_of(r"\(:metric"), unsupported=True)
+        direction, expr = p.metric
+        if direction != "minimize" or not (getattr(expr, "name", None) == TOTAL_COST and not getattr(expr, "args", ())):
+            raise UnsupportedPDDLError(f"the metric ({direction} ...) is not supported; only (:metric minimize "
+                                       "(total-cost)) is", path=p.path, line=p.metric_line)
+    world = World(known, frozenset((a.predicate, tuple(str(t) for t in a.args)) for a in init_atoms if a.value),
+                  values)
+    domain = _compile_domain(d, checker, world)
+    goal_atoms: list[Atom] | None = None
+    if _is_conjunction(p.goal):
+        goal_atoms = _literals(p.goal)
+    else:
+        changed: set[str] = set()
+        for act in d.actions:
+            _changed(act.effect, changed)
+        static = frozenset(x for x in d.predicates if x not in changed)
+        try:
+            nnf = adl.to_nnf(p.goal, {}, _objects_of(checker, world), _static_value(static, world))
+            disjuncts = adl.dnf(nnf, "the goal")
+        except adl.TooLarge as exc:
+            raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=p.path, line=p.goal_line) from None
+        if len(disjuncts) == 1:
+            goal_atoms = [_atom(lit) for lit in sorted(disjuncts[0])]
+        else:
+            pred, aux = _goal_operators(disjuncts, [*domain.predicates, *(o.name for o in domain.operators)])
+            domain = replace(domain, predicates={**domain.predicates, pred: Predicate(pred, 0)},
+                             operators=(*domain.operators, *aux))
+            goal_atoms = [Atom(pred, ())]
+            if not disjuncts:
+                log.warning("%s:%d: the goal is false in every state (its static facts fail)", p.path, p.goal_line)
+    if criticality_path is not None:
+        from nowplan.io.criticality import apply_criticality
+
+        domain = apply_criticality(domain, criticality_path)
     init_true = [a for a in init_atoms if a.value is True]
     if EQUALITY in domain.predicates:
         init_true += equality_facts(known)
@@ -398,20 +428,4 @@ def load_pddl(
         goal = Goal.of(goal_atoms, domain.rules)
     except ContradictoryGoalError as exc:
         raise ContradictoryGoalError(f"{src.path}: {exc} (in the goal)") from exc
-    return Problem(domain, objects, init, goal, _name(p.name))
-
-
-def _init_atoms(init: Iterable[Any], src: Source, start: int) -> list[Atom]:
-    from pddl.logic.functions import EqualTo as FEqualTo
-    from pddl.logic.functions import NumericFunction
-
-    atoms: list[Atom] = []
-    for f in sorted(init, key=str):
-        if isinstance(f, FEqualTo):
-            fn = f.operands[0]
-            if isinstance(fn, NumericFunction) and _name(fn.name) == "total-cost":
-                continue
-            raise src.error(f"the initial state sets the numeric fluent {fn}, which is {_FRAGMENT}",
-                            src.line_of(r"\(\s*=", start), unsupported=True)
-        atoms.extend(_literals(f, src, "the initial state", start))
-    return atoms
+    return Problem(domain, objects, init, goal, p.name)
