@@ -14,7 +14,9 @@
   every condition in S and the negation of every other one, and has the
   effects of S.  With k distinct conditions this is 2**k variants, so k is
   bounded (:data:`MAX_CONDITIONS`) and so is the total number of operators
-  per action (:data:`MAX_OPERATORS`).
+  per action (:data:`MAX_OPERATORS`).  A variant without effects (no
+  condition holds and there is no unconditional effect) is left out: a plan
+  never needs an action that changes nothing.
 
 Every bound that is hit raises :class:`nowplan.errors.UnsupportedPDDLError`
 naming the action (or the goal), the construct and the bound.
@@ -267,6 +269,8 @@ def compile_action(pre: NNF, eff: FlatEffects, where: str) -> list[Variant]:
                 effects.extend(lits)
             else:
                 parts.append(negate(cond))
+        if k and not effects:
+            continue  # a variant that changes nothing is never needed in a plan
         for d in dnf(_junction("and", parts), f"the precondition of {where}"):
             out.append(Variant(d, tuple(dict.fromkeys(effects))))
             if len(out) > MAX_OPERATORS:

@@ -410,6 +410,14 @@ def load_pddl(
             goal_atoms = [Atom(pred, ())]
             if not disjuncts:
                 log.warning("%s:%d: the goal is false in every state (its static facts fail)", p.path, p.goal_line)
+    # quantifiers compiled over the objects put problem objects into operators: they become constants
+    # of this (problem-specific) domain, so the domain written back stands on its own
+    used = {t for op in domain.operators for pre in op.preconditions for t in pre.atom.args
+            if isinstance(t, str)} | {t for op in domain.operators for e in op.effects for t in e.args
+                                      if isinstance(t, str)}
+    moved = {o: objects.pop(o) for o in sorted(used) if o in objects}
+    if moved:
+        domain = replace(domain, constants={**domain.constants, **moved})
     if criticality_path is not None:
         from nowplan.io.criticality import apply_criticality
 

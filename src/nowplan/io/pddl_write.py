@@ -10,7 +10,8 @@ regression planner checks at every level), so a flat planner such as Fast
 Downward can plan at an HPN level.
 
 Only the STRIPS part of the model can be written: boolean atoms, constant
-non-negative costs, no generators; anything else raises
+non-negative costs or costs read from static numeric functions (written
+back with their values), no generators; anything else raises
 :class:`nowplan.errors.ModelError`.
 """
 
@@ -24,6 +25,7 @@ from nowplan.core.atoms import Atom, Term, Var
 from nowplan.core.domain import Domain, Problem
 from nowplan.core.operators import Operator
 from nowplan.errors import ModelError
+from nowplan.io.pddl_cost import FunctionCost, functions_of, show_expr
 
 EQUALITY = "="
 
@@ -55,7 +57,13 @@ def _typed(names: Iterable[tuple[str, str | None]], typed: bool) -> str:
     return " ".join(out)
 
 
+def _function_cost(op: Operator) -> FunctionCost | None:
+    return op.cost if isinstance(op.cost, FunctionCost) else None
+
+
 def _cost(op: Operator) -> float:
+    if isinstance(op.cost, FunctionCost):
+        raise ModelError(f"operator {op.name} has a cost read from numeric functions")
     if callable(op.cost):
         raise ModelError(f"operator {op.name} has a cost function; only constant costs can be written")
     c = float(op.cost)
@@ -69,7 +77,26 @@ def _num(x: float) -> str:
 
 
 def uses_costs(domain: Domain) -> bool:
-    return any(_cost(op) != 1.0 for op in domain.operators)
+    return any(_function_cost(op) is not None or _cost(op) != 1.0 for op in domain.operators)
+
+
+def _cost_functions(domain: Domain) -> dict[str, int]:
+    """Numeric functions (name -> arity) that action costs read (written as static functions)."""
+    out: dict[str, int] = {}
+    for op in domain.operators:
+        fc = _function_cost(op)
+        if fc is not None:
+            for x in fc.exprs:
+                out.update(functions_of(x))
+    return out
+
+
+def _cost_effect(op: Operator) -> str:
+    fc = _function_cost(op)
+    if fc is None:
+        return f"(increase (total-cost) {_num(_cost(op))})"
+    amount = show_expr(fc.exprs[0]) if len(fc.exprs) == 1 else "(+ " + " ".join(show_expr(x) for x in fc.exprs) + ")"
+    return f"(increase (total-cost) {amount})"
 
 
 def domain_text(domain: Domain, level: int | None = None) -> str:
@@ -111,7 +138,9 @@ def domain_text(domain: Domain, level: int | None = None) -> str:
         preds.append(f"({p.name}{' ' + inner if inner else ''})")
     lines.append("  (:predicates " + "\n               ".join(preds) + ")")
     if costs:
-        lines.append("  (:functions (total-cost) - number)")
+        fns = "".join(f" ({f}{''.join(f' ?x{i}' for i in range(n))}) - number"
+                      for f, n in sorted(_cost_functions(domain).items()))
+        lines.append(f"  (:functions (total-cost) - number{fns})")
     for op in domain.operators:
         if op.generators:
             raise ModelError(f"operator {op.name} uses generators; it cannot be written as PDDL")
@@ -124,7 +153,7 @@ def domain_text(domain: Domain, level: int | None = None) -> str:
         ]
         eff = [_atom(e) for e in op.effects]
         if costs:
-            eff.append(f"(increase (total-cost) {_num(_cost(op))})")
+            eff.append(_cost_effect(op))
         lines.append(f"  (:action {op.name}")
         lines.append(f"    :parameters ({params})")
         lines.append(f"    :precondition {_conj(pre, '    ')}")
@@ -156,6 +185,12 @@ def problem_text(problem: Problem) -> str:
     init = [_atom(a) for a in _init_atoms(problem.init)]
     if uses_costs(domain):
         init.append("(= (total-cost) 0)")
+        values: dict[tuple[str, tuple[str, ...]], float] = {}
+        for op in domain.operators:
+            fc = _function_cost(op)
+            if fc is not None and fc.values is not None:
+                values.update(fc.values)
+        init.extend(f"(= ({' '.join((f, *args))}) {_num(v)})" for (f, args), v in sorted(values.items()))
     lines.append("  (:init " + "\n         ".join(init) + ")")
     lines.append(f"  (:goal {_conj(problem.goal, '        ')})")
     if uses_costs(domain):

@@ -105,6 +105,7 @@ def solve_fd(
     from nowplan.io.pddl_write import write_pddl
 
     shortcuts.get_environment().credits_stream = None
+    shortcuts.get_environment().error_used_name = False  # PDDL lets an action and a predicate share a name
     t_cpu, t0 = time.process_time(), time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="nowplan-fd-") as tmp:
         out = Path(keep_dir) if keep_dir is not None else Path(tmp)

@@ -1,0 +1,6 @@
+(define (problem get-paid)
+  (:domain briefcase)
+  (:objects home office bank - location  p d - portable)
+  (:init (at p home) (at d home) (is-at home))
+  (:goal (and (at d office) (at p bank) (is-at home)
+              (forall (?x - portable) (not (in ?x))))))

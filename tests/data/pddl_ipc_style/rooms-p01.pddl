@@ -1,0 +1,7 @@
+(define (problem rooms-1)
+  (:domain rooms)
+  (:objects hall kitchen vault attic - room  k1 k2 - key)
+  (:init (at hall) (door hall kitchen) (door kitchen vault) (door attic hall)
+         (locked vault) (opens k2 vault) (key-in k1 hall) (key-in k2 kitchen))
+  (:goal (or (and (at vault) (lit hall))
+             (and (lit attic) (alarm)))))

@@ -1,0 +1,6 @@
+(define (problem tidybot-1)
+  (:domain tidybot)
+  (:objects r1 - robot  cup plate - object  x0 x1 x2 - xc  y0 - yc)
+  (:init (base-pos r1 x0 y0) (gripper-empty r1) (leftof x0 x1) (leftof x1 x2)
+         (object-pos cup x2 y0) (object-pos plate x1 y0))
+  (:goal (and (on-cart cup) (on-cart plate) (base-pos r1 x0 y0))))
