@@ -134,6 +134,18 @@ class Sim:
     def number(self, x: Tree, b: dict[str, str]) -> float:
         if isinstance(x, str):
             return float(x)
+        if x[0] in ("+", "-", "*", "/"):
+            vals = [self.number(a, b) for a in x[1:]]
+            if x[0] == "+":
+                return sum(vals)
+            if x[0] == "*":
+                out = 1.0
+                for v in vals:
+                    out *= v
+                return out
+            if len(vals) == 1:
+                return -vals[0]
+            return vals[0] - vals[1] if x[0] == "-" else vals[0] / vals[1]
         return self.values[tuple([x[0], *(b.get(a, a) for a in x[1:])])]
 
     def apply(self, step: str) -> None:

@@ -72,8 +72,8 @@ class FunctionCost:
             v = self.values.get((name, ground))
             if v is None:
                 fact = "(" + " ".join((name, *ground)) + ")"
-                raise PDDLError(f"the problem's :init gives no value for {fact}, needed for the cost of "
-                                f"action {self.action}; add (= {fact} N)", path=self.path, line=line)
+                raise PDDLError(f"the :init gives no value for {fact}, needed for the cost of "
+                                f"action {self.action}; add (= {fact} N)", path=self.path)
             return v
 
         try:

@@ -71,6 +71,7 @@ class World:
     objects: Mapping[str, str | None]
     init: frozenset[tuple[str, tuple[str, ...]]]
     values: Mapping[tuple[str, tuple[str, ...]], float]
+    path: str = ""  # the problem file (function values come from its :init)
 
 
 # --------------------------------------------------------------------------- domain
@@ -194,7 +195,7 @@ def _compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: froz
             raise PDDLError(f"{where}: action costs must be >= 0, got {const:g}", path=d.path, line=act.line)
         cost: float | FunctionCost | None = const if const is not None else FunctionCost(
             act.name, tuple(p.name for p in act.params), exprs,
-            world.values if world is not None else None, d.path)
+            world.values if world is not None else None, world.path if world is not None else d.path)
     else:
         cost = None
     ops = []
@@ -386,7 +387,7 @@ def load_pddl(
             raise UnsupportedPDDLError(f"the metric ({direction} ...) is not supported; only (:metric minimize "
                                        "(total-cost)) is", path=p.path, line=p.metric_line)
     world = World(known, frozenset((a.predicate, tuple(str(t) for t in a.args)) for a in init_atoms if a.value),
-                  values)
+                  values, p.path)
     domain = _compile_domain(d, checker, world)
     goal_atoms: list[Atom] | None = None
     if _is_conjunction(p.goal):

@@ -53,7 +53,9 @@ def ground_all(grounder: Grounder, drop: frozenset[str]) -> tuple[GroundAction, 
     """Every ground action of the problem (static preconditions checked), cached."""
     dom = grounder.domain
     statics = tuple(sorted((p, tuple(sorted(map(repr, grounder.belief.facts(p))))) for p in drop))
-    key = (dom, tuple(sorted(grounder.objects.items(), key=repr)), statics)
+    # operators compare without their costs: two domains equal but for costs must not share actions
+    costs = tuple(id(o.cost) if callable(o.cost) else o.cost for o in dom.operators)
+    key = (dom, costs, tuple(sorted(grounder.objects.items(), key=repr)), statics)
     hit = _CACHE.get(key)
     if hit is not None:
         return hit

@@ -71,7 +71,9 @@ def _key_of(domain: Domain, objects: Mapping[str, str | None], belief: Any, stat
             level: int) -> Any:
     facts = tuple(sorted((p, tuple(sorted(map(repr, belief.facts(p))))) for p in statics))
     # the domain itself (held by the cache, so its identity cannot be reused by another domain)
-    return (domain, tuple(sorted(objects.items(), key=repr)), facts, level)
+    # operators compare without their costs: two domains equal but for costs must not share actions
+    costs = tuple(id(o.cost) if callable(o.cost) else o.cost for o in domain.operators)
+    return (domain, costs, tuple(sorted(objects.items(), key=repr)), facts, level)
 
 
 def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, level: int) -> Grounding:
