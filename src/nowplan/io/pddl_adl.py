@@ -138,6 +138,24 @@ def to_nnf(
     return _junction(op, parts)
 
 
+def literal_order(xs: Sequence[NNF]) -> dict[Lit, int]:
+    """Each literal's first position in ``xs`` (both signs), to keep the file's order of conditions."""
+    out: dict[Lit, int] = {}
+
+    def walk(x: NNF) -> None:
+        if isinstance(x, LitNode):
+            p, a, v = x.lit
+            for lit in ((p, a, v), (p, a, not v)):
+                out.setdefault(lit, len(out))
+        elif isinstance(x, Junction):
+            for y in x.parts:
+                walk(y)
+
+    for x in xs:
+        walk(x)
+    return out
+
+
 def negate(x: NNF) -> NNF:
     if isinstance(x, bool):
         return not x

@@ -198,6 +198,7 @@ def _compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: froz
             world.values if world is not None else None, world.path if world is not None else d.path)
     else:
         cost = None
+    order = adl.literal_order([pre, *(c for c, _ in flat.conditional)])
     ops = []
     n = len(variants) * len(combos)
     for k, (var, types) in enumerate(itertools.product(variants, combos)):
@@ -206,7 +207,7 @@ def _compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: froz
         ops.append(Operator(
             act.name if n == 1 else f"{act.name}-v{k + 1}",
             params,
-            tuple(Precondition(_atom(lit), 1) for lit in sorted(var.pre)),
+            tuple(Precondition(_atom(lit), 1) for lit in sorted(var.pre, key=lambda x: (order.get(x, 1 << 30), x))),
             tuple(dels + adds),
             cost=cost if cost is not None else 1.0,
             param_types=tuple(types),
