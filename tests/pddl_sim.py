@@ -1,7 +1,8 @@
 """An independent PDDL plan checker for the tests (ADL semantics, no nowplan code).
 
 It reads the ORIGINAL domain and problem text with its own tokenizer and
-replays a plan: preconditions (and, or, not, imply, forall, exists, =) are
+replays a plan: preconditions (and, or, not, imply, forall, exists, =,
+non-recursive derived predicates) are
 evaluated in the state, conditional and universally quantified effects are
 all evaluated in the state before the action (deletes, then adds), and
 ``(increase (total-cost) ...)`` is summed from the problem's function values.
@@ -49,6 +50,7 @@ class Sim:
         self.parent: dict[str, str] = {}
         self.objects: dict[str, str] = {}
         self.actions: dict[str, list[Tree]] = {}
+        self.derived: dict[str, list[tuple[list[str], Tree]]] = {}
         for sec in d[2:]:
             if sec[0] == ":types":
                 for n, ts in typed(sec[1:]):
@@ -57,6 +59,8 @@ class Sim:
                 self.objects.update((n, ts[0]) for n, ts in typed(sec[1:]))
             elif sec[0] == ":action":
                 self.actions[sec[1]] = sec
+            elif sec[0] == ":derived":
+                self.derived.setdefault(sec[1][0], []).append(([v for v, _ in typed(sec[1][1:])], sec[2]))
         self.state: set[tuple[str, ...]] = set()
         self.values: dict[tuple[str, ...], float] = {}
         self.goal: Tree = ["and"]
@@ -104,6 +108,8 @@ class Sim:
             test = all if op == "forall" else any
             return test(self.holds(f[2], c) for c in combos)
         args = tuple(b.get(a, a) for a in f[1:])
+        if op in self.derived:  # non-recursive axioms: true when one definition holds
+            return any(self.holds(body, dict(zip(params, args))) for params, body in self.derived[op])
         if op == "=":
             return args[0] == args[1]
         return (op, *args) in self.state

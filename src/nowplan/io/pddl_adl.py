@@ -18,6 +18,11 @@
   condition holds and there is no unconditional effect) is left out: a plan
   never needs an action that changes nothing.
 
+Derived predicates (axioms) that are not recursive are compiled by
+replacing each of their atoms by the disjunction of their definitions (and a
+negated atom by the negation of it: closed-world semantics, exact for
+non-recursive axioms).
+
 Every bound that is hit raises :class:`nowplan.errors.UnsupportedPDDLError`
 naming the action (or the goal), the construct and the bound.
 """
@@ -25,7 +30,7 @@ naming the action (or the goal), the construct and the bound.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Union
 
@@ -111,10 +116,23 @@ def _junction(op: str, parts: list[NNF]) -> NNF:
     return flat[0] if len(flat) == 1 else Junction(op, tuple(flat))
 
 
+# derived predicates: name -> its definitions (parameters, condition); an atom is true when one holds
+Derived = Mapping[str, Sequence[tuple[tuple[str, ...], Formula]]]
+
+
 def to_nnf(
-    f: Formula, sub: dict[str, str], objects_of: ObjectsOf, static: StaticValue, neg: bool = False
+    f: Formula, sub: dict[str, str], objects_of: ObjectsOf, static: StaticValue, neg: bool = False,
+    derived: Derived | None = None,
 ) -> NNF:
-    """``f`` (negated when ``neg``) in negation normal form, quantifiers expanded, statics evaluated."""
+    """``f`` (negated when ``neg``) in negation normal form, quantifiers expanded, statics evaluated.
+
+    Atoms of (non-recursive) derived predicates are replaced by their definitions.
+    """
+    if isinstance(f, FAtom) and derived and f.pred in derived:
+        args = _sub(f.args, sub)
+        bodies = [to_nnf(body, dict(zip(params, args, strict=True)), objects_of, static, neg, derived)
+                  for params, body in derived[f.pred]]
+        return _junction("and" if neg else "or", bodies)
     if isinstance(f, FAtom):
         lit: Lit = (f.pred, _sub(f.args, sub), not neg)
         known = static(lit)
@@ -122,17 +140,17 @@ def to_nnf(
             return known
         return LitNode(lit, f.line)
     if isinstance(f, FNot):
-        return to_nnf(f.arg, sub, objects_of, static, not neg)
+        return to_nnf(f.arg, sub, objects_of, static, not neg, derived)
     if isinstance(f, FAnd | FOr):
         op = "and" if isinstance(f, FAnd) else "or"
         if neg:
             op = "or" if op == "and" else "and"
-        return _junction(op, [to_nnf(p, sub, objects_of, static, neg) for p in f.parts])
+        return _junction(op, [to_nnf(p, sub, objects_of, static, neg, derived) for p in f.parts])
     assert isinstance(f, FQuant)
     op = "and" if (f.kind == "forall") != neg else "or"
     parts = []
     for inst in _instances(f.params, objects_of, f"the ({f.kind} ...) on line {f.line}"):
-        parts.append(to_nnf(f.body, {**sub, **inst}, objects_of, static, neg))
+        parts.append(to_nnf(f.body, {**sub, **inst}, objects_of, static, neg, derived))
         if parts[-1] is (op == "or"):  # a true disjunct / false conjunct decides it
             break
     return _junction(op, parts)
@@ -222,7 +240,8 @@ class FlatEffects:
     costs: tuple[NExpr, ...]
 
 
-def flatten_effects(e: Effect | None, objects_of: ObjectsOf, static: StaticValue, where: str) -> FlatEffects:
+def flatten_effects(e: Effect | None, objects_of: ObjectsOf, static: StaticValue, where: str,
+                    derived: Derived | None = None) -> FlatEffects:
     base: list[Lit] = []
     groups: dict[NNF, list[Lit]] = {}
     costs: list[NExpr] = []
@@ -238,7 +257,7 @@ def flatten_effects(e: Effect | None, objects_of: ObjectsOf, static: StaticValue
             for p in x.parts:
                 walk(p, sub, cond)
         elif isinstance(x, EWhen):
-            c = to_nnf(x.cond, sub, objects_of, static)
+            c = to_nnf(x.cond, sub, objects_of, static, derived=derived)
             walk(x.effect, sub, _junction("and", [cond, c]))
         elif isinstance(x, EForall):
             for inst in _instances(x.params, objects_of, f"the (forall ...) effect on line {x.line}"):

@@ -10,7 +10,7 @@ from the problem's ``(= (f a b) 5)``).  :mod:`nowplan.io.pddl_check` checks
 names, arities and types; :mod:`nowplan.io.pddl_adl` compiles quantifiers,
 disjunctions and conditional effects to STRIPS operators over the problem's
 objects.  What stays outside (durative actions, numeric fluents that change,
-derived predicates, ...) raises :class:`nowplan.errors.UnsupportedPDDLError`
+recursive derived predicates, ...) raises :class:`nowplan.errors.UnsupportedPDDLError`
 naming the construct and its line.
 
 Modelling choices:
@@ -82,10 +82,7 @@ def _read_domain_def(path: str | Path) -> tuple[DomainDef, Checker]:
     d = parse_domain(src.text, src.path)
     checker = Checker(d)
     warn_undeclared(d)
-    if d.derived:
-        raise UnsupportedPDDLError(f"derived predicates ((:derived ({d.derived[0].pred} ...) ...)) are not "
-                                   "supported yet; compile them into the actions' conditions",
-                                   path=d.path, line=d.derived[0].line)
+    _check_derived(d, checker)
     seen: dict[str, int] = {}
     for act in d.actions:
         if act.name in seen:
@@ -100,6 +97,62 @@ def _read_domain_def(path: str | Path) -> tuple[DomainDef, Checker]:
                         d.path)
         checker.effect(act.effect, f"the effect of action {act.name}", scope, checker.constants, d.path)
     return d, checker
+
+
+def _check_derived(d: DomainDef, checker: Checker) -> None:
+    """Derived predicates: declared, typed bodies, never in effects, not recursive."""
+    changed: set[str] = set()
+    for act in d.actions:
+        _changed(act.effect, changed)
+    deps: dict[str, set[str]] = {}
+    for dv in d.derived:
+        where = f"the derived predicate {dv.pred}"
+        if dv.pred not in d.predicates:
+            raise PDDLError(f"{where} is not declared in (:predicates ...)", path=d.path, line=dv.line)
+        if len(dv.params) != len(d.predicates[dv.pred][0]):
+            raise PDDLError(f"{where} has {len(dv.params)} parameter(s) but is declared with "
+                            f"{len(d.predicates[dv.pred][0])}", path=d.path, line=dv.line)
+        if dv.pred in changed:
+            raise PDDLError(f"{where} is changed by an action's effect; derived predicates cannot be",
+                            path=d.path, line=dv.line)
+        scope = checker.bind(dv.params, {}, where, d.path)
+        checker.formula(dv.body, where, scope, checker.constants, d.path)
+        deps.setdefault(dv.pred, set()).update(_preds(dv.body))
+    state: dict[str, int] = {}
+
+    def visit(p: str, path: list[str]) -> None:  # depth-first search for a cycle; bounded by len(deps)
+        if state.get(p) == 2 or p not in deps:
+            return
+        if state.get(p) == 1:
+            cycle = " -> ".join(path[path.index(p):] + [p])
+            line = next(dv.line for dv in d.derived if dv.pred == p)
+            raise UnsupportedPDDLError(f"the derived predicates are recursive ({cycle}); only non-recursive "
+                                       "derived predicates are compiled", path=d.path, line=line)
+        state[p] = 1
+        for q in sorted(deps[p]):
+            visit(q, [*path, p])
+        state[p] = 2
+
+    for p in sorted(deps):
+        visit(p, [])
+
+
+def _preds(f: Formula) -> set[str]:
+    if isinstance(f, FAtom):
+        return {f.pred}
+    if isinstance(f, FNot):
+        return _preds(f.arg)
+    body = getattr(f, "body", None)
+    if body is not None:
+        return _preds(body)
+    return {p for x in getattr(f, "parts", ()) for p in _preds(x)}
+
+
+def _derived_map(d: DomainDef) -> adl.Derived:
+    out: dict[str, list[tuple[tuple[str, ...], Formula]]] = {}
+    for dv in d.derived:
+        out.setdefault(dv.pred, []).append((tuple(p.name for p in dv.params), dv.body))
+    return out
 
 
 def _changed(e: Effect | None, out: set[str]) -> None:
@@ -170,8 +223,9 @@ def _compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: froz
     objects_of = _objects_of(checker, world)
     value = _static_value(static, world)
     try:
-        pre = adl.to_nnf(act.precondition or TRUE, {}, objects_of, value)
-        flat = adl.flatten_effects(act.effect, objects_of, value, where)
+        derived = _derived_map(d)
+        pre = adl.to_nnf(act.precondition or TRUE, {}, objects_of, value, derived=derived)
+        flat = adl.flatten_effects(act.effect, objects_of, value, where, derived)
         variants = adl.compile_action(pre, flat, where)
     except _NeedsObjects:
         raise UnsupportedPDDLError(f"{where} quantifies over objects; quantifiers are compiled over a problem's "
@@ -391,7 +445,7 @@ def load_pddl(
                   values, p.path)
     domain = _compile_domain(d, checker, world)
     goal_atoms: list[Atom] | None = None
-    if _is_conjunction(p.goal):
+    if _is_conjunction(p.goal) and not (_preds(p.goal) & {dv.pred for dv in d.derived}):
         goal_atoms = _literals(p.goal)
     else:
         changed: set[str] = set()
@@ -399,7 +453,8 @@ def load_pddl(
             _changed(act.effect, changed)
         static = frozenset(x for x in d.predicates if x not in changed)
         try:
-            nnf = adl.to_nnf(p.goal, {}, _objects_of(checker, world), _static_value(static, world))
+            nnf = adl.to_nnf(p.goal, {}, _objects_of(checker, world), _static_value(static, world),
+                             derived=_derived_map(d))
             disjuncts = adl.dnf(nnf, "the goal")
         except adl.TooLarge as exc:
             raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=p.path, line=p.goal_line) from None
