@@ -290,3 +290,15 @@ def test_derived_predicate_in_an_effect_is_an_error(tmp_path: Path) -> None:
         ":effect (sealed ?b)", ":effect (and (sealed ?b) (shiny crate))")
     with pytest.raises(PDDLError, match="derived predicate shiny is changed by an action's effect"):
         load(tmp_path, dom)
+
+
+def test_criticality_rules_name_the_pddl_action_of_compiled_operators(tmp_path: Path) -> None:
+    dom = DOMAIN.replace(":precondition (and (free ?i) (not (sealed ?b)))",
+                         ":precondition (and (free ?i) (or (sealed crate) (not (sealed ?b))))")
+    d, p = write(tmp_path, dom, PROBLEM)
+    crit = tmp_path / "c.crit"
+    crit.write_text("default 2\npack free 3\n")
+    prob = load_pddl(d, p, crit)
+    packs = [o for o in prob.domain.operators if o.pddl_name == "pack"]
+    assert len(packs) == 2
+    assert all(pre.criticality == (3 if pre.atom.predicate == "free" else 2) for o in packs for pre in o.preconditions)

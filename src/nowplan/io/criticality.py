@@ -50,7 +50,8 @@ class CriticalityRule:
         return (2 if self.literal is not None else 0) + (1 if self.action != "*" else 0)
 
     def matches(self, op: Operator, pre: Atom) -> bool:
-        if self.action not in ("*", op.name) or pre.predicate != self.predicate:
+        # an action compiled into several operators (ADL) is named by its PDDL name too
+        if self.action not in ("*", op.name, op.pddl_name) or pre.predicate != self.predicate:
             return False
         return self.literal is None or self.literal == pre
 
@@ -153,11 +154,12 @@ def _check(spec: CriticalitySpec, domain: Domain) -> None:
             if not any(r.matches(o, p.atom) for o in domain.operators for p in o.preconditions):
                 raise err(f"no action has a precondition matching '{_show(r)}'")
             continue
-        op = domain.operator_map.get(r.action)
-        if op is None:
+        ops = [o for o in domain.operators if r.action in (o.name, o.pddl_name)]
+        if not ops:
             raise err(f"unknown action '{r.action}'; domain actions: "
                       f"{', '.join(o.name for o in domain.operators)}")
-        if not any(r.matches(op, p.atom) for p in op.preconditions):
+        op = ops[0]
+        if not any(r.matches(o, p.atom) for o in ops for p in o.preconditions):
             have = ", ".join(_fmt(p.atom) for p in op.preconditions) or "none"
             raise err(f"action '{op.name}' has no precondition matching '{_show(r)}'; "
                       f"its preconditions: {have}")
