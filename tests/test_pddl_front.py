@@ -302,3 +302,16 @@ def test_criticality_rules_name_the_pddl_action_of_compiled_operators(tmp_path: 
     packs = [o for o in prob.domain.operators if o.pddl_name == "pack"]
     assert len(packs) == 2
     assert all(pre.criticality == (3 if pre.atom.predicate == "free" else 2) for o in packs for pre in o.preconditions)
+
+
+def test_function_costs_are_written_back(tmp_path: Path) -> None:
+    from nowplan.io.pddl_write import write_pddl
+
+    corpus = Path(__file__).resolve().parent / "data" / "pddl_ipc_style"
+    prob = load_pddl(corpus / "transport-domain.pddl", corpus / "transport-p01.pddl")
+    d, p = write_pddl(prob, tmp_path / "out")
+    assert "(increase (total-cost) (road-length ?l1 ?l2))" in d.read_text()
+    assert "(= (road-length city-loc-1 city-loc-3) 10)" in p.read_text()
+    again = load_pddl(d, p)
+    b = {Var("v"): "truck-1", Var("l1"): "city-loc-3", Var("l2"): "city-loc-2"}
+    assert again.domain.operator_map["drive"].instantiate(b).cost() == 12.0
