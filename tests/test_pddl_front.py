@@ -315,3 +315,18 @@ def test_function_costs_are_written_back(tmp_path: Path) -> None:
     again = load_pddl(d, p)
     b = {Var("v"): "truck-1", Var("l1"): "city-loc-3", Var("l2"): "city-loc-2"}
     assert again.domain.operator_map["drive"].instantiate(b).cost() == 12.0
+
+
+def test_many_effect_conditions_are_compiled_per_binding(monkeypatch: pytest.MonkeyPatch) -> None:
+    from nowplan.io import pddl_actions
+
+    corpus = Path(__file__).resolve().parent / "data" / "pddl_ipc_style"
+    files = (corpus / "miconic-adl-domain.pddl", corpus / "miconic-adl-p01.pddl")
+    prob = load_pddl(*files)
+    stops = [o for o in prob.domain.operators if o.pddl_name == "stop"]
+    assert stops and all(o.preconditions[0].atom.predicate == "=" for o in stops)  # (= ?f fN) pins ?f
+    # lifted, the 6 passengers give 12 effect conditions (> 10); per floor only 2-4 are left
+    assert {o.preconditions[0].atom.args[1] for o in stops} == {"f0", "f1", "f2", "f3"}
+    monkeypatch.setattr(pddl_actions, "MAX_BINDINGS", 3)
+    with pytest.raises(UnsupportedPDDLError, match=r"12 distinct effect conditions.*4 bindings \(bound 3\)"):
+        load_pddl(*files)

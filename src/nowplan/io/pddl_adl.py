@@ -241,7 +241,7 @@ class FlatEffects:
 
 
 def flatten_effects(e: Effect | None, objects_of: ObjectsOf, static: StaticValue, where: str,
-                    derived: Derived | None = None) -> FlatEffects:
+                    derived: Derived | None = None, sub: dict[str, str] | None = None) -> FlatEffects:
     base: list[Lit] = []
     groups: dict[NNF, list[Lit]] = {}
     costs: list[NExpr] = []
@@ -270,7 +270,7 @@ def flatten_effects(e: Effect | None, objects_of: ObjectsOf, static: StaticValue
             costs.append(_sub_expr(x.amount, sub))
 
     if e is not None:
-        walk(e, {}, True)
+        walk(e, dict(sub or {}), True)
     return FlatEffects(tuple(base), tuple((c, tuple(ls)) for c, ls in groups.items()), tuple(costs))
 
 

@@ -30,29 +30,27 @@ Modelling choices:
 
 from __future__ import annotations
 
-import itertools
 import logging
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 
-from nowplan.core.atoms import Atom, Goal, Term, Var
+from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain, Predicate, Problem
 from nowplan.core.operators import Operator, Precondition
 from nowplan.core.state import State
 from nowplan.errors import ContradictoryGoalError, PDDLError, UnsupportedPDDLError
 from nowplan.io import pddl_adl as adl
-from nowplan.io.pddl_ast import TOTAL_COST, TRUE, EAnd, Effect, EForall, ELit, EWhen, FAnd, FAtom, FNot, Formula
+from nowplan.io.pddl_ast import TOTAL_COST, EAnd, Effect, EForall, ELit, EWhen, FAnd, FAtom, FNot, Formula
 from nowplan.io.pddl_check import EQUALITY, Checker, warn_undeclared
-from nowplan.io.pddl_cost import FunctionCost, constant_cost
+from nowplan.io.pddl_actions import World, atom_of, compile_action, objects_of, static_value
 from nowplan.io.pddl_source import read_source
-from nowplan.io.pddl_syntax import ActionDef, DomainDef, ProblemDef, parse_domain, parse_problem
+from nowplan.io.pddl_syntax import DomainDef, ProblemDef, parse_domain, parse_problem
 from nowplan.io.sexpr import SList, Token
 
 log = logging.getLogger(__name__)
 
 GOAL_REACHED = "goal-reached"
-MAX_TYPE_VARIANTS = 64  # operators from the (either ...) parameters of one action
 
 
 def equality_predicate() -> Predicate:
@@ -62,16 +60,6 @@ def equality_predicate() -> Predicate:
 
 def equality_facts(objects: Iterable[str]) -> list[Atom]:
     return [Atom(EQUALITY, (o, o)) for o in sorted(objects)]
-
-
-@dataclass(frozen=True)
-class World:
-    """What the compilation knows of the problem: objects, static facts, function values."""
-
-    objects: Mapping[str, str | None]
-    init: frozenset[tuple[str, tuple[str, ...]]]
-    values: Mapping[tuple[str, tuple[str, ...]], float]
-    path: str = ""  # the problem file (function values come from its :init)
 
 
 # --------------------------------------------------------------------------- domain
@@ -183,93 +171,6 @@ def _uses_equality(f: Formula | Effect | None) -> bool:
     return _uses_equality(body) if body is not None else False
 
 
-class _NeedsObjects(Exception):
-    pass
-
-
-def _objects_of(checker: Checker, world: World | None):  # type: ignore[no-untyped-def]
-    def objects_of(types: tuple[str, ...]) -> list[str]:
-        if world is None:
-            raise _NeedsObjects()
-        return sorted(o for o, t in world.objects.items() if checker.is_a(t, types))
-
-    return objects_of
-
-
-def _static_value(static: frozenset[str], world: World | None):  # type: ignore[no-untyped-def]
-    def value(lit: adl.Lit) -> bool | None:
-        pred, args, v = lit
-        if any(a.startswith("?") for a in args):
-            return None
-        if pred == EQUALITY:
-            return (args[0] == args[1]) == v
-        if world is None or pred not in static:
-            return None
-        return ((pred, args) in world.init) == v
-
-    return value
-
-
-def _atom(lit: adl.Lit) -> Atom:
-    pred, args, v = lit
-    terms: tuple[Term, ...] = tuple(Var(a[1:]) if a.startswith("?") else a for a in args)
-    return Atom(pred, terms, v)
-
-
-def _compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: frozenset[str],
-                    world: World | None) -> tuple[list[Operator], bool]:
-    """The operators of one action, and whether it increases total-cost."""
-    where = f"action {act.name}"
-    objects_of = _objects_of(checker, world)
-    value = _static_value(static, world)
-    try:
-        derived = _derived_map(d)
-        pre = adl.to_nnf(act.precondition or TRUE, {}, objects_of, value, derived=derived)
-        flat = adl.flatten_effects(act.effect, objects_of, value, where, derived)
-        variants = adl.compile_action(pre, flat, where)
-    except _NeedsObjects:
-        raise UnsupportedPDDLError(f"{where} quantifies over objects; quantifiers are compiled over a problem's "
-                                   "objects: read the domain together with a problem (load_pddl)",
-                                   path=d.path, line=act.line) from None
-    except adl.TooLarge as exc:
-        raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=d.path, line=act.line) from None
-    type_choices: list[list[str | None]] = []
-    for p in act.params:
-        alts: list[str | None] = [t for t in p.types if not any(o != t and o in checker.ancestors(t) for o in p.types)]
-        type_choices.append(alts or [None])
-    combos = list(itertools.islice(itertools.product(*type_choices), MAX_TYPE_VARIANTS + 1))
-    if len(combos) > MAX_TYPE_VARIANTS:
-        raise UnsupportedPDDLError(f"{where} has (either ...) parameters with more than {MAX_TYPE_VARIANTS} "
-                                   "combinations of types", path=d.path, line=act.line)
-    params = tuple(Var(p.name[1:]) for p in act.params)
-    if flat.costs:
-        exprs = flat.costs
-        const = constant_cost(exprs)
-        if const is not None and const < 0:
-            raise PDDLError(f"{where}: action costs must be >= 0, got {const:g}", path=d.path, line=act.line)
-        cost: float | FunctionCost | None = const if const is not None else FunctionCost(
-            act.name, tuple(p.name for p in act.params), exprs,
-            world.values if world is not None else None, world.path if world is not None else d.path)
-    else:
-        cost = None
-    order = adl.literal_order([pre, *(c for c, _ in flat.conditional)])
-    ops = []
-    n = len(variants) * len(combos)
-    for k, (var, types) in enumerate(itertools.product(variants, combos)):
-        dels = [_atom(lit) for lit in var.effects if not lit[2]]
-        adds = [_atom(lit) for lit in var.effects if lit[2]]
-        ops.append(Operator(
-            act.name if n == 1 else f"{act.name}-v{k + 1}",
-            params,
-            tuple(Precondition(_atom(lit), 1) for lit in sorted(var.pre, key=lambda x: (order.get(x, 1 << 30), x))),
-            tuple(dels + adds),
-            cost=cost if cost is not None else 1.0,
-            param_types=tuple(types),
-            pddl_name=None if n == 1 else act.name,
-        ))
-    return ops, cost is not None
-
-
 def _compile_domain(d: DomainDef, checker: Checker, world: World | None) -> Domain:
     changed: set[str] = set()
     for act in d.actions:
@@ -285,12 +186,15 @@ def _compile_domain(d: DomainDef, checker: Checker, world: World | None) -> Doma
     operators: list[Operator] = []
     costed: list[bool] = []
     for act in d.actions:
-        ops, has_cost = _compile_action(act, d, checker, static, world)
+        ops, has_cost = compile_action(act, d, checker, static, world, _derived_map(d))
         operators.extend(ops)
         costed.extend([has_cost] * len(ops))
     # PDDL :action-costs semantics: once costs are used, an action without an increase costs 0
     if any(costed):
         operators = [op if c else replace(op, cost=0.0) for op, c in zip(operators, costed, strict=True)]
+    if EQUALITY not in predicates and any(p.atom.predicate == EQUALITY for op in operators
+                                          for p in op.preconditions):
+        predicates[EQUALITY] = equality_predicate()  # parameters pinned per binding (pddl_actions)
     taken = {a.name for a in d.actions}
     for op in operators:
         if op.pddl_name is not None and op.name in taken:
@@ -407,7 +311,7 @@ def _goal_operators(disjuncts: list[frozenset[adl.Lit]], taken: Iterable[str]) -
     pred = GOAL_REACHED
     while pred in names:
         pred += "_"
-    ops = [Operator(f"{pred}-{i + 1}", (), tuple(Precondition(_atom(lit), 1) for lit in sorted(d)),
+    ops = [Operator(f"{pred}-{i + 1}", (), tuple(Precondition(atom_of(lit), 1) for lit in sorted(d)),
                     (Atom(pred, ()),), cost=0.0, pddl_name="") for i, d in enumerate(disjuncts)]
     return pred, ops
 
@@ -453,13 +357,13 @@ def load_pddl(
             _changed(act.effect, changed)
         static = frozenset(x for x in d.predicates if x not in changed)
         try:
-            nnf = adl.to_nnf(p.goal, {}, _objects_of(checker, world), _static_value(static, world),
+            nnf = adl.to_nnf(p.goal, {}, objects_of(checker, world), static_value(static, world),
                              derived=_derived_map(d))
             disjuncts = adl.dnf(nnf, "the goal")
         except adl.TooLarge as exc:
             raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=p.path, line=p.goal_line) from None
         if len(disjuncts) == 1:
-            goal_atoms = [_atom(lit) for lit in sorted(disjuncts[0])]
+            goal_atoms = [atom_of(lit) for lit in sorted(disjuncts[0])]
         else:
             pred, aux = _goal_operators(disjuncts, [*domain.predicates, *(o.name for o in domain.operators)])
             domain = replace(domain, predicates={**domain.predicates, pred: Predicate(pred, 0)},
