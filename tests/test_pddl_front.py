@@ -330,3 +330,21 @@ def test_many_effect_conditions_are_compiled_per_binding(monkeypatch: pytest.Mon
     monkeypatch.setattr(pddl_actions, "MAX_BINDINGS", 3)
     with pytest.raises(UnsupportedPDDLError, match=r"12 distinct effect conditions.*4 bindings \(bound 3\)"):
         load_pddl(*files)
+
+
+def test_ground_equalities_in_the_goal_are_evaluated(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    plan = solve(tmp_path, DOMAIN, PROBLEM.replace("(sealed crate)))", "(sealed crate) (not (= a b))))"), capsys)
+    assert "(seal crate)" in plan
+    d, p = write(tmp_path, DOMAIN, PROBLEM.replace("(sealed crate)))", "(sealed crate) (= a b)))"))
+    assert main(["plan", str(d), str(p)]) == 1  # false in every state: unsolvable
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf", "x"])
+def test_function_values_must_be_finite_numbers(tmp_path: Path, value: str) -> None:
+    dom = DOMAIN.replace("(:action pack", "(:functions (weight ?i - item))\n  (:action pack").replace(
+        "(not (free ?i))))", "(not (free ?i)) (increase (total-cost) (weight ?i))))")
+    with pytest.raises(PDDLError, match="must be a finite number") as info:
+        load(tmp_path, dom, PROBLEM.replace("(free b))", f"(free b) (= (weight a) {value}))"))
+    assert info.value.line == 3
+    with pytest.raises(PDDLError, match="not a finite number"):
+        load(tmp_path, dom.replace("(weight ?i))))", "(* inf (weight ?i)))))"))

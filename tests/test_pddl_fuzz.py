@@ -20,7 +20,8 @@ from nowplan.io.pddl_read import load_pddl
 
 ROOT = Path(__file__).resolve().parent
 PAIRS = [(ROOT / "data" / "pddl_ipc_style" / f"{n}-domain.pddl", ROOT / "data" / "pddl_ipc_style" / f"{n}-p01.pddl")
-         for n in ("blocks", "miconic", "transport", "zenotravel", "tidybot", "briefcase", "rooms", "floortile")]
+         for n in ("blocks", "miconic", "transport", "zenotravel", "tidybot", "briefcase", "rooms", "floortile",
+                   "miconic-adl")]
 DATA = ROOT.parent / "src" / "nowplan" / "data" / "pddl"
 PAIRS += [(DATA / n / "domain.pddl", DATA / n / "p01.pddl") for n in ("logistics", "lights", "gripper")]
 TOKENS = re.compile(r"\(|\)|[^\s()]+")

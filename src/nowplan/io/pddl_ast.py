@@ -10,6 +10,7 @@ construct and its line: numeric conditions, numeric effects other than
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from nowplan.errors import PDDLError, UnsupportedPDDLError
@@ -291,10 +292,13 @@ class Reader:
     def numeric(self, item: Item, where: str) -> NExpr:
         if isinstance(item, Token):
             try:
-                return NConst(float(item.text))
+                value = float(item.text)
             except ValueError:
                 raise self.error(f"expected a number or a function term in {where}, got '{item.text}'",
                                  item.line) from None
+            if not math.isfinite(value):
+                raise self.error(f"'{item.text}' in {where} is not a finite number", item.line)
+            return NConst(value)
         head = item.head()
         if head in ("+", "-", "*", "/") and len(item) >= 2:
             return NOp(head, tuple(self.numeric(x, where) for x in item.items[1:]))

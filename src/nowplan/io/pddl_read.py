@@ -31,6 +31,7 @@ Modelling choices:
 from __future__ import annotations
 
 import logging
+import math
 from collections.abc import Iterable, Mapping
 from dataclasses import replace
 from pathlib import Path
@@ -253,8 +254,8 @@ def _read_init(p: ProblemDef, d: DomainDef, checker: Checker, known: Mapping[str
                 number = float(val.text) if isinstance(val, Token) else None
             except ValueError:
                 number = None
-            if number is None:
-                raise PDDLError(f"the value of {fn} in the initial state must be a number, got {val}",
+            if number is None or not math.isfinite(number):
+                raise PDDLError(f"the value of {fn} in the initial state must be a finite number, got {val}",
                                 path=p.path, line=line)
             if (fname, args) in values and values[(fname, args)] != number:
                 raise PDDLError(f"the initial state gives {fn} two values", path=p.path, line=line)
@@ -349,7 +350,7 @@ def load_pddl(
                   values, p.path)
     domain = _compile_domain(d, checker, world)
     goal_atoms: list[Atom] | None = None
-    if _is_conjunction(p.goal) and not (_preds(p.goal) & {dv.pred for dv in d.derived}):
+    if _is_conjunction(p.goal) and not (_preds(p.goal) & {EQUALITY, *(dv.pred for dv in d.derived)}):
         goal_atoms = _literals(p.goal)
     else:
         changed: set[str] = set()
