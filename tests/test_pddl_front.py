@@ -348,3 +348,10 @@ def test_function_values_must_be_finite_numbers(tmp_path: Path, value: str) -> N
     assert info.value.line == 3
     with pytest.raises(PDDLError, match="not a finite number"):
         load(tmp_path, dom.replace("(weight ?i))))", "(* inf (weight ?i)))))"))
+
+
+def test_byte_order_mark_crlf_and_latin1_comments(tmp_path: Path) -> None:
+    d, p = write(tmp_path, DOMAIN, PROBLEM)
+    d.write_bytes(b"\xef\xbb\xbf" + DOMAIN.replace("\n", "\r\n").encode())
+    p.write_bytes(b"; auteur: J\xe9r\xf4me\n" + PROBLEM.encode())
+    assert load_pddl(d, p).domain.name == "shop"

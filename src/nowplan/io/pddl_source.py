@@ -1,7 +1,7 @@
 """PDDL source files: reading them with one-line errors.
 
-:func:`read_source` reads a file's text; a missing file, a directory or
-undecodable bytes give a :class:`nowplan.errors.PDDLError` naming the path.
+:func:`read_source` reads a file's text (UTF-8 with or without a byte-order mark,
+else Latin-1, as in some old IPC files); a missing file or a directory give a :class:`nowplan.errors.PDDLError` naming the path.
 (The syntax is read by :mod:`nowplan.io.sexpr` and :mod:`nowplan.io.pddl_syntax`.)
 """
 
@@ -28,6 +28,11 @@ def read_source(path: str | Path) -> Source:
     if not p.is_file():
         raise PDDLError("not a regular file", path=str(path))
     try:
-        return Source(str(path), p.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as exc:
+        data = p.read_bytes()
+    except OSError as exc:
         raise PDDLError(f"cannot read the file: {' '.join(str(exc).split())}", path=str(path)) from exc
+    try:
+        text = data.decode("utf-8-sig")  # a byte-order mark is skipped
+    except UnicodeDecodeError:
+        text = data.decode("latin-1")  # e.g. an author's name in a comment of an old IPC file
+    return Source(str(path), text)
