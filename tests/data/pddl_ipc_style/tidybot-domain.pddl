@@ -1,8 +1,7 @@
 ;; tidybot (IPC-2011) style: object re-declared in :types, constants, negative preconditions
-(define (domain tidybot)
+(define (domain TIDYBOT)
   (:requirements :typing :equality :negative-preconditions)
-  (:types robot cart object - object
-          xc yc - object)
+  (:types robot cart object xc yc)
   (:constants cart1 - cart)
   (:predicates (base-pos ?r - robot ?x - xc ?y - yc)
                (object-pos ?o - object ?x - xc ?y - yc)
