@@ -45,7 +45,8 @@ class _NeedsObjects(Exception):
     pass
 
 
-def objects_of(checker: Checker, world: World | None):  # type: ignore[no-untyped-def]
+def objects_of(checker: Checker, world: World | None) -> Callable[[tuple[str, ...]], list[str]]:
+    """The objects (and constants) fitting some types; raises _NeedsObjects without a problem."""
     def objects_of(types: tuple[str, ...]) -> list[str]:
         if world is None:
             raise _NeedsObjects()
@@ -54,7 +55,8 @@ def objects_of(checker: Checker, world: World | None):  # type: ignore[no-untype
     return objects_of
 
 
-def static_value(static: frozenset[str], world: World | None):  # type: ignore[no-untyped-def]
+def static_value(static: frozenset[str], world: World | None) -> Callable[[adl.Lit], bool | None]:
+    """A ground literal's value when it is an equality or a static fact of the problem (else None)."""
     def value(lit: adl.Lit) -> bool | None:
         pred, args, v = lit
         if any(a.startswith("?") for a in args):

@@ -42,7 +42,7 @@ from nowplan.core.operators import Operator, Precondition
 from nowplan.core.state import State
 from nowplan.errors import ContradictoryGoalError, PDDLError, UnsupportedPDDLError
 from nowplan.io import pddl_adl as adl
-from nowplan.io.pddl_ast import TOTAL_COST, EAnd, Effect, EForall, ELit, EWhen, FAnd, FAtom, FNot, Formula
+from nowplan.io.pddl_ast import TOTAL_COST, EAnd, Reader, Effect, EForall, ELit, EWhen, FAnd, FAtom, FNot, Formula
 from nowplan.io.pddl_check import EQUALITY, Checker, warn_undeclared
 from nowplan.io.pddl_actions import World, atom_of, compile_action, objects_of, static_value
 from nowplan.io.pddl_source import read_source
@@ -271,23 +271,16 @@ def _read_init(p: ProblemDef, d: DomainDef, checker: Checker, known: Mapping[str
                                        "literals are not supported", path=p.path, line=line)
         if head in ("and", "or", "not", "forall", "exists", "when"):
             raise PDDLError(f"the initial state lists facts, not ({head} ...)", path=p.path, line=line)
-        r = adl_reader(p.path)
-        a = r.atom(item, "the initial state")
-        if a.pred == EQUALITY:
+        fact = Reader(p.path).atom(item, "the initial state")
+        if fact.pred == EQUALITY:
             raise PDDLError("equalities cannot be listed in the initial state", path=p.path, line=line)
-        checker.atom(a, "the initial state", {}, known, p.path)
-        atoms.append(Atom(a.pred, a.args, value))
+        checker.atom(fact, "the initial state", {}, known, p.path)
+        atoms.append(Atom(fact.pred, fact.args, value))
     positives = {a.key for a in atoms if a.value is True}
-    for a in atoms:
-        if a.value is False and a.key in positives:
-            raise PDDLError(f"the initial state lists both {a.negate()} and its negation", path=p.path)
+    for atom in atoms:
+        if atom.value is False and atom.key in positives:
+            raise PDDLError(f"the initial state lists both {atom.negate()} and its negation", path=p.path)
     return atoms, values
-
-
-def adl_reader(path: str):  # type: ignore[no-untyped-def]
-    from nowplan.io.pddl_ast import Reader
-
-    return Reader(path)
 
 
 def _is_conjunction(f: Formula) -> bool:
