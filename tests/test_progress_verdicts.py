@@ -84,7 +84,7 @@ def test_reproduce_prints_the_verdict_table_and_defaults_to_quick(
     monkeypatch.setitem(reproductions._REGISTRY, "003", Reproduction("003", "toy", run))
     assert cli_main(["reproduce", "003", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert "| extra travel % | -10 | – | – | not met |" in out
+    assert "| extra travel % | -10 | – | – | no paper figure; our target not met |" in out
     assert "a long note" not in out  # notes go to --out / --json, not the terminal
     assert (tmp_path / "verdicts.md").is_file()
     assert cli_main(["reproduce", "003", "--full", "--json"]) == 0

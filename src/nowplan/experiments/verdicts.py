@@ -36,7 +36,10 @@ class Comparison:
     def cells(self) -> list[str]:
         ours = self.ours_text or _num(self.ours)
         paper = self.paper_text or _num(self.paper)
-        return [self.quantity, ours, paper, self.target or "–", self.verdict.value]
+        verdict = self.verdict.value
+        if self.verdict is not Verdict.NO_PAPER_FIGURE and self.paper is None and paper.startswith("–"):
+            verdict = f"no paper figure; our target {verdict}"  # judged on the project's target alone
+        return [self.quantity, ours, paper, self.target or "–", verdict]
 
 
 def judged(quantity: str, ours: float | None, paper: float | None, *, at_least: float | None = None,

@@ -245,10 +245,12 @@ def execute(
     """
     stored = {_key(r): r for r in load_runs(runs_file)} if runs_file is not None else {}
     if stored_only:
-        return [stored[j[:4]] for j in jobs if j[:4] in stored]
+        found = [stored[j[:4]] for j in jobs if j[:4] in stored]
+        if bar is not None:
+            bar.update(len(jobs))
+        return found
     todo = [j for j in jobs if j[:4] not in stored]
     if bar is not None:
-        bar.reset(total=len(jobs))
         bar.update(len(jobs) - len(todo))
     log.info("seed 002: %d runs (%d stored) on %d processes", len(todo), len(jobs) - len(todo), workers)
     done: dict[tuple[str, int, int, str], dict[str, Any]] = {}
@@ -279,8 +281,6 @@ def reproduce(options: ReproductionOptions) -> ReproductionResult:
     t0 = time.perf_counter()
     bar = progress.bar(len(jobs) + 1, "reproduce 002")  # the runs, then the FF instance
     runs = execute(jobs, workers, options.runs_file, options.stored_only, bar)
-    bar.reset(total=len(jobs) + 1)
-    bar.update(len(jobs))
     bar.set_postfix_str("FF instance")
     fig3, fig4, summary = summarize(runs)
     ff = ff_rows(plan.time_limit)

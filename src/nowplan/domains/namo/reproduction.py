@@ -230,7 +230,7 @@ def comparisons(rows: Sequence[dict[str, Any]]) -> list[Comparison]:
     out = [
         judged("selective / original BHPN planning time (Avg)", sel, ps["time_ratio"], at_most=0.7,
                target="<= 0.7"),
-        judged("selective / aggressive planning time (Avg)", sel / agg if sel is not None and agg else None,
+        judged("selective / aggressive planning time (Avg)", round(sel / agg, 2) if sel is not None and agg else None,
                round(ps["time_ratio"] / pa["time_ratio"], 2), at_most=0.5, target="<= 0.5"),
     ]
     for key, label in (("picks_places", "picks/places"), ("looks", "looks"), ("moves", "moves")):
