@@ -117,3 +117,20 @@ def test_seed_004_verdicts_check_the_order() -> None:
     cs = comparisons(rows, [dict(r) for r in PAPERS["004"].rows])
     assert [c.verdict for c in cs] == [Verdict.MET, Verdict.NOT_MET]  # Both 100 %, Deferred below Neither
     assert cs[1].ours_text == "100 / 100 / 66.7 / 100" and cs[1].paper_text == "20 / 40 / 56 / 100"
+
+
+def test_printed_tree_shows_a_same_goal_refinement_once() -> None:
+    from nowplan.tree import render_text
+
+    goal = ["at(p, b)"]
+    events = [
+        {"event": "plan", "plan_id": 1, "parent": None, "goal": goal, "method": "m", "cost": 1.0,
+         "steps": [{"index": 0}, {"index": 1, "action": "(move a b)", "hidden": 1}]},
+        {"event": "plan", "plan_id": 2, "parent": 1, "parent_step": 1, "goal": goal, "method": "m", "cost": 1.0,
+         "steps": [{"index": 0}, {"index": 1, "action": "(move a b)", "primitive": True}]},
+        {"event": "action", "plan_id": 2, "index": 1},
+    ]
+    text = render_text(events)
+    assert text.splitlines() == ["plan 1 -> 2 (m) for at(p, b)", "  * 1. (move a b)  <prim>"]
+    other = [dict(events[0]), {**events[1], "goal": ["at(p, c)"]}]
+    assert len(render_text(other).splitlines()) == 4  # different goals: nested as before

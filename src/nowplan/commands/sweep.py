@@ -33,11 +33,13 @@ def register(sub: Any) -> None:
                    help="seconds per run (default 600); a run that overruns it is stopped and recorded")
     p.add_argument("--address", help="Ray cluster to join ('auto' or HOST:PORT); needs --backend ray")
     p.add_argument("--retry-errors", action="store_true", help="run again the configurations that crashed")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress bar (there is none either when standard error is not a terminal)")
     p.set_defaults(func=main)
 
 
 def main(args: argparse.Namespace) -> int:
+    from nowplan.experiments.progress import wanted
     from nowplan.experiments.store import Store
     from nowplan.experiments.sweep import (
         SweepSpec,
@@ -62,7 +64,7 @@ def main(args: argparse.Namespace) -> int:
     with Store(args.store) as store:
         result = run_sweep(
             spec, store, backend, retry_errors=args.retry_errors,
-            progress=not args.no_progress, progress_file=sys.stderr,
+            progress=not args.no_progress and wanted(sys.stderr), progress_file=sys.stderr,
         )
     print(result.summary())
     if result.state is not SweepState.COMPLETE:
