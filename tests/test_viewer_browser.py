@@ -140,3 +140,45 @@ def test_frames_and_hostile_strings(browser: Any, tmp_path: Path) -> None:
     assert link.get_attribute("href").endswith("#frame-11")
     link.click()
     assert browser.execute_script("return location.hash") == "#frame-11"
+
+
+DEMOS = ("logistics", "namo", "pieces", "marsupial", "kitchen")
+
+
+@pytest.fixture(scope="module")
+def demo_pages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    """Each demo run once into a scratch folder; its viewer page by domain."""
+    import contextlib
+    import io as _io
+
+    from nowplan.cli import main as cli_main
+
+    root = tmp_path_factory.mktemp("demos")
+    pages = {}
+    for domain in DEMOS:
+        with contextlib.redirect_stdout(_io.StringIO()):
+            assert cli_main(["demo", domain, "--out", str(root / domain)]) == 0
+        pages[domain] = root / domain / "trace.html"
+    return pages
+
+
+@pytest.mark.slow
+@pytest.mark.timeout(600)
+@pytest.mark.parametrize("domain", DEMOS)
+def test_each_demo_page_shows_plans_timeline_and_frames(browser: Any, demo_pages: dict[str, Path],
+                                                       domain: str, tmp_path: Path) -> None:
+    logs = _open(browser, demo_pages[domain])
+    assert _errors(logs) == [], logs
+    assert _count(browser, "#tree .plan:not(.root)") >= 1  # the plans
+    assert _count(browser, "#timeline li.ev-action") >= 1  # the timeline
+    images = browser.execute_script(
+        "return [...document.querySelectorAll('#frames img')].map(i => [i.complete, i.naturalWidth])")
+    assert images and all(done and width > 0 for done, width in images)  # the frames decode
+    # no plan box runs off the page: wide plans scroll inside their box
+    overflow = browser.execute_script(
+        "const w = document.getElementById('tree').getBoundingClientRect().right + 1;"
+        "return [...document.querySelectorAll('#tree .plan')].filter(p => p.getBoundingClientRect().right > w)"
+        ".length")
+    assert overflow == 0
+    shot = tmp_path / f"{domain}.png"
+    assert browser.save_screenshot(str(shot)) and shot.stat().st_size > 10_000
