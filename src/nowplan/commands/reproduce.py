@@ -37,7 +37,8 @@ def register(sub: Any) -> None:
                    help="write the report, the verdict table (verdicts.md) and plots into this directory")
     p.add_argument("--jobs", type=int, help="worker processes (default 2)")
     p.add_argument("--sizes", type=_sizes,
-                   help="seed 002: package counts, e.g. 3-10 or 3,5,7 (default 3,5; --full 3-10)")
+                   help="seed 002: package counts, e.g. 3-10 or 3,5,7 (default 3,5; --full 3-10); with --sizes "
+                        "or --trials each run has the full setting's 600 CPU-s limit (quick set: 120)")
     p.add_argument("--trials", type=int, help="seed 002: trials per regime and size (default 2; --full 10)")
     p.add_argument("--runs", type=Path, metavar="FILE",
                    help="seed 002: append every finished run to this JSON-lines file and skip the runs "

@@ -207,7 +207,9 @@ def plan_for(options: ReproductionOptions) -> Plan:
     from nowplan.domains.marsupial.scenarios import MAX_PACKAGES
     from nowplan.errors import UsageError
 
-    base = QUICK if options.quick else FULL
+    # choosing sizes or trials is a run of the paper's kind: it keeps the full setting's CPU limit
+    chosen = options.sizes is not None or options.trials is not None
+    base = QUICK if options.quick and not chosen else FULL
     sizes = options.sizes or base.sizes
     bad = [n for n in sizes if not 1 <= n <= MAX_PACKAGES]
     if bad:
