@@ -134,3 +134,19 @@ def test_printed_tree_shows_a_same_goal_refinement_once() -> None:
     assert text.splitlines() == ["plan 1 -> 2 (m) for at(p, b)", "  * 1. (move a b)  <prim>"]
     other = [dict(events[0]), {**events[1], "goal": ["at(p, c)"]}]
     assert len(render_text(other).splitlines()) == 4  # different goals: nested as before
+
+
+def test_a_long_command_draws_its_bar_before_loading_the_domains(tmp_path: Path) -> None:
+    """`reproduce` on a terminal shows a line at once (here forced off a terminal); the seed is
+    made unknown so that nothing runs after the domains are loaded."""
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, NOWPLAN_PROGRESS="1")
+    proc = subprocess.run([sys.executable, "-c", "import sys; from nowplan.cli import main; sys.exit(main())",
+                           "reproduce", "001"], capture_output=True, text=True, env=env, timeout=120)
+    assert proc.returncode == 2
+    err = proc.stderr
+    assert "reproduce 001: loading the domains [00:00]" in err and "unknown seed '001'" in err
+    assert err.index("loading the domains") < err.index("unknown seed")

@@ -67,8 +67,15 @@ def _sizes(text: str) -> tuple[int, ...]:
 
 
 def main(args: argparse.Namespace) -> int:
-    from nowplan.experiments.reproductions import ReproductionOptions, ReproStatus, reproduce
+    from nowplan.experiments import progress
 
+    loading = progress.starting(f"reproduce {args.seed}")  # importing the domains takes a second or two
+    try:
+        from nowplan.experiments.reproductions import ReproductionOptions, ReproStatus, registered, reproduce
+
+        registered()
+    finally:
+        loading.close()
     if args.jobs is not None and args.jobs < 1 or args.trials is not None and args.trials < 1:
         print("nowplan reproduce: --jobs and --trials must be at least 1", file=sys.stderr)
         return 2

@@ -28,14 +28,20 @@ def wanted(stream: TextIO | None = None) -> bool:
 
 
 def bar(total: int | None, desc: str, unit: str = "run", *, initial: int = 0,
-        stream: TextIO | None = None, enabled: bool | None = None) -> Any:
+        stream: TextIO | None = None, enabled: bool | None = None, leave: bool = True,
+        bar_format: str | None = None) -> Any:
     """A tqdm bar for ``total`` steps called ``desc``; a no-op bar when progress is not wanted."""
     from tqdm import tqdm
 
     out = stream if stream is not None else sys.stderr
     on = wanted(out) if enabled is None else enabled
     return tqdm(total=total, initial=initial, desc=desc, unit=unit, file=out, disable=not on,
-                dynamic_ncols=True, mininterval=0.25, leave=True)
+                dynamic_ncols=True, mininterval=0.25, leave=leave, bar_format=bar_format)
+
+
+def starting(desc: str, what: str = "loading the domains", enabled: bool | None = None) -> Any:
+    """A bar without a total, drawn at once while a command loads what it needs; close it after."""
+    return bar(None, f"{desc}: {what}", "step", leave=False, enabled=enabled, bar_format="{desc} [{elapsed}]")
 
 
 def echo(line: str) -> None:
