@@ -103,9 +103,13 @@ def _plot(comparisons: Sequence[Comparison], title: str, path: Path) -> None:
     n = max(len(pairs), 1)
     fig, ax = plt.subplots(figsize=(7.5, 0.4 * n + 1.4))
     colours = {Verdict.MET: "#3a9d5d", Verdict.NOT_MET: "#d05050", Verdict.NO_PAPER_FIGURE: "#999999"}
-    ax.barh(range(len(pairs)), [r for _, r in pairs], color=[colours[c.verdict] for c, _ in pairs])
+    ratios = [r for _, r in pairs]
+    # each bar runs from 1 (the paper's figure) to ours / the paper's, left or right of the line
+    ax.barh(range(len(pairs)), [r - 1.0 for r in ratios], left=1.0, color=[colours[c.verdict] for c, _ in pairs])
     ax.axvline(1.0, color="black", linewidth=0.8)
     ax.set_xscale("log")
+    span = max([abs(math.log10(r)) for r in ratios] + [0.05]) * 1.15
+    ax.set_xlim(10 ** -span, 10 ** span)
     ax.set_yticks(list(range(len(pairs))))
     ax.set_yticklabels([f"{c.quantity} [{c.verdict.value}]" for c, _ in pairs], fontsize=7)
     ax.invert_yaxis()
