@@ -38,6 +38,7 @@ for _p in (ROOT, ROOT / "src"):  # this checkout's nowplan and benchmarks packag
 from benchmarks.classical.generate import DOMAINS, domain_file, instance_files  # noqa: E402
 from benchmarks.classical.harness import Run, check_plan, fd_driver, run_fd, run_nowplan  # noqa: E402
 from benchmarks.classical.summary import FD, OURS, markdown, read_csv, write_csv  # noqa: E402
+from nowplan.experiments import progress  # noqa: E402
 
 OUT = ROOT / "benchmarks" / "results" / "classical"
 log = logging.getLogger("classical")
@@ -90,10 +91,8 @@ def _describe(r: dict[str, Any]) -> str:
 
 def run_all(tasks: list[tuple[str, Path]], limit: float, memory_mb: int | None, extra: list[str]) -> list[dict[str, Any]]:
     bar: Any = None
-    if sys.stderr.isatty():
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(tasks), unit="instance", file=sys.stderr)
+    if progress.wanted(sys.stderr):  # a terminal (or NOWPLAN_PROGRESS=1): a bar, else a line per instance
+        bar = progress.bar(len(tasks), "classical", unit="instance")
     rows: list[dict[str, Any]] = []
     for domain, problem in tasks:
         if bar is not None:

@@ -29,6 +29,7 @@ from nowplan.acting.run import run_episode
 from nowplan.acting.strategy import parse_strategy
 from nowplan.belief.symbolic import SymbolicBelief
 from nowplan.core.levels import flat_levels
+from nowplan.experiments import progress
 from nowplan.domains.registry import Episode
 from nowplan.io.logistics_gen import generate_logistics
 from nowplan.io.pddl_read import load_pddl
@@ -101,18 +102,22 @@ def main() -> int:
     sizes = SIZES[:3] if args.quick else SIZES
     args.out.mkdir(parents=True, exist_ok=True)
     rows: list[dict[str, object]] = []
+    bar = progress.bar(len(sizes) * len(seeds) * len(PLANNERS), "flat_logistics")
     with tempfile.TemporaryDirectory() as tmp:
         for c, l, a, n in sizes:
             for seed in seeds:
                 prob = Path(tmp) / f"p-c{c}-l{l}-a{a}-n{n}-s{seed}.pddl"
                 prob.write_text(generate_logistics(c, l, a, n, seed=seed))
                 for name, fn in PLANNERS.items():
+                    bar.set_postfix_str(f"{n} packages, seed {seed}, {name}", refresh=False)
                     status, secs, cost = fn(DATA / "domain.pddl", prob, args.time_limit)
                     row = {"planner": name, "cities": c, "locations": l, "airplanes": a, "packages": n,
                            "seed": seed, "status": status, "seconds": round(secs, 4),
                            "cost": "" if cost is None else cost}
                     rows.append(row)
-                    print(row, flush=True)
+                    progress.echo(str(row))
+                    bar.update(1)
+    bar.close()
     csv_path = args.out / "flat_logistics.csv"
     with csv_path.open("w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))

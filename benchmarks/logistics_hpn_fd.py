@@ -34,6 +34,7 @@ from nowplan.acting.run import run_episode  # noqa: E402
 from nowplan.acting.strategy import parse_strategy  # noqa: E402
 from nowplan.belief.symbolic import SymbolicBelief  # noqa: E402
 from nowplan.core.levels import flat_levels  # noqa: E402
+from nowplan.experiments import progress  # noqa: E402
 from nowplan.domains.registry import Episode  # noqa: E402
 from nowplan.io.logistics_gen import generate_logistics  # noqa: E402
 from nowplan.io.pddl_read import load_pddl  # noqa: E402
@@ -68,10 +69,13 @@ def main() -> int:
     ap.add_argument("--out", type=Path, default=Path(__file__).resolve().parent / "results")
     args = ap.parse_args()
     rows: list[dict[str, object]] = []
+    sizes, seeds = [int(x) for x in args.packages.split(",")], [int(s) for s in args.seeds.split(",")]
+    bar = progress.bar(len(sizes) * len(seeds), "logistics_hpn_fd", unit="problem")
     with tempfile.TemporaryDirectory() as tmp:
-        for n in (int(x) for x in args.packages.split(",")):
+        for n in sizes:
             c, loc, air = SIZES[n]
-            for seed in (int(s) for s in args.seeds.split(",")):
+            for seed in seeds:
+                bar.set_postfix_str(f"{n} packages, seed {seed}", refresh=False)
                 prob = Path(tmp) / f"logistics-{n}-{seed}.pddl"
                 prob.write_text(generate_logistics(c, loc, air, n, seed=seed))
                 ok_h, t_h, c_h = run_hpn(prob, args.time_limit)
@@ -82,7 +86,9 @@ def main() -> int:
                        "fd_ok": fd.solved, "fd_wall_s": round(fd.wall_s, 3), "fd_cost": fd.cost,
                        "hpn_over_fd": round(t_h / fd.wall_s, 3) if fd.solved else ""}
                 rows.append(row)
-                print(row, flush=True)
+                progress.echo(str(row))
+                bar.update(1)
+    bar.close()
     args.out.mkdir(parents=True, exist_ok=True)
     with (args.out / "logistics_hpn_fd.csv").open("w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))

@@ -45,6 +45,7 @@ from nowplan.belief.symbolic import SymbolicBelief
 from nowplan.domains.marsupial.flatcmp import timed_run
 from nowplan.domains.marsupial.scenarios import episode
 from nowplan.domains.registry import Episode
+from nowplan.experiments import progress
 from nowplan.io.logistics_gen import generate_logistics
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning.regression import PlannerConfig
@@ -241,6 +242,7 @@ def main() -> int:
                 jobs.append(lambda n=n, s=seed: logistics_run(n, s, args.limit_s, ctr))
     prof = cProfile.Profile() if args.profile else None
     rows = []
+    bar = progress.bar(len(jobs), "planner_profile")
     for job in jobs:
         if prof is not None:
             prof.enable()
@@ -250,10 +252,12 @@ def main() -> int:
         if args.tag:
             r["tag"] = args.tag
         rows.append(r)
-        print(json.dumps(r), flush=True)
+        progress.echo(json.dumps(r))
+        bar.update(1)
         if args.out:
             with args.out.open("a") as fh:
                 fh.write(json.dumps(r) + "\n")
+    bar.close()
     if prof is not None:
         buf = io.StringIO()
         st = pstats.Stats(prof, stream=buf)

@@ -83,17 +83,22 @@ def test_logistics_trace_tree_and_timeline(browser: Any, tmp_path: Path) -> None
     logs = _open(browser, page)
     assert _errors(logs) == [], logs
     assert browser.execute_script("return performance.getEntriesByType('resource').length") == 0
-    assert _count(browser, ".plan:not(.root):not(.failed-plan)") == 23
+    # 23 plans, of which 3 -> 4 and 22 -> 23 are one-step plans refined for the same goal: shown once
+    assert _count(browser, ".plan:not(.root):not(.failed-plan)") == 21
+    assert _count(browser, "#plan-3, #plan-22") == 0
+    assert browser.find_element(By.CSS_SELECTOR, "#plan-4 > .plan-head .plan-title").text == "Plan 3 → 4"
+    root_head = browser.find_element(By.CSS_SELECTOR, "#plan-root > .plan-head").text
+    assert "The run's goal" in root_head and "None" not in root_head
     assert _count(browser, "#plan-root > .children > .branch > .plan") == 4  # the first plan and 3 replans
     replans = browser.find_element(By.CSS_SELECTOR, "#plan-root > .plan-head .badge.replan").text
     assert replans == "replan ← failure: a plan was popped before finishing ×3"
     step = browser.find_element(By.ID, "p4-s1")
     assert "(drive_truck truck1 c1-l2 c1-l0 c1)" in step.text and "executed" in step.get_attribute("class")
     assert "primitive" in step.get_attribute("class")
-    # plan 4 hangs under step 1 of plan 3, which it refines
+    # plan 4 (shown for plan 3) hangs under step 1 of plan 2, which plan 3 refines
     assert browser.execute_script(
         "return document.getElementById('plan-4').parentElement.parentElement.parentElement.id"
-    ) == "plan-3"
+    ) == "plan-2"
     assert "popped: not applicable" in browser.find_element(By.CSS_SELECTOR, "#plan-1 > .plan-head .badge.pop").text
     assert _count(browser, "#plan-1 > .steps .node.op.unselected") == 4  # steps 3-6 never reached
     assert _count(browser, "#tree .node.op.failed") == 3
@@ -135,3 +140,45 @@ def test_frames_and_hostile_strings(browser: Any, tmp_path: Path) -> None:
     assert link.get_attribute("href").endswith("#frame-11")
     link.click()
     assert browser.execute_script("return location.hash") == "#frame-11"
+
+
+DEMOS = ("logistics", "namo", "pieces", "marsupial", "kitchen")
+
+
+@pytest.fixture(scope="module")
+def demo_pages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    """Each demo run once into a scratch folder; its viewer page by domain."""
+    import contextlib
+    import io as _io
+
+    from nowplan.cli import main as cli_main
+
+    root = tmp_path_factory.mktemp("demos")
+    pages = {}
+    for domain in DEMOS:
+        with contextlib.redirect_stdout(_io.StringIO()):
+            assert cli_main(["demo", domain, "--out", str(root / domain)]) == 0
+        pages[domain] = root / domain / "trace.html"
+    return pages
+
+
+@pytest.mark.slow
+@pytest.mark.timeout(600)
+@pytest.mark.parametrize("domain", DEMOS)
+def test_each_demo_page_shows_plans_timeline_and_frames(browser: Any, demo_pages: dict[str, Path],
+                                                       domain: str, tmp_path: Path) -> None:
+    logs = _open(browser, demo_pages[domain])
+    assert _errors(logs) == [], logs
+    assert _count(browser, "#tree .plan:not(.root)") >= 1  # the plans
+    assert _count(browser, "#timeline li.ev-action") >= 1  # the timeline
+    images = browser.execute_script(
+        "return [...document.querySelectorAll('#frames img')].map(i => [i.complete, i.naturalWidth])")
+    assert images and all(done and width > 0 for done, width in images)  # the frames decode
+    # no plan box runs off the page: wide plans scroll inside their box
+    overflow = browser.execute_script(
+        "const w = document.getElementById('tree').getBoundingClientRect().right + 1;"
+        "return [...document.querySelectorAll('#tree .plan')].filter(p => p.getBoundingClientRect().right > w)"
+        ".length")
+    assert overflow == 0
+    shot = tmp_path / f"{domain}.png"
+    assert browser.save_screenshot(str(shot)) and shot.stat().st_size > 10_000

@@ -62,14 +62,34 @@ def build_tree(events: Iterable[dict[str, Any]]) -> tuple[list[PlanNode], dict[i
     return roots, nodes
 
 
+def same_goal_child(node: PlanNode) -> PlanNode | None:
+    """The one sub-plan of a one-step plan, when it is for the same goal (shown once, not nested)."""
+    real = node.steps[1:]
+    if len(real) != 1:
+        return None
+    kids = node.children.get(int(real[0]["index"]), [])
+    if len(kids) != 1 or kids[0].goal != node.goal or kids[0] is node:
+        return None
+    return kids[0]
+
+
 def render_text(events: Iterable[dict[str, Any]], max_lines: int = 400) -> str:
-    """An indented text rendering of the tree (``*`` marks executed steps)."""
+    """An indented text rendering of the tree (``*`` marks executed steps).
+
+    A one-step plan refined into one plan for the same goal is printed once, as
+    ``plan 4 -> 5``: the nesting would repeat the same goal and step.
+    """
     roots, _ = build_tree(events)
     lines: list[str] = []
 
     def emit(node: PlanNode, indent: str) -> None:
+        merged: list[int] = []
+        while (child := same_goal_child(node)) is not None:
+            merged.append(node.plan_id)
+            node = child
         popped = f"  [popped: {node.pop_reason}]" if node.pop_reason and node.pop_reason != "done" else ""
-        lines.append(f"{indent}plan {node.plan_id} ({node.method}) for {' & '.join(node.goal) or 'True'}{popped}")
+        ids = "".join(f"{m} -> " for m in merged) + str(node.plan_id)
+        lines.append(f"{indent}plan {ids} ({node.method}) for {' & '.join(node.goal) or 'True'}{popped}")
         for s in node.steps[1:]:
             idx = int(s["index"])
             mark = "*" if idx in node.executed else " "

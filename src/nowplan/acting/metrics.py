@@ -49,5 +49,6 @@ class Metrics:
             f"execution cost: {self.execution_cost:g}\n"
             f"plans made: {self.plans_made}, replans: {self.replans}, "
             f"planner failures: {self.plan_failures}\n"
-            f"planning CPU time: {self.planning_cpu_s:.3f} s, wall time: {self.wall_s:.3f} s"
+            f"planning CPU time: {self.planning_cpu_s:.3f} s; wall time of the whole run: {self.wall_s:.3f} s "
+            "(planning, acting, the simulated world, and drawing frames if any)"
         )

@@ -14,6 +14,8 @@ from nowplan.domains.registry import domain_names, get_domain
 from nowplan.errors import ScenarioError
 from nowplan.trace import Trace
 from nowplan.tree import render_text
+from nowplan.domains.logistics.render import render_png
+from nowplan.viz.animation import frames_of, write_captioned_gif
 from nowplan.viz.viewer import write_viewer
 
 
@@ -56,13 +58,19 @@ def main(args: argparse.Namespace) -> int:
     print(f"goal: {ep.problem.goal}\n")
     args.out.mkdir(parents=True, exist_ok=True)
     trace_path = args.out / "trace.jsonl"
-    with Trace(trace_path) as trace:
-        metrics = run_episode(ep, parse_strategy("hpn"), seed=args.seed, trace=trace)
+    with Trace(trace_path) as trace:  # a frame of the world after every action (the animation)
+        metrics = run_episode(ep, parse_strategy("hpn"), seed=args.seed, trace=trace, render=render_png)
     print("plan tree (* = step executed or refined; <abs-k> = k criticality classes still hidden):")
     print(render_text(trace.events, max_lines=120))
     print()
     print(metrics.summary())
     print(f"\ntrace: {trace_path}")
+    pngs, captions = frames_of(trace.events)
+    if pngs:
+        header = ("Logistics: cities as rings of locations (airports pink), trucks blue squares, airplanes "
+                  "orange triangles (their load in brackets), packages green discs; one frame per action.")
+        gif = write_captioned_gif(pngs, args.out / "logistics.gif", header, captions, ms_per_frame=500)
+        print(f"animation: {gif} ({len(pngs)} frames)")
     page = args.out / "trace.html"
     write_viewer(trace_path, page)
     print(f"viewer: {page} (open it in a browser)")

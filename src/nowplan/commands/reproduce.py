@@ -21,22 +21,31 @@ def register(sub: Any) -> None:
         description=(
             "Run the experiments behind a seed paper's table and compare with the paper's numbers. "
             "Seeds: " + "; ".join(f"{s} = {p.system}" for s, p in sorted(PAPERS.items())) + ". "
+            "By default the quick set runs (minutes on 2 cores; the times per seed are in the README); "
+            "--full runs the paper's setting (up to hours). Ends with a markdown table, ours beside "
+            "the paper's, with a verdict per figure. "
             "A seed whose domain has not landed says so and exits with code 3."
         ),
     )
     p.add_argument("seed", help="000, 002, 003 or 004")
-    p.add_argument("--quick", action="store_true", help="a small version (a few minutes on 2 cores)")
-    p.add_argument("--out", type=Path, help="write a report (ours beside the paper's) into this directory")
+    size = p.add_mutually_exclusive_group()
+    size.add_argument("--quick", action="store_true",
+                      help="the quick set (the default; kept so older commands still run)")
+    size.add_argument("--full", action="store_true",
+                      help="the paper's setting: many more runs (seed 002 takes hours, 004 about an hour)")
+    p.add_argument("--out", type=Path,
+                   help="write the report, the verdict table (verdicts.md) and plots into this directory")
     p.add_argument("--jobs", type=int, help="worker processes (default 2)")
     p.add_argument("--sizes", type=_sizes,
-                   help="seed 002: package counts, e.g. 3-10 or 3,5,7 (default 3-10; --quick 3,5)")
-    p.add_argument("--trials", type=int, help="seed 002: trials per regime and size (default 10; --quick 2)")
+                   help="seed 002: package counts, e.g. 3-10 or 3,5,7 (default 3,5; --full 3-10); with --sizes "
+                        "or --trials each run has the full setting's 600 CPU-s limit (quick set: 120)")
+    p.add_argument("--trials", type=int, help="seed 002: trials per regime and size (default 2; --full 10)")
     p.add_argument("--runs", type=Path, metavar="FILE",
                    help="seed 002: append every finished run to this JSON-lines file and skip the runs "
                         "it already holds (resume an interrupted run, or summarise stored runs)")
     p.add_argument("--stored", action="store_true",
                    help="seed 002: run nothing; summarise the runs already in --runs FILE that the "
-                        "plan (--quick/--sizes/--trials) names (points may then have fewer trials)")
+                        "plan (--full/--sizes/--trials) names (points may then have fewer trials)")
     p.add_argument("--json", action="store_true",
                    help='print one JSON document {"seed", "rows", "paper", "notes", …}')
     p.set_defaults(func=main)
@@ -58,16 +67,25 @@ def _sizes(text: str) -> tuple[int, ...]:
 
 
 def main(args: argparse.Namespace) -> int:
-    from nowplan.experiments.reproductions import ReproductionOptions, ReproStatus, reproduce
+    from nowplan.experiments import progress
 
+    loading = progress.starting(f"reproduce {args.seed}")  # importing the domains takes a second or two
+    try:
+        from nowplan.experiments.reproductions import ReproductionOptions, ReproStatus, registered, reproduce
+
+        registered()
+    finally:
+        loading.close()
     if args.jobs is not None and args.jobs < 1 or args.trials is not None and args.trials < 1:
         print("nowplan reproduce: --jobs and --trials must be at least 1", file=sys.stderr)
         return 2
     if args.stored and args.runs is None:
         print("nowplan reproduce: --stored needs --runs FILE (the stored runs to summarise)", file=sys.stderr)
         return 2
+    from nowplan.experiments.verdicts import markdown_table, tally
+
     result = reproduce(args.seed, ReproductionOptions(
-        quick=args.quick, out_dir=args.out, jobs=args.jobs, sizes=args.sizes, trials=args.trials,
+        quick=not args.full, out_dir=args.out, jobs=args.jobs, sizes=args.sizes, trials=args.trials,
         runs_file=args.runs, stored_only=args.stored))
     done = result.status is ReproStatus.DONE
     if args.json:
@@ -76,11 +94,18 @@ def main(args: argparse.Namespace) -> int:
         print(f"nowplan reproduce: {result.notes}", file=sys.stderr)
         return NOT_IMPLEMENTED_EXIT
     if not args.json:
-        print(result.title)
-        for row in result.rows:
-            print("  " + ", ".join(f"{k}={v}" for k, v in row.items()))
-        if result.notes:
-            print(result.notes)
+        which = ("full" if args.full else "chosen sizes/trials" if args.sizes or args.trials
+                 else "quick set; --full for the paper's setting")
+        print(f"# {result.title} ({'from stored runs, ' if args.stored else ''}{which})")
+        print()
+        if result.comparisons:
+            print(markdown_table(result.comparisons))
+            print()
+            print(tally(result.comparisons) + ".")
+        else:
+            print("(no figure to judge: see the rows with --json)")
+        if args.out is None:
+            print("Rows, notes on how our setting differs, and plots: add --out DIR (or --json).")
         for path in result.outputs:
             print(f"wrote {path}")
     return 0

@@ -94,6 +94,13 @@ def main(args: argparse.Namespace) -> int:
         if args.pddl or get_domain(args.domain).renderer is None:
             raise UsageError("--frames: this problem's domain has no renderer; drop --frames")
         render = get_domain(args.domain).renderer
+    if not args.json:  # say what runs before it runs (a run may take a while)
+        where = f"domain {args.domain}, scenario {args.scenario or get_domain(args.domain).default_scenario}" \
+            if not args.pddl else f"domain file {args.pddl[0]}"
+        print(f"nowplan run: {episode.description} ({where}); strategy {args.strategy}, seed {args.seed}",
+              flush=True)
+        goal = str(episode.problem.goal)
+        print(f"goal: {goal if len(goal) <= 300 else goal[:297] + '...'}\n", flush=True)
     with Trace(args.trace) as trace:
         metrics = run_episode(episode, strategy, seed=args.seed, trace=trace, render=render, every=args.frames or 1)
     if args.json:

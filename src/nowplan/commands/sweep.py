@@ -33,36 +33,44 @@ def register(sub: Any) -> None:
                    help="seconds per run (default 600); a run that overruns it is stopped and recorded")
     p.add_argument("--address", help="Ray cluster to join ('auto' or HOST:PORT); needs --backend ray")
     p.add_argument("--retry-errors", action="store_true", help="run again the configurations that crashed")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress bar (there is none either when standard error is not a terminal)")
     p.set_defaults(func=main)
 
 
 def main(args: argparse.Namespace) -> int:
-    from nowplan.experiments.store import Store
-    from nowplan.experiments.sweep import (
-        SweepSpec,
-        SweepState,
-        make_backend,
-        parse_names,
-        parse_seeds,
-        run_sweep,
-    )
+    from nowplan.experiments.progress import starting, wanted
 
-    spec = SweepSpec(
-        domain=args.domain,
-        scenarios=tuple(parse_names(args.scenario, "scenarios")),
-        strategies=tuple(parse_names(args.strategies, "strategies")),
-        seeds=tuple(parse_seeds(args.seeds)),
-        time_limit=args.time_limit,
-    )
-    spec.validate()  # before touching the store: bad names are one-line errors
+    show = not args.no_progress and wanted(sys.stderr)
+    loading = starting(f"sweep {args.domain}", enabled=show)  # loading the domain takes a second or two
+    try:
+        from nowplan.experiments.store import Store
+        from nowplan.experiments.sweep import (
+            SweepSpec,
+            SweepState,
+            make_backend,
+            parse_names,
+            parse_seeds,
+            run_sweep,
+        )
+
+        spec = SweepSpec(
+            domain=args.domain,
+            scenarios=tuple(parse_names(args.scenario, "scenarios")),
+            strategies=tuple(parse_names(args.strategies, "strategies")),
+            seeds=tuple(parse_seeds(args.seeds)),
+            time_limit=args.time_limit,
+        )
+        spec.validate()  # before touching the store: bad names are one-line errors
+    finally:
+        loading.close()
     if args.address and args.backend != "ray":
         raise ScenarioError("--address is for the Ray backend; add --backend ray")
     backend = make_backend(args.backend, args.jobs, args.address)
     with Store(args.store) as store:
         result = run_sweep(
             spec, store, backend, retry_errors=args.retry_errors,
-            progress=not args.no_progress, progress_file=sys.stderr,
+            progress=show, progress_file=sys.stderr,
         )
     print(result.summary())
     if result.state is not SweepState.COMPLETE:

@@ -21,6 +21,7 @@ from typing import Any
 from nowplan.errors import ScenarioError
 from nowplan.experiments.papers import PAPERS, SeedPaper
 from nowplan.experiments.report import Table, table
+from nowplan.experiments.verdicts import Comparison
 
 log = logging.getLogger(__name__)
 
@@ -39,6 +40,8 @@ class ReproductionResult:
     notes: str = ""
     title: str = ""
     outputs: list[Path] = field(default_factory=list)  # report files written, if any
+    # the figures the reproduction is judged on: ours beside the paper's, met or not (verdicts.py)
+    comparisons: list[Comparison] = field(default_factory=list)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -48,12 +51,14 @@ class ReproductionResult:
             "rows": self.rows,
             "paper": self.paper,
             "notes": self.notes,
+            "verdicts": [{"what": c.quantity, "ours": c.ours, "paper": c.paper, "target": c.target,
+                          "verdict": c.verdict.value} for c in self.comparisons],
         }
 
 
 @dataclass(frozen=True)
 class ReproductionOptions:
-    quick: bool = False  # a small version: a few minutes on 2 cores
+    quick: bool = False  # a small version: a few minutes on 2 cores (the CLI's default; --full clears it)
     out_dir: Path | None = None  # write a report (ours beside the paper's) here
     jobs: int | None = None
     # seed 002 (others ignore these): package counts and trials per point, and a JSON-lines file
@@ -124,10 +129,15 @@ def reproduce(seed: str, options: ReproductionOptions | None = None) -> Reproduc
     repro = _REGISTRY.get(s)
     if repro is None:
         return not_implemented(paper)
-    result = repro.run(options or ReproductionOptions())
+    opts = options or ReproductionOptions()
+    result = repro.run(opts)
     if not result.paper:
         result.paper = [dict(r) for r in paper.rows]
     result.title = result.title or repro.title
+    if opts.out_dir is not None and result.comparisons:
+        from nowplan.experiments.verdicts import write
+
+        result.outputs.extend(write(result.comparisons, result.title, opts.out_dir))
     return result
 
 

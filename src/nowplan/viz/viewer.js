@@ -185,8 +185,10 @@
     toggle.type = 'button';
     toggle.title = 'collapse / expand the sub-plans';
     head.appendChild(toggle);
-    head.appendChild(el('span', 'plan-title', 'Plan ' + p.id));
+    var merged = (p.merged || []).map(function (m) { return m + ' → '; }).join('');
+    head.appendChild(el('span', 'plan-title', 'Plan ' + merged + p.id));
     var meta = [];
+    if (merged) { meta.push('plans ' + merged + p.id + ' share one goal; shown once'); }
     if (p.levels !== null && p.levels !== undefined) { meta.push('level ' + p.levels); }
     if (p.method) { meta.push(p.method); }
     meta.push('cost ' + fmtNum(p.cost));
@@ -238,8 +240,8 @@
     var root = el('div', 'plan root');
     root.id = 'plan-root';
     var head = el('div', 'plan-head');
-    head.appendChild(el('span', 'plan-title', 'Plan 0 (root)'));
-    head.appendChild(el('span', 'plan-meta', '[(None, True), (None, goal)]'));
+    head.appendChild(el('span', 'plan-title', 'The run\'s goal'));
+    head.appendChild(el('span', 'plan-meta', 'root: from the start (g0) to the goal; the plans made for it hang below'));
     if (data.root_pop) { head.appendChild(popBadge(data.root_pop)); }
     replanBadges(data.root_replans, head);
     root.appendChild(head);

@@ -128,6 +128,38 @@ def _frame_src(image: str, base: Path) -> tuple[str | None, str]:
     return f"data:{mime};base64," + base64.b64encode(data).decode("ascii"), ""
 
 
+def merge_same_goal(plans: list[dict[str, Any]], roots: list[int]) -> list[int]:
+    """Show a plan whose single step was refined into one plan for the same goal once.
+
+    Such a plan says nothing its sub-plan does not (``<abs-1>`` refined into ``<abs-1>``): every
+    reference to it (the roots, its parent step's children) is pointed at the sub-plan, which
+    lists the plans it stands for in ``merged``.  Returns the new roots.
+    """
+    by_id = {p["id"]: p for p in plans}
+
+    def shown(pid: int) -> int:
+        chain = []
+        p = by_id.get(pid)
+        while p is not None:
+            real = p["steps"][1:]
+            if len(real) != 1 or len(real[0]["children"]) != 1 or real[0]["failures"] or real[0]["failed_plans"]:
+                break
+            child = by_id.get(real[0]["children"][0])
+            if child is None or child["goal"] != p["goal"] or child["id"] in chain or child["id"] == pid:
+                break
+            chain.append(p["id"])
+            p = child
+        if p is None or not chain:
+            return pid
+        p["merged"] = [*chain, *[m for m in p.get("merged", []) if m not in chain]]
+        return int(p["id"])
+
+    for p in plans:
+        for s in p["steps"]:
+            s["children"] = [shown(c) for c in s["children"]]
+    return [shown(r) for r in roots]
+
+
 def build_model(trace: Trace) -> dict[str, Any]:
     """Plans (with children, executed steps, pops, replans, failures), timeline and frames."""
     events = trace.events
@@ -176,7 +208,8 @@ def build_model(trace: Trace) -> dict[str, Any]:
             "steps": steps, "pop": pops.get(pid), "replans": node.replans,
         })
     roots = [p["id"] for p in plans if p["parent"] is None or p["parent"] not in nodes]
-    # the executive's dummy root plan [(None, True), (None, goal)] has no plan event of its own
+    roots = merge_same_goal(plans, roots)
+    # the executive's dummy root plan (start -> the run's goal) has no plan event of its own
     root_failed = [e for (parent, _), es in failed_plans.items() if parent not in nodes for e in es]
     root_replans = [e for e in events if e["event"] == "replan" and int(e["plan_id"]) not in nodes]
 

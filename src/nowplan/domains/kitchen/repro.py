@@ -17,6 +17,7 @@ import logging
 import statistics
 from typing import Any
 
+from nowplan.experiments import progress
 from nowplan.experiments.reproductions import (
     Reproduction,
     ReproductionOptions,
@@ -25,6 +26,7 @@ from nowplan.experiments.reproductions import (
     register,
     side_by_side,
 )
+from nowplan.experiments.verdicts import Comparison, Verdict, judged
 
 log = logging.getLogger(__name__)
 
@@ -81,9 +83,14 @@ def run(options: ReproductionOptions) -> ReproductionResult:
     cap = QUICK_CAP_S if options.quick else CAP_S
     rows = []
     trials = []
+    bar = progress.bar(len(TASK_NAMES) * len(VARIANTS) * n, "reproduce 004", unit="trial")
     for task, label in TASK_NAMES.items():
         for variant in VARIANTS:
-            res = [trial(task, k, variant, cap) for k in range(n)]
+            res = []
+            for k in range(n):
+                bar.set_postfix_str(f"{task} {variant}", refresh=False)
+                res.append(trial(task, k, variant, cap))
+                bar.update(1)
             trials.extend(res)
             ok = [r for r in res if r["outcome"] == "reached"]
             rows.append({
@@ -92,16 +99,18 @@ def run(options: ReproductionOptions) -> ReproductionResult:
                 "planning_time_s": round(statistics.mean(r["planning_s"] for r in ok), 2) if ok else None,
             })
             log.info("%s %s: %d/%d", task, variant, len(ok), n)
+    bar.close()
     notes = (
         f"{n} problems per task; per-trial planning cap {cap:g} s, scaled from the paper's "
         f"{PAPER_CAP_S:g} s by {cap / PAPER_CAP_S:.3g}; times are ours on this machine (not comparable "
         "in absolute terms). Failure reasons: "
         + "; ".join(sorted({f"{t['task']}/{t['variant']}: {t['reason']}" for t in trials if t['outcome'] != 'reached'}))[:1500]
     )
-    result = ReproductionResult("004", ReproStatus.DONE, rows=rows, notes=notes)
     from nowplan.experiments.papers import PAPERS
 
     paper = [dict(r) for r in PAPERS["004"].rows]
+    result = ReproductionResult("004", ReproStatus.DONE, rows=rows, notes=notes,
+                                comparisons=comparisons(rows, paper))
     result.paper = paper
     if options.out_dir is not None:
         import json
@@ -121,6 +130,26 @@ def run(options: ReproductionOptions) -> ReproductionResult:
         runs.write_text(json.dumps(trials, indent=1, default=str), encoding="utf-8")
         result.outputs.extend([files.markdown, files.html, runs])
     return result
+
+
+def comparisons(rows: list[dict[str, Any]], paper: list[dict[str, Any]]) -> list[Comparison]:
+    """Per task: Both's success rate (target 100 %) and the order Both >= each switch >= Neither."""
+    ours = {(r["task"], r["algorithm"]): r["success_pct"] for r in rows}
+    theirs = {(r["task"], r["algorithm"]): r["success_pct"] for r in paper}
+    out = []
+    for label in TASK_NAMES.values():
+        if (label, "both") not in ours:
+            continue
+        out.append(judged(f"{label}: Both success %", ours[(label, "both")], theirs.get((label, "both")),
+                          at_least=100.0, target="100"))
+        n, c, d, b = (ours[(label, v)] for v in VARIANTS)
+        ok = b >= max(c, d) and min(c, d) >= n
+        out.append(Comparison(
+            f"{label}: success % Neither / Constraints / Deferred / Both", None, None,
+            Verdict.MET if ok else Verdict.NOT_MET, "Both >= each switch >= Neither",
+            ours_text=" / ".join(f"{ours[(label, v)]:g}" for v in VARIANTS),
+            paper_text=" / ".join(f"{theirs[(label, v)]:g}" for v in VARIANTS if (label, v) in theirs)))
+    return out
 
 
 REPRODUCTION = register(Reproduction("004", "seed 004 Table I: SS-Replan variants on the kitchen tasks", run))

@@ -22,6 +22,40 @@ import numpy as np
 from nowplan.belief.particles import Region
 from nowplan.errors import require
 
+
+def pybullet() -> Any:
+    """``import pybullet`` without its build banner (printed by its C code when first imported).
+
+    The banner goes to the process's file descriptors, not to ``sys.stdout``, so both are pointed
+    at /dev/null for the import and C's buffers flushed before they are restored.
+    """
+    import sys
+
+    if "pybullet" in sys.modules:
+        return sys.modules["pybullet"]
+    import ctypes
+    import os
+
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = [os.dup(1), os.dup(2)]
+    null = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(null, 1)
+        os.dup2(null, 2)
+        try:
+            return require("pybullet", "kitchen")
+        finally:
+            try:
+                ctypes.CDLL(None).fflush(None)
+            except (OSError, AttributeError):  # no C library to flush (not on POSIX)
+                pass
+    finally:
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        for fd in (*saved, null):
+            os.close(fd)
+
 COUNTER_TOP = 0.60
 FRONT_Y = 0.45  # the counter's front face
 DRAWER_OPEN = 0.27  # how far an open drawer slides out (m)
@@ -81,7 +115,7 @@ class Scene:
 
     @property
     def p(self) -> Any:
-        return require("pybullet", "kitchen")
+        return pybullet()
 
 
 def _box(p: Any, c: int, half: tuple[float, float, float], pos: tuple[float, float, float],
@@ -92,7 +126,7 @@ def _box(p: Any, c: int, half: tuple[float, float, float], pos: tuple[float, flo
 
 
 def build(objects: tuple[str, ...] = ("green", "sugar", "cracker")) -> Scene:
-    p = require("pybullet", "kitchen")
+    p = pybullet()
     pd = require("pybullet_data", "kitchen")
     c = p.connect(p.DIRECT)
     p.setAdditionalSearchPath(pd.getDataPath(), physicsClientId=c)

@@ -5,6 +5,7 @@ from __future__ import annotations
 from functools import partial
 
 from nowplan.domains.logistics.model import DOMAIN
+from nowplan.domains.logistics.render import render_png
 from nowplan.domains.logistics.scenarios import SIZES, episode, generate
 from nowplan.domains.registry import DomainSpec, register
 
@@ -21,6 +22,7 @@ SPEC = register(
         scenarios=_scenarios,
         default_scenario="small",
         matrix_scenario="tiny-failures",
+        renderer=render_png,
     )
 )
 

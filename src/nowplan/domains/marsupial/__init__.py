@@ -40,6 +40,16 @@ def demo(args: argparse.Namespace) -> int:
     print()
     print(metrics.summary())
     print(f"\ntrace: {path}")
+    from nowplan.viz.animation import frames_of, write_captioned_gif
+
+    pngs, captions = frames_of(trace.events)
+    if pngs:
+        header = ("Marsupial logistics (seed 002's RCHPN). Map: pink circles airports, lines roads (dashed: "
+                  "flights), blue squares trucks, triangle the plane, small discs packages on the ground. "
+                  "Right: each cargo bay's grid, beige storage, grey load region, packages in colour, "
+                  "the loader robot in red.")
+        gif = write_captioned_gif(pngs, args.out / "marsupial.gif", header, captions)
+        print(f"animation: {gif} ({len(pngs)} frames)")
     if importlib.util.find_spec("nowplan.viz.viewer") is not None:
         from nowplan.viz.viewer import write_viewer
 

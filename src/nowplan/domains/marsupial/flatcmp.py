@@ -226,11 +226,19 @@ def run_table(
     regimes: Sequence[str], sizes: Sequence[int], seeds: Sequence[int], limit: float, optimal_upto: int
 ) -> list[dict[str, Any]]:
     """Every planner on every instance (an optimal FD run where the instance has <= optimal_upto packages)."""
+    from nowplan.experiments import progress
+
     rows: list[dict[str, Any]] = []
-    for name, problem, spec in instances(regimes, sizes, seeds):
+    bar = progress.bar(None, "marsupial flat comparison", unit="instance")  # drawn before generating
+    todo = instances(regimes, sizes, seeds)
+    bar.reset(total=len(todo))
+    for name, problem, spec in todo:
         n = sum(1 for t in problem.objects.values() if t == "package")
         log.info("flat comparison: %s", name)
+        bar.set_postfix_str(name, refresh=False)
         rows += compare(name, problem, spec, limit, optimal=n <= optimal_upto)
+        bar.update(1)
+    bar.close()
     return rows
 
 

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from nowplan.domains.namo.reproduction import aggregate, fastest_of, targets
+from nowplan.domains.namo.reproduction import aggregate, comparisons, fastest_of, targets
+from nowplan.experiments.verdicts import markdown_table
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -29,6 +30,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     out = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     out += ["| " + " | ".join(str(r.get(c, "")) for c in cols) + " |" for r in rows]
     out += targets(rows)
+    out += ["", markdown_table(comparisons(rows))]
     print("\n".join(out))  # the command's output is the table
     return 0
 

@@ -28,6 +28,25 @@ def _mpl() -> Any:
     return plt
 
 
+def _legend(fig: Any) -> None:
+    """What the marks mean, in two rows above the map."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    handles = [
+        Line2D([], [], marker="*", ls="", color="gold", markeredgecolor="black", markersize=8, label="landmark"),
+        Line2D([], [], marker="*", ls="", color="red", markeredgecolor="black", markersize=9, label="goal"),
+        Patch(fill=False, ls="--", ec="tab:red", label="object not detected yet (true place)"),
+        Patch(color="tab:purple", alpha=0.8, label="detected object (estimate, halo: uncertainty)"),
+        Line2D([], [], marker="o", ls="", color="tab:orange", markersize=8, label="robot (estimate; x: true)"),
+        Line2D([], [], color="c", lw=2, label="current plan's path"),
+        Patch(color="orange", alpha=0.3, label="swept volume of planned moves"),
+        Patch(color="grey", alpha=0.6, label="fog (not yet observed)"),
+    ]
+    fig.legend(handles=handles, loc="upper center", ncol=2, fontsize=6.5, frameon=False, handlelength=1.6,
+               columnspacing=1.0, borderaxespad=0.2)
+
+
 def render_png(
     world: Any,
     belief: NamoBelief,
@@ -45,8 +64,10 @@ def render_png(
     geom = belief.geom
     g = geom.grid
     scale = 5.0 / max(geom.width, geom.height)
-    fig = plt.figure(figsize=(max(geom.width * scale * 1.15, 3.0), max(geom.height * scale * 1.15, 2.2)), dpi=dpi)
-    ax = fig.add_axes((0.02, 0.08, 0.96, 0.86))
+    fig = plt.figure(figsize=(max(geom.width * scale * 1.15, 3.0), max(geom.height * scale * 1.15, 2.2) + 0.9),
+                     dpi=dpi)
+    ax = fig.add_axes((0.02, 0.06, 0.96, 0.66))
+    _legend(fig)
     ax.set_xlim(0, geom.width)
     ax.set_ylim(0, geom.height)
     ax.set_aspect("equal")

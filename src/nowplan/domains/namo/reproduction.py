@@ -34,6 +34,8 @@ from nowplan.experiments.reproductions import (
     register,
     side_by_side,
 )
+from nowplan.experiments import progress
+from nowplan.experiments.verdicts import Comparison, judged
 from nowplan.planning.regression import PlannerConfig
 
 log = logging.getLogger(__name__)
@@ -127,11 +129,18 @@ def _runs(options: ReproductionOptions) -> list[RunSpec]:
     return out
 
 
-def _execute(specs: Sequence[RunSpec], jobs: int) -> list[dict[str, Any]]:
+def _execute(specs: Sequence[RunSpec], jobs: int, bar: Any) -> list[dict[str, Any]]:
+    out = []
     if jobs <= 1:
-        return [run_one(s) for s in specs]
+        for s in specs:
+            out.append(run_one(s))
+            bar.update(1)
+        return out
     with ProcessPoolExecutor(max_workers=jobs) as pool:
-        return list(pool.map(run_one, specs))
+        for rec in pool.map(run_one, specs):  # in order, so the records do not depend on the workers
+            out.append(rec)
+            bar.update(1)
+    return out
 
 
 def _mean(xs: Sequence[float]) -> float | None:
@@ -207,12 +216,39 @@ def targets(rows: Sequence[dict[str, Any]]) -> list[str]:
     return out
 
 
+def comparisons(rows: Sequence[dict[str, Any]]) -> list[Comparison]:
+    """The issue's targets on the Avg rows, ours beside Table I's Avg row."""
+    from nowplan.experiments.papers import PAPERS
+
+    avg = {r["algorithm"]: r for r in rows if r["domain"] == "Avg"}
+    paper = {r["algorithm"]: r for r in PAPERS["000"].rows if r["domain"] == "Avg"}
+    o, a, s = avg.get("original BHPN"), avg.get("aggressive replanning"), avg.get("selective replanning")
+    if not (o and a and s):
+        return []
+    ps, pa = paper["selective replanning"], paper["aggressive replanning"]
+    sel, agg = s.get("planning_ratio"), a.get("planning_ratio")
+    out = [
+        judged("selective / original BHPN planning time (Avg)", sel, ps["time_ratio"], at_most=0.7,
+               target="<= 0.7"),
+        judged("selective / aggressive planning time (Avg)", round(sel / agg, 2) if sel is not None and agg else None,
+               round(ps["time_ratio"] / pa["time_ratio"], 2), at_most=0.5, target="<= 0.5"),
+    ]
+    for key, label in (("picks_places", "picks/places"), ("looks", "looks"), ("moves", "moves")):
+        if s[key] is not None and a[key] is not None:
+            out.append(judged(f"selective {label} per run (Avg)", s[key], ps[key], at_most=a[key],
+                              target=f"<= aggressive's ({a[key]:g})"))
+    return out
+
+
 def reproduce_000(options: ReproductionOptions) -> ReproductionResult:
     jobs = options.jobs or min(2, os.cpu_count() or 1)
+    bar = progress.bar(None, "reproduce 000")  # drawn now; the total is known once the runs are listed
     specs = _runs(options)
+    bar.reset(total=len(specs))
     log.info("seed 000: %d runs on %d worker(s)", len(specs), jobs)
     t0 = time.perf_counter()
-    records = _execute(specs, jobs)
+    records = _execute(specs, jobs, bar)
+    bar.close()
     elapsed = time.perf_counter() - t0
     rows = aggregate(records)
     checks = targets(rows)
@@ -242,7 +278,7 @@ def reproduce_000(options: ReproductionOptions) -> ReproductionResult:
         notes.append("Office (paper: reached with two object displacements): " + "; ".join(parts) + ".")
     result = ReproductionResult(
         seed="000", status=ReproStatus.DONE, rows=rows, notes="\n".join(notes),
-        title="seed 000: BHPN reconsideration on NAMO (Table I)",
+        title="seed 000: BHPN reconsideration on NAMO (Table I)", comparisons=comparisons(rows),
     )
     if options.out_dir is not None:
         result.outputs = write_outputs(options.out_dir, rows, records, notes)
