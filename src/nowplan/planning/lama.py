@@ -9,6 +9,10 @@ Evaluation is lazy: a successor enters the lists with its parent's values
 and is evaluated when it is taken out.  The landmark count is
 path-dependent: each state keeps the accepted landmarks of the path that
 first reached it.
+
+With the compiled kernel (:mod:`nowplan.planning.native`) the whole loop
+runs in C (``Kernel.lama``) with the same plan and counters; the Python
+loop below is the reference and fallback.
 """
 
 from __future__ import annotations
@@ -18,7 +22,7 @@ import itertools
 import math
 from collections.abc import Callable
 
-from nowplan.planning.forward import BOOST, ForwardResult, _apply, _goal_reached, _path, _Successors
+from nowplan.planning.forward import BOOST, ForwardResult, _apply, _goal_reached, _path, _Successors, native_result
 from nowplan.planning.hff import CostType, RelaxedHeuristic
 from nowplan.planning.landmarks import LandmarkCount
 from nowplan.planning.plan import PlanStatus
@@ -38,17 +42,24 @@ def lama_search(
         return ForwardResult(PlanStatus.UNSOLVABLE, None, task.unsolvable)
     ff = RelaxedHeuristic(task, "ff", cost_type)
     lm = LandmarkCount(task)
+    if ff.native is not None:
+        order = sorted(lm.landmarks)
+        index = {f: i for i, f in enumerate(order)}
+        before = [sorted(index[l2] for l2 in lm.before.get(f, ())) for f in order]
+        out = ff.native.lama(task.init, max_nodes, order, before, out_of_time, BOOST, lm.unreachable)
+        return native_result(task, out, max_nodes)
     succ = _Successors(task)
     init = task.init
     acc0 = lm.initial_accepted()
     h_ff, pref_ff = ff.evaluate(init)
     h_lm, pref_lm = lm.evaluate(init, acc0)
     if h_ff == math.inf or h_lm == math.inf:
-        return ForwardResult(PlanStatus.UNSOLVABLE, None, "the goal is unreachable even ignoring deletes")
+        return ForwardResult(PlanStatus.UNSOLVABLE, None, "the goal is unreachable even ignoring deletes",
+                             evaluated=ff.evaluations)
     parent: dict[frozenset[int], tuple[frozenset[int], int] | None] = {init: None}
     accepted: dict[frozenset[int], frozenset[int]] = {init: acc0}
     if _goal_reached(task, init):
-        return ForwardResult(PlanStatus.SOLVED, [], "")
+        return ForwardResult(PlanStatus.SOLVED, [], "", evaluated=ff.evaluations)
     tick = itertools.count()
     queues: list[list[Entry]] = [[], [], [], []]  # ff, ff preferred, lm, lm preferred
     priority = [0, 0, 0, 0]
