@@ -5,7 +5,7 @@ is present) must give exactly what the Python code gives: the same h and
 preferred operators for every state, heuristic and cost type, and the same
 search (status, plan, expanded, generated, evaluated) on the bundled PDDL
 problems, a generated logistics problem and random small integer tasks, for
-GBFS, A* and LAMA.
+GBFS, A*, LAMA and the anytime improvement's bounded weighted A*.
 ``NOWPLAN_PURE_PYTHON=1`` selects the Python code; without a built kernel
 the comparisons skip (the Python tests still run).
 """
@@ -29,7 +29,7 @@ from nowplan.core.levels import flat_levels
 from nowplan.core.operators import Action
 from nowplan.io.logistics_gen import generate_logistics
 from nowplan.io.pddl_read import load_pddl
-from nowplan.planning import forward, native
+from nowplan.planning import anytime, forward, native
 from nowplan.planning.hff import RelaxedHeuristic
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.task import Task, build_task
@@ -194,6 +194,54 @@ def test_the_kernel_refuses_bad_input() -> None:
         k.lama([0], 10, [1], [[3]])
 
 
+def same_improvement(mode: Callable[[str], None], task: Task, bound: float, weights: tuple[float, ...],
+                     limit: int) -> list[list[int] | None]:
+    """The bounded weighted A* of the anytime improvement on both paths (stopped after ``limit`` calls)."""
+    found = []
+    for w in weights:
+        out = []
+        for m in ("python", "c"):
+            mode(m)
+            h = RelaxedHeuristic(task)
+            calls = [0]
+
+            def stop() -> bool:
+                calls[0] += 1
+                return calls[0] > limit
+
+            if m == "python":
+                res = anytime._bounded_wastar(task, h, forward._Successors(task), w, bound, stop)
+            else:
+                assert h.native is not None
+                res = h.native.bounded_wastar(task.init, task.cost, w, bound, stop)
+            out.append((res, calls[0]))
+        assert out[0] == out[1], w
+        found.append(out[0][0])
+    return found
+
+
+@needs_kernel
+@pytest.mark.parametrize(("domain", "problem"), PROBLEMS)
+def test_pddl_improvement_searches_are_identical(mode: Callable[[str], None], domain: str, problem: str) -> None:
+    task = pddl_task(domain, problem)
+    mode("c")
+    res = forward.search(task)
+    assert res.actions is not None
+    plan = [task.actions.index(a) for a in res.actions]
+    bound = sum(task.cost[a] for a in plan)
+    for found in same_improvement(mode, task, bound, anytime.WEIGHTS, 400):
+        assert found is None or sum(task.cost[a] for a in found) < bound
+    # with no bound to beat, the first plan found is returned
+    assert all(f is not None for f in same_improvement(mode, task, math.inf, (5.0,), 10**6))
+
+
+@needs_kernel
+@pytest.mark.parametrize("stop_after", [0, 3])
+def test_improvement_stops_at_the_same_call(mode: Callable[[str], None], stop_after: int) -> None:
+    task = pddl_task("logistics", "p04.pddl")
+    assert same_improvement(mode, task, math.inf, (1.0,), stop_after) == [None]
+
+
 # --------------------------------------------------------------------------- random integer tasks
 
 
@@ -237,6 +285,14 @@ def test_random_tasks_search_identically(mode: Callable[[str], None], task: Task
                                          method: str) -> None:
     py, c = both(mode, task, method=method, heuristic=kind, cost_type=cost_type, max_nodes=200)
     assert py == c
+
+
+@needs_kernel
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(task=int_tasks(), weight=st.sampled_from([1.0, 2.0, 5.0]), bound=st.sampled_from([2.0, 4.5, 9.0, math.inf]))
+def test_random_tasks_improve_identically(mode: Callable[[str], None], task: Task, weight: float,
+                                          bound: float) -> None:
+    same_improvement(mode, task, bound, (weight,), 200)
 
 
 @needs_kernel

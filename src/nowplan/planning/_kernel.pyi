@@ -45,3 +45,11 @@ class Kernel:
         boost: int = 1000,
         unreachable: bool = False,
     ) -> tuple[int, list[int] | None, int, int, int]: ...
+    def bounded_wastar(
+        self,
+        init: Iterable[int],
+        cost: Sequence[float],
+        weight: float,
+        bound: float,
+        stop: Callable[[], object] | None = None,
+    ) -> list[int] | None: ...
