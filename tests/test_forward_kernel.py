@@ -178,20 +178,21 @@ def test_the_kernel_refuses_bad_input() -> None:
         _cls(2, [(0,)], [(1,)], [()], [1.0], [1], [[0], []], [], "hmax")
     with pytest.raises(IndexError):
         _cls(2, [(5,)], [(1,)], [()], [1.0], [1], [[0], []], [], "ff")
-    # LAMA: landmark 1 (the goal) reached by action 0; bad landmark lists are refused
+    # LAMA: landmark {1} (the goal) reached by action 0; bad landmark lists are refused
     from nowplan.planning import _kernel
 
-    status, plan, *_ = k.lama([0], 10, [1], [[]])
+    status, plan, *_ = k.lama([0], 10, [[1]], [[]])
     assert status == _kernel.SOLVED and plan == [0]
-    assert k.lama([0], 10, [1], [[]], None, 1000, True)[0] == _kernel.DEAD_INIT  # a landmark is unreachable
+    assert k.lama([0], 10, [[1], [0, 1]], [[], [0]])[:2] == (_kernel.SOLVED, [0])
+    assert k.lama([0], 10, [[1]], [[]], None, 1000, True)[0] == _kernel.DEAD_INIT  # a landmark is unreachable
     with pytest.raises(IndexError):
-        k.lama([0], 10, [7], [[]])
+        k.lama([0], 10, [[7]], [[]])
     with pytest.raises(ValueError):
-        k.lama([0], 10, [1, 1], [[], []])
+        k.lama([0], 10, [[]], [[]])
     with pytest.raises(ValueError):
-        k.lama([0], 10, [1], [[], []])
+        k.lama([0], 10, [[1]], [[], []])
     with pytest.raises(IndexError):
-        k.lama([0], 10, [1], [[3]])
+        k.lama([0], 10, [[1]], [[3]])
 
 
 def same_improvement(mode: Callable[[str], None], task: Task, bound: float, weights: tuple[float, ...],

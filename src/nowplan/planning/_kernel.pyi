@@ -39,7 +39,7 @@ class Kernel:
         self,
         init: Iterable[int],
         max_nodes: int,
-        landmarks: Sequence[int],
+        landmarks: Sequence[Sequence[int]],
         before: Sequence[Sequence[int]],
         out_of_time: Callable[[], object] | None = None,
         boost: int = 1000,

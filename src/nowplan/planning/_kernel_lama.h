@@ -7,34 +7,53 @@
  * lowest priority number is served next (ties: the lower index) and the
  * preferred queues gain BOOST on progress of either heuristic.  Each state
  * keeps the accepted landmarks of the path that first reached it, as a
- * bitset over landmark indices.
+ * bitset over landmark indices; a landmark (one fact or a disjunction) is
+ * accepted once one of its facts holds.
  */
 
 typedef struct {
     int32_t nlm, lwords;
-    int32_t *fact;        /* landmark index -> fact */
-    int32_t *idx;         /* fact -> landmark index or -1 */
+    CSR facts;            /* landmark index -> its facts (one, or a disjunction) */
+    CSR of;               /* fact -> the landmarks it is a fact of */
+    uint8_t *isgoal;      /* landmark index -> a single goal fact */
     CSR before;           /* landmark index -> the landmark indices it comes before */
     uint64_t *acc;        /* state id -> accepted bitset (lwords words each) */
     size_t acccap;        /* states with room in acc */
 } Landmarks;
 
 static void lm_free(Landmarks *L) {
-    PyMem_Free(L->fact);
-    PyMem_Free(L->idx);
+    free_csr(&L->facts);
+    free_csr(&L->of);
+    PyMem_Free(L->isgoal);
     free_csr(&L->before);
     PyMem_Free(L->acc);
 }
 
 static int lm_build(Kernel *k, PyObject *landmarks, PyObject *before, Landmarks *L) {
-    if (build_list(landmarks, k->nf, "landmark", &L->fact, &L->nlm) < 0) return -1;
+    Py_ssize_t n = PyObject_Length(landmarks);
+    if (n < 0) return -1;
+    if (n >= INT32_MAX - 64) { PyErr_SetString(PyExc_ValueError, "too many landmarks"); return -1; }
+    L->nlm = (int32_t)n;
     L->lwords = (L->nlm + 63) / 64;
-    if (!(L->idx = xcalloc((size_t)k->nf, sizeof(int32_t)))) return -1;
-    for (int32_t f = 0; f < k->nf; f++) L->idx[f] = -1;
+    if (build_csr(landmarks, L->nlm, k->nf, "landmark", &L->facts) < 0) return -1;
+    if (!(L->isgoal = xcalloc((size_t)L->nlm, 1))) return -1;
+    if (!(L->of.off = xcalloc((size_t)k->nf + 1, sizeof(int32_t)))) return -1;
+    if (!(L->of.v = xcalloc((size_t)L->facts.off[L->nlm], sizeof(int32_t)))) return -1;
     for (int32_t i = 0; i < L->nlm; i++) {
-        if (L->idx[L->fact[i]] >= 0) { PyErr_SetString(PyExc_ValueError, "a landmark is listed twice"); return -1; }
-        L->idx[L->fact[i]] = i;
+        int32_t lo = L->facts.off[i], hi = L->facts.off[i + 1];
+        if (lo == hi) { PyErr_SetString(PyExc_ValueError, "a landmark without facts"); return -1; }
+        L->isgoal[i] = hi - lo == 1 && k->isgoal[L->facts.v[lo]];
+        for (int32_t j = lo; j < hi; j++) L->of.off[L->facts.v[j] + 1]++;
     }
+    for (int32_t f = 0; f < k->nf; f++) L->of.off[f + 1] += L->of.off[f];
+    int32_t *fill = xcalloc((size_t)k->nf, sizeof(int32_t));
+    if (fill == NULL) return -1;
+    for (int32_t i = 0; i < L->nlm; i++)
+        for (int32_t j = L->facts.off[i]; j < L->facts.off[i + 1]; j++) {
+            int32_t f = L->facts.v[j];
+            L->of.v[L->of.off[f] + fill[f]++] = i;
+        }
+    PyMem_Free(fill);
     return build_csr(before, L->nlm, L->nlm > 0 ? L->nlm : 1, "before", &L->before);
 }
 
@@ -53,11 +72,17 @@ static uint64_t *lm_acc(Landmarks *L, size_t sid) {
     return L->acc + sid * w;
 }
 
-/* acc := parent's accepted set plus the landmarks true in bits (parent NULL: none before). */
-static void lm_accept(const Landmarks *L, const uint64_t *parent, const uint64_t *bits, uint64_t *acc) {
+/* acc := parent's accepted set plus the landmarks with a fact true now (facts sf[0..ns); parent NULL: none). */
+static void lm_accept(const Landmarks *L, const uint64_t *parent, const int32_t *sf, int32_t ns, uint64_t *acc) {
     if (parent != NULL) memcpy(acc, parent, (size_t)L->lwords * sizeof(uint64_t));
-    for (int32_t i = 0; i < L->nlm; i++)
-        if (BIT(bits, L->fact[i])) SETBIT(acc, i);
+    for (int32_t i = 0; i < ns; i++)
+        for (int32_t j = L->of.off[sf[i]]; j < L->of.off[sf[i] + 1]; j++) SETBIT(acc, L->of.v[j]);
+}
+
+static inline int lm_holds(const Landmarks *L, int32_t i, const uint64_t *bits) {
+    for (int32_t j = L->facts.off[i]; j < L->facts.off[i + 1]; j++)
+        if (BIT(bits, L->facts.v[j])) return 1;
+    return 0;
 }
 
 /* The landmark count: landmarks not accepted, plus accepted ones false now that are a goal or
@@ -66,9 +91,8 @@ static double lm_count(const Kernel *k, const Landmarks *L, const uint64_t *acc,
     int32_t todo = 0, again = 0;
     for (int32_t i = 0; i < L->nlm; i++) {
         if (!BIT(acc, i)) { todo++; continue; }
-        int32_t f = L->fact[i];
-        if (BIT(bits, f)) continue;
-        if (k->isgoal[f]) { again++; continue; }
+        if (lm_holds(L, i, bits)) continue;
+        if (L->isgoal[i]) { again++; continue; }
         for (int32_t j = L->before.off[i]; j < L->before.off[i + 1]; j++)
             if (!BIT(acc, L->before.v[j])) { again++; break; }
     }
@@ -80,8 +104,9 @@ static double lm_count(const Kernel *k, const Landmarks *L, const uint64_t *acc,
 /* Does action a make a landmark true that is not accepted? (the landmark count's preferred operators) */
 static inline int lm_prefers(const Kernel *k, const Landmarks *L, const uint64_t *acc, int32_t a) {
     for (int32_t j = k->add.off[a]; j < k->add.off[a + 1]; j++) {
-        int32_t i = L->idx[k->add.v[j]];
-        if (i >= 0 && !BIT(acc, i)) return 1;
+        int32_t f = k->add.v[j];
+        for (int32_t t = L->of.off[f]; t < L->of.off[f + 1]; t++)
+            if (!BIT(acc, L->of.v[t])) return 1;
     }
     return 0;
 }
@@ -150,7 +175,7 @@ static PyObject *Kernel_lama(Kernel *k, PyObject *args, PyObject *kwds) {
     if (best_f == INFINITY || unreachable) { status = ST_DEAD_INIT; goto done; }
     if (store_add(&st, cur, UINT32_MAX, -1, &added) < 0) goto error;
     if (!(acc = lm_acc(&L, 0))) goto error;
-    lm_accept(&L, NULL, cur, acc);
+    lm_accept(&L, NULL, sf, ns, acc);
     if (goal_holds(k, cur)) { status = ST_SOLVED; plan = PyList_New(0); if (!plan) goto error; goto done; }
     double best_l = lm_count(k, &L, acc, cur);
     if (lama_expand(&x, 0, cur, acc, sf, ns, best_f, best_l, pref, npref) < 0) goto error;
@@ -169,7 +194,8 @@ static PyObject *Kernel_lama(Kernel *k, PyObject *args, PyObject *kwds) {
         if (sid < 0) goto error;
         if (!added) continue;
         if (!(acc = lm_acc(&L, (size_t)sid))) goto error;
-        lm_accept(&L, L.acc + (size_t)e.sid * (size_t)(L.lwords ? L.lwords : 1), cur, acc);
+        ns = facts_of(cur, words, sf);
+        lm_accept(&L, L.acc + (size_t)e.sid * (size_t)(L.lwords ? L.lwords : 1), sf, ns, acc);
         if (++expanded > max_nodes) { status = ST_NODE_LIMIT; break; }
         if (PyErr_CheckSignals() < 0) goto error;
         if (out_of_time != Py_None) {
@@ -185,7 +211,6 @@ static PyObject *Kernel_lama(Kernel *k, PyObject *args, PyObject *kwds) {
             if (!(plan = plan_of(&st, (uint32_t)sid))) goto error;
             break;
         }
-        ns = facts_of(cur, words, sf);
         double hf = evaluate_core(k, cur, sf, ns, pref, &npref);
         if (isnan(hf) && PyErr_Occurred()) goto error;
         if (hf == INFINITY) continue;

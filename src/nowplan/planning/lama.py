@@ -43,10 +43,9 @@ def lama_search(
     ff = RelaxedHeuristic(task, "ff", cost_type)
     lm = LandmarkCount(task)
     if ff.native is not None:
-        order = sorted(lm.landmarks)
-        index = {f: i for i, f in enumerate(order)}
-        before = [sorted(index[l2] for l2 in lm.before.get(f, ())) for f in order]
-        out = ff.native.lama(task.init, max_nodes, order, before, out_of_time, BOOST, lm.unreachable)
+        sets = [sorted(d) for d in lm.sets]
+        before = [lm.before.get(i, []) for i in range(len(sets))]
+        out = ff.native.lama(task.init, max_nodes, sets, before, out_of_time, BOOST, lm.unreachable)
         return native_result(task, out, max_nodes)
     succ = _Successors(task)
     init = task.init
