@@ -40,7 +40,7 @@ def test_json_document(capsys: pytest.CaptureFixture[str]) -> None:
     doc = json.loads(out)
     assert code == 0
     assert doc["status"] == "solved" and doc["cost"] == len(doc["plan"]) > 0
-    assert doc["method"] == "forward:gbfs" and doc["engine"] == "nowplan" and doc["level"] == "flat"
+    assert doc["method"] == "forward:lama" and doc["engine"] == "nowplan" and doc["level"] == "flat"
     assert doc["planning_time_s"] >= 0
 
 

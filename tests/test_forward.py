@@ -129,7 +129,7 @@ def test_abstract_levels_search_forward_with_conflicts_as_deletes() -> None:
 
     prob = generate(SIZES["small"], 1)
     res = plan(LOG, prob.objects, prob.init, prob.goal, LevelMap(LOG.top_level), PlannerConfig(engine="forward"))
-    assert res.solved and res.plan is not None and res.method == "forward:gbfs"
+    assert res.solved and res.plan is not None and res.method == "forward:lama"
     assert all(not a.name.startswith(("drive", "fly")) for a in res.plan.actions)
     replay(LOG, prob.init, res.plan, concrete=False)
 

@@ -57,10 +57,10 @@ def register(subparsers: Any) -> None:
                    help="nowplan (default): the executive's own planner, forward search where it applies "
                         "(PDDL always), else regression; forward | regression: force one; "
                         "fd: Fast Downward (needs the 'fd' extra)")
-    p.add_argument("--search", choices=("gbfs", "lama", "astar"), default="gbfs",
-                   help="forward search: gbfs (lazy greedy best-first on h_FF with preferred operators, in "
-                        "the C kernel; default), lama (h_FF and landmark count, four queues; cheaper plans, "
-                        "slower: its loop is Python) or astar (weighted by --weight; --weight 1 with "
+    p.add_argument("--search", choices=("gbfs", "lama", "astar"), default="lama",
+                   help="forward search: lama (LAMA's first iteration: lazy greedy best-first on h_FF and "
+                        "the landmark count with preferred operators; default), gbfs (the same on h_FF "
+                        "alone, or on --heuristic) or astar (weighted by --weight; --weight 1 with "
                         "--heuristic max is optimal)")
     p.add_argument("--improve", type=float, default=1.0, metavar="K",
                    help="after the first forward plan, look for cheaper ones for K times the first "
