@@ -336,3 +336,34 @@ def test_without_the_compiled_kernel_the_python_code_runs(mode: Callable[[str], 
     assert native.kernel_class() is None and RelaxedHeuristic(task).native is None
     assert summary(forward.search(task), task) == expected
     assert expected[0] is PlanStatus.SOLVED
+
+
+def naive_landmark_sets(task: Task) -> list[frozenset[int] | None]:
+    """Zhu and Givan's fixpoint by plain rounds over all actions, until nothing changes."""
+    lm: list[frozenset[int] | None] = [None] * len(task.facts)
+    for f in task.init:
+        lm[f] = frozenset((f,))
+    changed = True
+    while changed:
+        changed = False
+        for a, pre in enumerate(task.pre):
+            sets = [lm[p] for p in pre]
+            if any(s is None for s in sets):
+                continue
+            union = frozenset().union(*cast(list[frozenset[int]], sets))
+            for e in task.add[a]:
+                if e in task.init:
+                    continue
+                old = lm[e]
+                new = union | {e} if old is None else old & (union | {e})
+                if new != old:
+                    lm[e], changed = new, True
+    return lm
+
+
+@settings(max_examples=300, deadline=None)
+@given(task=int_tasks())
+def test_landmark_sets_are_the_fixpoint(task: Task) -> None:
+    from nowplan.planning.landmarks import landmark_sets
+
+    assert landmark_sets(task) == naive_landmark_sets(task)

@@ -28,6 +28,8 @@ Westphal) were tried and measured worse (benchmarks/classical with
 
 from __future__ import annotations
 
+from collections import deque
+
 from nowplan.planning.task import Task
 
 
@@ -39,28 +41,31 @@ def landmark_sets(task: Task) -> list[frozenset[int] | None]:
         lm[f] = frozenset((f,))
     pre, add, by_pre = task.pre, task.add, task.by_pre
     missing = [len(p) for p in pre]
-    ready = [a for a, m in enumerate(missing) if m == 0]
+    # first pass, breadth first: what the relaxation reaches (an action fires once all its
+    # preconditions are reached), and the order in which actions become applicable
+    order = [a for a, m in enumerate(missing) if m == 0]
     reached = set(task.init)
-    queue = list(task.init)
-    # first pass: what the relaxation reaches (an action fires once all its preconditions are reached)
-    while queue or ready:
-        while ready:
-            a = ready.pop()
-            for e in add[a]:
+    frontier = sorted(task.init)
+    i = 0
+    while frontier or i < len(order):
+        while i < len(order):
+            for e in add[order[i]]:
                 if e not in reached:
                     reached.add(e)
-                    queue.append(e)
-        if queue:
-            f = queue.pop()
+                    frontier.append(e)
+            i += 1
+        nxt, frontier = frontier, []
+        for f in nxt:
             for a in by_pre.get(f, ()):
                 missing[a] -= 1
                 if missing[a] == 0:
-                    ready.append(a)
-    # fixpoint: shrink each fact's set by every achiever's union, re-examining dependants on change
-    work = [a for a in range(len(pre)) if all(p in reached for p in pre[a])]
-    pending = set(work)
+                    order.append(a)
+    # fixpoint: shrink each fact's set by every achiever's union, re-examining dependants on change;
+    # in that order most sets are final the first time (the fixpoint does not depend on the order)
+    work = deque(order)
+    pending = set(order)
     while work:
-        a = work.pop()
+        a = work.popleft()
         pending.discard(a)
         sets = [lm[p] for p in pre[a]]
         if any(s is None for s in sets):
