@@ -54,6 +54,14 @@ def test_criticality_file_still_gives_a_concrete_plan(capsys: pytest.CaptureFixt
     assert code == 2 and "--level 5 is out of range" in err
 
 
+def test_a_heuristic_for_gbfs_is_refused_with_lama(capsys: pytest.CaptureFixture[str]) -> None:
+    args = [str(LOG / "domain.pddl"), str(LOG / "p01.pddl")]
+    code, out, err = run(capsys, *args, "--heuristic", "add")
+    assert code == 2 and out == "" and "--search gbfs or astar" in err and err.count("\n") == 1
+    code, out, _ = run(capsys, *args, "--heuristic", "add", "--search", "gbfs", "--json")
+    assert code == 0 and json.loads(out)["method"] == "forward:gbfs"
+
+
 def test_fd_engine(capsys: pytest.CaptureFixture[str]) -> None:
     pytest.importorskip("up_fast_downward")
     code, out, _ = run(capsys, str(LOG / "domain.pddl"), str(LOG / "p02.pddl"), "--engine", "fd", "--json")

@@ -66,7 +66,8 @@ def register(subparsers: Any) -> None:
                    help="after the first forward plan, look for cheaper ones for K times the first "
                         "search's CPU time + 0.02 s (weighted A*, falling weights; default 1, 0 = off)")
     p.add_argument("--heuristic", choices=("ff", "add", "max"), default="ff",
-                   help="forward heuristic: h_FF (default), h_add or h_max")
+                   help="heuristic of --search gbfs and astar: h_FF (default), h_add or h_max "
+                        "(lama always uses h_FF and the landmark count)")
     p.add_argument("--level", type=_level, default="flat",
                    help="'flat' (default: a concrete plan), 'top' (the most abstract level) or a number")
     p.add_argument("--json", action="store_true", help="print a JSON document instead of the plan")
@@ -87,6 +88,9 @@ def register(subparsers: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     from nowplan.io.pddl_read import load_pddl
 
+    if args.search == "lama" and args.heuristic != "ff":
+        raise UsageError(f"--heuristic {args.heuristic} applies to --search gbfs or astar; "
+                         "--search lama (the default) uses h_FF and the landmark count")
     problem = load_pddl(args.domain, args.problem, args.criticality, mutexes=not args.no_mutexes)
     domain = problem.domain
     level: int | None

@@ -5,7 +5,8 @@
  * every successor by h_FF, preferred ones by h_FF, every successor by the
  * landmark count, preferred ones by the landmark count; the queue with the
  * lowest priority number is served next (ties: the lower index) and the
- * preferred queues gain BOOST on progress of either heuristic.  Each state
+ * preferred queues (h_FF's preferred operators) gain BOOST at the initial
+ * state and on progress of either heuristic.  Each state
  * keeps the accepted landmarks of the path that first reached it, as a
  * bitset over landmark indices; a landmark (one fact or a disjunction) is
  * accepted once one of its facts holds.
@@ -101,19 +102,8 @@ static double lm_count(const Kernel *k, const Landmarks *L, const uint64_t *acc,
     return (double)h;
 }
 
-/* Does action a make a landmark true that is not accepted? (the landmark count's preferred operators) */
-static inline int lm_prefers(const Kernel *k, const Landmarks *L, const uint64_t *acc, int32_t a) {
-    for (int32_t j = k->add.off[a]; j < k->add.off[a + 1]; j++) {
-        int32_t f = k->add.v[j];
-        for (int32_t t = L->of.off[f]; t < L->of.off[f + 1]; t++)
-            if (!BIT(acc, L->of.v[t])) return 1;
-    }
-    return 0;
-}
-
 typedef struct {
     Kernel *k;
-    const Landmarks *L;
     Queue q[4];  /* ff, ff preferred, lm, lm preferred */
     uint8_t *prefmark;
     int32_t *succ;
@@ -121,8 +111,8 @@ typedef struct {
     long long generated;
 } LamaExpander;
 
-static int lama_expand(LamaExpander *x, uint32_t sid, const uint64_t *bits, const uint64_t *acc, const int32_t *sf,
-                       int32_t ns, double hf, double hl, const int32_t *pref, int32_t npref) {
+static int lama_expand(LamaExpander *x, uint32_t sid, const uint64_t *bits, const int32_t *sf, int32_t ns,
+                       double hf, double hl, const int32_t *pref, int32_t npref) {
     for (int32_t i = 0; i < npref; i++) x->prefmark[pref[i]] = 1;
     int32_t n = applicable_core(x->k, bits, sf, ns, x->succ);
     int rc = 0;
@@ -133,7 +123,7 @@ static int lama_expand(LamaExpander *x, uint32_t sid, const uint64_t *bits, cons
         x->generated++;
         rc = qpush(&x->q[0], ef);
         if (rc == 0) rc = qpush(&x->q[2], el);
-        if (rc == 0 && (x->prefmark[a] || lm_prefers(x->k, x->L, acc, a))) {
+        if (rc == 0 && x->prefmark[a]) {
             rc = qpush(&x->q[1], ef);
             if (rc == 0) rc = qpush(&x->q[3], el);
         }
@@ -153,7 +143,7 @@ static PyObject *Kernel_lama(Kernel *k, PyObject *args, PyObject *kwds) {
         return NULL;
     Landmarks L = {0};
     Store st = {.words = k->words};
-    LamaExpander x = {.k = k, .L = &L};
+    LamaExpander x = {.k = k};
     int32_t *pref = NULL, *sf = NULL;
     uint64_t *cur = NULL, *acc;
     long long evals0 = k->evaluations, expanded = 0;
@@ -178,8 +168,9 @@ static PyObject *Kernel_lama(Kernel *k, PyObject *args, PyObject *kwds) {
     lm_accept(&L, NULL, sf, ns, acc);
     if (goal_holds(k, cur)) { status = ST_SOLVED; plan = PyList_New(0); if (!plan) goto error; goto done; }
     double best_l = lm_count(k, &L, acc, cur);
-    if (lama_expand(&x, 0, cur, acc, sf, ns, best_f, best_l, pref, npref) < 0) goto error;
-    long long prio[4] = {0, 0, 0, 0};  /* the non-empty queue with the lowest number is served next */
+    if (lama_expand(&x, 0, cur, sf, ns, best_f, best_l, pref, npref) < 0) goto error;
+    long long prio[4] = {0, -boost, 0, -boost};  /* the non-empty queue with the lowest number is served
+                                                  * next; the initial state is progress */
     for (;;) {
         int q = -1;
         for (int i = 0; i < 4; i++)
@@ -219,7 +210,7 @@ static PyObject *Kernel_lama(Kernel *k, PyObject *args, PyObject *kwds) {
         if (hf < best_f) { best_f = hf; progress = 1; }
         if (hl < best_l) { best_l = hl; progress = 1; }
         if (progress) { prio[1] -= boost; prio[3] -= boost; }
-        if (lama_expand(&x, (uint32_t)sid, cur, acc, sf, ns, hf, hl, pref, npref) < 0) goto error;
+        if (lama_expand(&x, (uint32_t)sid, cur, sf, ns, hf, hl, pref, npref) < 0) goto error;
     }
 done:
     if (plan == NULL) { plan = Py_None; Py_INCREF(plan); }

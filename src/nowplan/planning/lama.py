@@ -2,9 +2,11 @@
 
 Four open lists, served in turn by priority (Richter and Westphal, 2010):
 all successors by h_FF, preferred ones by h_FF, all by landmark count,
-preferred ones by landmark count.  A successor is preferred if either
-heuristic prefers the action that makes it; on progress (a new best value
-of either heuristic) the preferred lists gain priority (``BOOST``).
+preferred ones by landmark count.  A successor is preferred if h_FF prefers
+the action that makes it (its relaxed plan's applicable actions; FD's
+lama-first takes no preferred operators from the landmarks); the initial
+state and every later progress (a new best value of either heuristic) give
+the preferred lists priority (``BOOST``).
 Evaluation is lazy: a successor enters the lists with its parent's values
 and is evaluated when it is taken out.  The landmark count is
 path-dependent: each state keeps the accepted landmarks of the path that
@@ -51,7 +53,7 @@ def lama_search(
     init = task.init
     acc0 = lm.initial_accepted()
     h_ff, pref_ff = ff.evaluate(init)
-    h_lm, pref_lm = lm.evaluate(init, acc0)
+    h_lm, _ = lm.evaluate(init, acc0)
     if h_ff == math.inf or h_lm == math.inf:
         return ForwardResult(PlanStatus.UNSOLVABLE, None, "the goal is unreachable even ignoring deletes",
                              evaluated=ff.evaluations)
@@ -76,7 +78,9 @@ def lama_search(
                 heapq.heappush(queues[1], (hf, t, state, a))
                 heapq.heappush(queues[3], (hl, t, state, a))
 
-    expand(init, h_ff, h_lm, set(pref_ff) | set(pref_lm))
+    priority[1] -= BOOST  # the initial state is progress (as in FD): preferred successors first
+    priority[3] -= BOOST
+    expand(init, h_ff, h_lm, set(pref_ff))
     while any(queues):
         k = min((i for i in range(4) if queues[i]), key=lambda i: priority[i])
         priority[k] += 1
@@ -100,7 +104,7 @@ def lama_search(
         hf, pf = ff.evaluate(state)
         if hf == math.inf:
             continue
-        hl, pl = lm.evaluate(state, acc)
+        hl, _ = lm.evaluate(state, acc)
         progress = False
         if hf < best[0]:
             best[0] = hf
@@ -111,6 +115,6 @@ def lama_search(
         if progress:
             priority[1] -= BOOST
             priority[3] -= BOOST
-        expand(state, hf, hl, set(pf) | set(pl))
+        expand(state, hf, hl, set(pf))
     return ForwardResult(PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan", expanded, generated,
                          ff.evaluations)
