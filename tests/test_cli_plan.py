@@ -40,7 +40,7 @@ def test_json_document(capsys: pytest.CaptureFixture[str]) -> None:
     doc = json.loads(out)
     assert code == 0
     assert doc["status"] == "solved" and doc["cost"] == len(doc["plan"]) > 0
-    assert doc["method"] == "forward:gbfs" and doc["engine"] == "nowplan" and doc["level"] == "flat"
+    assert doc["method"] == "forward:lama" and doc["engine"] == "nowplan" and doc["level"] == "flat"
     assert doc["planning_time_s"] >= 0
 
 
@@ -52,6 +52,14 @@ def test_criticality_file_still_gives_a_concrete_plan(capsys: pytest.CaptureFixt
     assert code == 0 and "drive-truck" not in top and "fly-airplane" not in top
     code, _, err = run(capsys, *args, "--level", "5")
     assert code == 2 and "--level 5 is out of range" in err
+
+
+def test_a_heuristic_for_gbfs_is_refused_with_lama(capsys: pytest.CaptureFixture[str]) -> None:
+    args = [str(LOG / "domain.pddl"), str(LOG / "p01.pddl")]
+    code, out, err = run(capsys, *args, "--heuristic", "add")
+    assert code == 2 and out == "" and "--search gbfs or astar" in err and err.count("\n") == 1
+    code, out, _ = run(capsys, *args, "--heuristic", "add", "--search", "gbfs", "--json")
+    assert code == 0 and json.loads(out)["method"] == "forward:gbfs"
 
 
 def test_fd_engine(capsys: pytest.CaptureFixture[str]) -> None:

@@ -129,7 +129,7 @@ def test_abstract_levels_search_forward_with_conflicts_as_deletes() -> None:
 
     prob = generate(SIZES["small"], 1)
     res = plan(LOG, prob.objects, prob.init, prob.goal, LevelMap(LOG.top_level), PlannerConfig(engine="forward"))
-    assert res.solved and res.plan is not None and res.method == "forward:gbfs"
+    assert res.solved and res.plan is not None and res.method == "forward:lama"
     assert all(not a.name.startswith(("drive", "fly")) for a in res.plan.actions)
     replay(LOG, prob.init, res.plan, concrete=False)
 
@@ -161,3 +161,33 @@ def test_landmarks_of_a_chain_are_every_fact_on_it() -> None:
     acc = lc.initial_accepted()
     h, preferred = lc.evaluate(t.init, acc)
     assert h == 2 and [t.actions[a].name for a in preferred] == ["ab"]
+
+
+def test_a_landmark_left_behind_is_not_required_again() -> None:
+    """Picking a package up accepts a landmark and leaves its first place: the count must fall.
+
+    ``at_a(k)`` comes before ``at_b(k)`` (a natural ordering), but no achiever of
+    ``at_b(k)`` needs it; only ``held(k)``, needed by every achiever, is ordered
+    necessarily before it.
+    """
+    from nowplan.planning.forward import _apply
+    from nowplan.planning.landmarks import LandmarkCount
+
+    dom = Domain("carry", {n: Predicate(n, 1) for n in ("at_a", "held", "at_b")}, (
+        _op("pick", [atom("at_a", X)], [atom("held", X), atom("at_a", X, value=False)]),
+        _op("drop", [atom("held", X)], [atom("at_b", X), atom("held", X, value=False)]),
+    ))
+    t = task_mod.build_task(dom, {"k": None}, State([atom("at_a", "k")]), Goal.of([atom("at_b", "k")]),
+                            flat_levels(), lambda a: 1.0)
+    lc = LandmarkCount(t)
+    fact = {str(f): i for i, f in enumerate(t.facts)}
+    index = {next(iter(d)): i for i, d in enumerate(lc.sets)}
+    assert lc.before == {index[fact["at_a(k)"]]: [index[fact["held(k)"]]],
+                         index[fact["held(k)"]]: [index[fact["at_b(k)"]]]}
+    acc0 = lc.initial_accepted()
+    h0, _ = lc.evaluate(t.init, acc0)
+    pick = next(i for i, a in enumerate(t.actions) if a.name == "pick")
+    s1 = _apply(t, t.init, pick)
+    h1, preferred = lc.evaluate(s1, lc.accept(acc0, s1))
+    assert (h0, h1) == (2, 1)
+    assert [t.actions[a].name for a in preferred] == ["drop"]

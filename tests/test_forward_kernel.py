@@ -4,7 +4,8 @@ The kernel (``nowplan.planning._kernel``, built on install when a C compiler
 is present) must give exactly what the Python code gives: the same h and
 preferred operators for every state, heuristic and cost type, and the same
 search (status, plan, expanded, generated, evaluated) on the bundled PDDL
-problems, a generated logistics problem and random small integer tasks.
+problems, a generated logistics problem and random small integer tasks, for
+GBFS, A*, LAMA and the anytime improvement's bounded weighted A*.
 ``NOWPLAN_PURE_PYTHON=1`` selects the Python code; without a built kernel
 the comparisons skip (the Python tests still run).
 """
@@ -28,7 +29,7 @@ from nowplan.core.levels import flat_levels
 from nowplan.core.operators import Action
 from nowplan.io.logistics_gen import generate_logistics
 from nowplan.io.pddl_read import load_pddl
-from nowplan.planning import forward, native
+from nowplan.planning import anytime, forward, native
 from nowplan.planning.hff import RelaxedHeuristic
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.task import Task, build_task
@@ -104,7 +105,8 @@ def test_pddl_heuristic_values_are_identical(mode: Callable[[str], None], domain
 
 @needs_kernel
 @pytest.mark.parametrize(("domain", "problem"), PROBLEMS)
-@pytest.mark.parametrize(("method", "kind"), [("gbfs", "ff"), ("gbfs", "add"), ("astar", "ff"), ("astar", "max")])
+@pytest.mark.parametrize(("method", "kind"), [("gbfs", "ff"), ("gbfs", "add"), ("astar", "ff"), ("astar", "max"),
+                                              ("lama", "ff")])
 def test_pddl_searches_are_identical(mode: Callable[[str], None], domain: str, problem: str, method: str,
                                      kind: str) -> None:
     task = pddl_task(domain, problem)
@@ -123,14 +125,18 @@ def test_generated_logistics_search_is_identical(mode: Callable[[str], None], tm
     task = build_task(p.domain, p.objects, p.init, p.goal, flat_levels(), lambda a: a.cost(p.init))
     py, c = both(mode, task)
     assert py == c and py[0] is PlanStatus.SOLVED and py[2] > 50
+    py, c = both(mode, task, method="lama")
+    assert py == c and py[0] is PlanStatus.SOLVED and py[2] > 50
     same_evaluations(mode, task, walk_states(task, 30, seed=1))
 
 
 @needs_kernel
+@pytest.mark.parametrize("method", ["gbfs", "lama"])
 @pytest.mark.parametrize("stop_after", [0, 1, 7])
-def test_node_and_time_limits_stop_at_the_same_expansion(mode: Callable[[str], None], stop_after: int) -> None:
+def test_node_and_time_limits_stop_at_the_same_expansion(mode: Callable[[str], None], stop_after: int,
+                                                         method: str) -> None:
     task = pddl_task("logistics", "p04.pddl")
-    py, c = both(mode, task, max_nodes=stop_after)
+    py, c = both(mode, task, method=method, max_nodes=stop_after)
     assert py == c and py[0] is PlanStatus.NODE_LIMIT and py[2] == stop_after + 1
     results = []
     for m in ("python", "c"):
@@ -141,18 +147,19 @@ def test_node_and_time_limits_stop_at_the_same_expansion(mode: Callable[[str], N
             return calls[0] > stop_after
 
         mode(m)
-        results.append((summary(forward.search(task, out_of_time=out_of_time), task), calls[0]))
+        results.append((summary(forward.search(task, method=method, out_of_time=out_of_time), task), calls[0]))
     assert results[0] == results[1] and results[0][0][0] is PlanStatus.TIME_LIMIT
 
 
 @needs_kernel
-def test_an_error_in_the_time_callback_propagates(mode: Callable[[str], None]) -> None:
+@pytest.mark.parametrize("method", ["gbfs", "lama"])
+def test_an_error_in_the_time_callback_propagates(mode: Callable[[str], None], method: str) -> None:
     def boom() -> bool:
         raise RuntimeError("clock broke")
 
     mode("c")
     with pytest.raises(RuntimeError, match="clock broke"):
-        forward.search(pddl_task("gripper", "p02.pddl"), out_of_time=boom)
+        forward.search(pddl_task("gripper", "p02.pddl"), method=method, out_of_time=boom)
 
 
 @needs_kernel
@@ -171,6 +178,69 @@ def test_the_kernel_refuses_bad_input() -> None:
         _cls(2, [(0,)], [(1,)], [()], [1.0], [1], [[0], []], [], "hmax")
     with pytest.raises(IndexError):
         _cls(2, [(5,)], [(1,)], [()], [1.0], [1], [[0], []], [], "ff")
+    # LAMA: landmark {1} (the goal) reached by action 0; bad landmark lists are refused
+    from nowplan.planning import _kernel
+
+    status, plan, *_ = k.lama([0], 10, [[1]], [[]])
+    assert status == _kernel.SOLVED and plan == [0]
+    assert k.lama([0], 10, [[1], [0, 1]], [[], [0]])[:2] == (_kernel.SOLVED, [0])
+    assert k.lama([0], 10, [[1]], [[]], None, 1000, True)[0] == _kernel.DEAD_INIT  # a landmark is unreachable
+    with pytest.raises(IndexError):
+        k.lama([0], 10, [[7]], [[]])
+    with pytest.raises(ValueError):
+        k.lama([0], 10, [[]], [[]])
+    with pytest.raises(ValueError):
+        k.lama([0], 10, [[1]], [[], []])
+    with pytest.raises(IndexError):
+        k.lama([0], 10, [[1]], [[3]])
+
+
+def same_improvement(mode: Callable[[str], None], task: Task, bound: float, weights: tuple[float, ...],
+                     limit: int) -> list[list[int] | None]:
+    """The bounded weighted A* of the anytime improvement on both paths (stopped after ``limit`` calls)."""
+    found = []
+    for w in weights:
+        out = []
+        for m in ("python", "c"):
+            mode(m)
+            h = RelaxedHeuristic(task)
+            calls = [0]
+
+            def stop() -> bool:
+                calls[0] += 1
+                return calls[0] > limit
+
+            if m == "python":
+                res = anytime._bounded_wastar(task, h, forward._Successors(task), w, bound, stop)
+            else:
+                assert h.native is not None
+                res = h.native.bounded_wastar(task.init, task.cost, w, bound, stop)
+            out.append((res, calls[0]))
+        assert out[0] == out[1], w
+        found.append(out[0][0])
+    return found
+
+
+@needs_kernel
+@pytest.mark.parametrize(("domain", "problem"), PROBLEMS)
+def test_pddl_improvement_searches_are_identical(mode: Callable[[str], None], domain: str, problem: str) -> None:
+    task = pddl_task(domain, problem)
+    mode("c")
+    res = forward.search(task)
+    assert res.actions is not None
+    plan = [task.actions.index(a) for a in res.actions]
+    bound = sum(task.cost[a] for a in plan)
+    for found in same_improvement(mode, task, bound, anytime.WEIGHTS, 400):
+        assert found is None or sum(task.cost[a] for a in found) < bound
+    # with no bound to beat, the first plan found is returned
+    assert all(f is not None for f in same_improvement(mode, task, math.inf, (5.0,), 10**6))
+
+
+@needs_kernel
+@pytest.mark.parametrize("stop_after", [0, 3])
+def test_improvement_stops_at_the_same_call(mode: Callable[[str], None], stop_after: int) -> None:
+    task = pddl_task("logistics", "p04.pddl")
+    assert same_improvement(mode, task, math.inf, (1.0,), stop_after) == [None]
 
 
 # --------------------------------------------------------------------------- random integer tasks
@@ -211,11 +281,19 @@ def test_random_tasks_evaluate_identically(mode: Callable[[str], None], task: Ta
 @needs_kernel
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(task=int_tasks(), kind=st.sampled_from(KINDS), cost_type=st.sampled_from(COST_TYPES),
-       method=st.sampled_from(["gbfs", "astar"]))
+       method=st.sampled_from(["gbfs", "astar", "lama"]))
 def test_random_tasks_search_identically(mode: Callable[[str], None], task: Task, kind: str, cost_type: str,
                                          method: str) -> None:
     py, c = both(mode, task, method=method, heuristic=kind, cost_type=cost_type, max_nodes=200)
     assert py == c
+
+
+@needs_kernel
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(task=int_tasks(), weight=st.sampled_from([1.0, 2.0, 5.0]), bound=st.sampled_from([2.0, 4.5, 9.0, math.inf]))
+def test_random_tasks_improve_identically(mode: Callable[[str], None], task: Task, weight: float,
+                                          bound: float) -> None:
+    same_improvement(mode, task, bound, (weight,), 200)
 
 
 @needs_kernel
@@ -258,3 +336,34 @@ def test_without_the_compiled_kernel_the_python_code_runs(mode: Callable[[str], 
     assert native.kernel_class() is None and RelaxedHeuristic(task).native is None
     assert summary(forward.search(task), task) == expected
     assert expected[0] is PlanStatus.SOLVED
+
+
+def naive_landmark_sets(task: Task) -> list[frozenset[int] | None]:
+    """Zhu and Givan's fixpoint by plain rounds over all actions, until nothing changes."""
+    lm: list[frozenset[int] | None] = [None] * len(task.facts)
+    for f in task.init:
+        lm[f] = frozenset((f,))
+    changed = True
+    while changed:
+        changed = False
+        for a, pre in enumerate(task.pre):
+            sets = [lm[p] for p in pre]
+            if any(s is None for s in sets):
+                continue
+            union = frozenset().union(*cast(list[frozenset[int]], sets))
+            for e in task.add[a]:
+                if e in task.init:
+                    continue
+                old = lm[e]
+                new = union | {e} if old is None else old & (union | {e})
+                if new != old:
+                    lm[e], changed = new, True
+    return lm
+
+
+@settings(max_examples=300, deadline=None)
+@given(task=int_tasks())
+def test_landmark_sets_are_the_fixpoint(task: Task) -> None:
+    from nowplan.planning.landmarks import landmark_sets
+
+    assert landmark_sets(task) == naive_landmark_sets(task)

@@ -65,7 +65,7 @@ def test_unreachable_goal_is_unsolvable_not_an_exception():
     assert res.status is PlanStatus.UNSOLVABLE and "exhausted" in res.reason and res.plan is None
     # the forward engine sees it before searching: no action reaches b(k)
     fwd = plan(dom, {"k": None}, State(), Goal.of([atom("b", "k")]), flat_levels())
-    assert fwd.status is PlanStatus.UNSOLVABLE and "b(k)" in fwd.reason and fwd.method == "forward:gbfs"
+    assert fwd.status is PlanStatus.UNSOLVABLE and "b(k)" in fwd.reason and fwd.method == "forward:lama"
 
 
 def test_node_limit_is_reported():

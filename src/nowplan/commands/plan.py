@@ -57,16 +57,17 @@ def register(subparsers: Any) -> None:
                    help="nowplan (default): the executive's own planner, forward search where it applies "
                         "(PDDL always), else regression; forward | regression: force one; "
                         "fd: Fast Downward (needs the 'fd' extra)")
-    p.add_argument("--search", choices=("gbfs", "lama", "astar"), default="gbfs",
-                   help="forward search: gbfs (lazy greedy best-first on h_FF with preferred operators, in "
-                        "the C kernel; default), lama (h_FF and landmark count, four queues; cheaper plans, "
-                        "slower: its loop is Python) or astar (weighted by --weight; --weight 1 with "
+    p.add_argument("--search", choices=("gbfs", "lama", "astar"), default="lama",
+                   help="forward search: lama (LAMA's first iteration: lazy greedy best-first on h_FF and "
+                        "the landmark count with preferred operators; default), gbfs (the same on h_FF "
+                        "alone, or on --heuristic) or astar (weighted by --weight; --weight 1 with "
                         "--heuristic max is optimal)")
     p.add_argument("--improve", type=float, default=1.0, metavar="K",
                    help="after the first forward plan, look for cheaper ones for K times the first "
                         "search's CPU time + 0.02 s (weighted A*, falling weights; default 1, 0 = off)")
     p.add_argument("--heuristic", choices=("ff", "add", "max"), default="ff",
-                   help="forward heuristic: h_FF (default), h_add or h_max")
+                   help="heuristic of --search gbfs and astar: h_FF (default), h_add or h_max "
+                        "(lama always uses h_FF and the landmark count)")
     p.add_argument("--level", type=_level, default="flat",
                    help="'flat' (default: a concrete plan), 'top' (the most abstract level) or a number")
     p.add_argument("--json", action="store_true", help="print a JSON document instead of the plan")
@@ -87,6 +88,9 @@ def register(subparsers: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     from nowplan.io.pddl_read import load_pddl
 
+    if args.search == "lama" and args.heuristic != "ff":
+        raise UsageError(f"--heuristic {args.heuristic} applies to --search gbfs or astar; "
+                         "--search lama (the default) uses h_FF and the landmark count")
     problem = load_pddl(args.domain, args.problem, args.criticality, mutexes=not args.no_mutexes)
     domain = problem.domain
     level: int | None

@@ -1,7 +1,9 @@
 /* The forward engine's compiled kernel: h_FF / h_add / h_max with preferred
- * operators, the successor generator and lazy GBFS over bitset states.
+ * operators, the successor generator, lazy GBFS, LAMA's first iteration
+ * (_kernel_lama.h) and the bounded weighted A* of the anytime improvement
+ * (_kernel_wastar.h) over bitset states.
  *
- * It mirrors nowplan/planning/hff.py and forward.py (the reference: both
+ * It mirrors nowplan/planning/hff.py, forward.py, lama.py and anytime.py (the reference: both
  * paths must give the same h, the same preferred operators, the same plan
  * and the same counters).  The exploration pops the lowest cost and, among
  * equal costs, the most recently pushed entry (a push counter stands in for
@@ -15,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define KERNEL_API 1
+#define KERNEL_API 5
 #define BIT(b, f) (((b)[(f) >> 6] >> ((f) & 63)) & 1u)
 #define SETBIT(b, f) ((b)[(f) >> 6] |= (uint64_t)1 << ((f) & 63))
 #define CLRBIT(b, f) ((b)[(f) >> 6] &= ~((uint64_t)1 << ((f) & 63)))
@@ -464,6 +466,8 @@ static PyObject *Kernel_applicable(Kernel *k, PyObject *state) {
 }
 
 #include "_kernel_gbfs.h"
+#include "_kernel_lama.h"
+#include "_kernel_wastar.h"
 
 static PyMethodDef Kernel_methods[] = {
     {"evaluate", (PyCFunction)Kernel_evaluate, METH_O,
@@ -471,6 +475,10 @@ static PyMethodDef Kernel_methods[] = {
     {"applicable", (PyCFunction)Kernel_applicable, METH_O, "applicable(state) -> action ids ascending"},
     {"gbfs", (PyCFunction)(void (*)(void))Kernel_gbfs, METH_VARARGS | METH_KEYWORDS,
      "gbfs(init, max_nodes, out_of_time) -> (status, plan action ids or None, expanded, generated, evaluations)"},
+    {"lama", (PyCFunction)(void (*)(void))Kernel_lama, METH_VARARGS | METH_KEYWORDS,
+     "lama(init, max_nodes, landmarks, before, out_of_time, boost, unreachable) -> as gbfs (h_FF evaluations)"},
+    {"bounded_wastar", (PyCFunction)(void (*)(void))Kernel_bounded_wastar, METH_VARARGS | METH_KEYWORDS,
+     "bounded_wastar(init, cost, weight, bound, stop) -> a plan (action ids) cheaper than bound, or None"},
     {NULL, NULL, 0, NULL},
 };
 

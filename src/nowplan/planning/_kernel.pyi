@@ -35,3 +35,21 @@ class Kernel:
         out_of_time: Callable[[], object] | None = None,
         boost: int = 1000,
     ) -> tuple[int, list[int] | None, int, int, int]: ...
+    def lama(
+        self,
+        init: Iterable[int],
+        max_nodes: int,
+        landmarks: Sequence[Sequence[int]],
+        before: Sequence[Sequence[int]],
+        out_of_time: Callable[[], object] | None = None,
+        boost: int = 1000,
+        unreachable: bool = False,
+    ) -> tuple[int, list[int] | None, int, int, int]: ...
+    def bounded_wastar(
+        self,
+        init: Iterable[int],
+        cost: Sequence[float],
+        weight: float,
+        bound: float,
+        stop: Callable[[], object] | None = None,
+    ) -> list[int] | None: ...

@@ -16,8 +16,8 @@ action sequence at each action's level, exactly as the regression planner
 computes them (:func:`regress_actions`), so the executive can monitor them.
 
 When the compiled kernel is built (:mod:`nowplan.planning.native`), the
-whole lazy GBFS runs in C and A* uses its heuristic and successor
-generator; the Python code below is the reference and gives the same plans
+whole lazy GBFS and LAMA loops run in C and A* uses its heuristic and
+successor generator; the Python code below is the reference and gives the same plans
 and counters.
 """
 
@@ -145,9 +145,14 @@ def _path(task: Task, parent: Mapping[frozenset[int], tuple[frozenset[int], int]
 
 def _native_gbfs(task: Task, kernel: Kernel, max_nodes: int, out_of_time: Callable[[], bool]) -> ForwardResult:
     """:func:`_lazy_gbfs` in the compiled kernel: the same plan and counters."""
+    return native_result(task, kernel.gbfs(task.init, max_nodes, out_of_time, BOOST), max_nodes)
+
+
+def native_result(task: Task, out: tuple[int, list[int] | None, int, int, int], max_nodes: int) -> ForwardResult:
+    """A kernel search's ``(status, plan ids, expanded, generated, evaluated)`` as a :class:`ForwardResult`."""
     from nowplan.planning import _kernel as k
 
-    status, plan, expanded, generated, evaluated = kernel.gbfs(task.init, max_nodes, out_of_time, BOOST)
+    status, plan, expanded, generated, evaluated = out
     if status == k.SOLVED and plan is not None:
         res = ForwardResult(PlanStatus.SOLVED, [task.actions[a] for a in plan], "", expanded, generated)
     elif status == k.DEAD_INIT:

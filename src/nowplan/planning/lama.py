@@ -2,13 +2,19 @@
 
 Four open lists, served in turn by priority (Richter and Westphal, 2010):
 all successors by h_FF, preferred ones by h_FF, all by landmark count,
-preferred ones by landmark count.  A successor is preferred if either
-heuristic prefers the action that makes it; on progress (a new best value
-of either heuristic) the preferred lists gain priority (``BOOST``).
+preferred ones by landmark count.  A successor is preferred if h_FF prefers
+the action that makes it (its relaxed plan's applicable actions; FD's
+lama-first takes no preferred operators from the landmarks); the initial
+state and every later progress (a new best value of either heuristic) give
+the preferred lists priority (``BOOST``).
 Evaluation is lazy: a successor enters the lists with its parent's values
 and is evaluated when it is taken out.  The landmark count is
 path-dependent: each state keeps the accepted landmarks of the path that
 first reached it.
+
+With the compiled kernel (:mod:`nowplan.planning.native`) the whole loop
+runs in C (``Kernel.lama``) with the same plan and counters; the Python
+loop below is the reference and fallback.
 """
 
 from __future__ import annotations
@@ -18,7 +24,7 @@ import itertools
 import math
 from collections.abc import Callable
 
-from nowplan.planning.forward import BOOST, ForwardResult, _apply, _goal_reached, _path, _Successors
+from nowplan.planning.forward import BOOST, ForwardResult, _apply, _goal_reached, _path, _Successors, native_result
 from nowplan.planning.hff import CostType, RelaxedHeuristic
 from nowplan.planning.landmarks import LandmarkCount
 from nowplan.planning.plan import PlanStatus
@@ -38,17 +44,23 @@ def lama_search(
         return ForwardResult(PlanStatus.UNSOLVABLE, None, task.unsolvable)
     ff = RelaxedHeuristic(task, "ff", cost_type)
     lm = LandmarkCount(task)
+    if ff.native is not None:
+        sets = [sorted(d) for d in lm.sets]
+        before = [lm.before.get(i, []) for i in range(len(sets))]
+        out = ff.native.lama(task.init, max_nodes, sets, before, out_of_time, BOOST, lm.unreachable)
+        return native_result(task, out, max_nodes)
     succ = _Successors(task)
     init = task.init
     acc0 = lm.initial_accepted()
     h_ff, pref_ff = ff.evaluate(init)
-    h_lm, pref_lm = lm.evaluate(init, acc0)
+    h_lm, _ = lm.evaluate(init, acc0)
     if h_ff == math.inf or h_lm == math.inf:
-        return ForwardResult(PlanStatus.UNSOLVABLE, None, "the goal is unreachable even ignoring deletes")
+        return ForwardResult(PlanStatus.UNSOLVABLE, None, "the goal is unreachable even ignoring deletes",
+                             evaluated=ff.evaluations)
     parent: dict[frozenset[int], tuple[frozenset[int], int] | None] = {init: None}
     accepted: dict[frozenset[int], frozenset[int]] = {init: acc0}
     if _goal_reached(task, init):
-        return ForwardResult(PlanStatus.SOLVED, [], "")
+        return ForwardResult(PlanStatus.SOLVED, [], "", evaluated=ff.evaluations)
     tick = itertools.count()
     queues: list[list[Entry]] = [[], [], [], []]  # ff, ff preferred, lm, lm preferred
     priority = [0, 0, 0, 0]
@@ -66,7 +78,9 @@ def lama_search(
                 heapq.heappush(queues[1], (hf, t, state, a))
                 heapq.heappush(queues[3], (hl, t, state, a))
 
-    expand(init, h_ff, h_lm, set(pref_ff) | set(pref_lm))
+    priority[1] -= BOOST  # the initial state is progress (as in FD): preferred successors first
+    priority[3] -= BOOST
+    expand(init, h_ff, h_lm, set(pref_ff))
     while any(queues):
         k = min((i for i in range(4) if queues[i]), key=lambda i: priority[i])
         priority[k] += 1
@@ -90,7 +104,7 @@ def lama_search(
         hf, pf = ff.evaluate(state)
         if hf == math.inf:
             continue
-        hl, pl = lm.evaluate(state, acc)
+        hl, _ = lm.evaluate(state, acc)
         progress = False
         if hf < best[0]:
             best[0] = hf
@@ -101,6 +115,6 @@ def lama_search(
         if progress:
             priority[1] -= BOOST
             priority[3] -= BOOST
-        expand(state, hf, hl, set(pf) | set(pl))
+        expand(state, hf, hl, set(pf))
     return ForwardResult(PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan", expanded, generated,
                          ff.evaluations)

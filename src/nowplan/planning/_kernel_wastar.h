@@ -1,0 +1,161 @@
+/* Bounded weighted A* over bitset states: anytime.py's _bounded_wastar (LAMA's later iterations).
+ *
+ * Included once by _kernel.c after _kernel_gbfs.h (it uses the Kernel and the Store).  Entries
+ * (f = g + w h, h, tick, state) pop the lowest f, then the lowest h, then the oldest; a popped
+ * state is expanded with its best g so far (stale entries are not skipped, as in the Python
+ * code); successors whose g reaches the bound, or that do not improve a known g, are pruned.
+ */
+
+typedef struct { double f, h; uint64_t tick; uint32_t sid; } WEnt;
+typedef struct { WEnt *v; size_t n, cap; } WHeap;
+
+static inline int wless(const WEnt *a, const WEnt *b) {
+    if (a->f != b->f) return a->f < b->f;
+    if (a->h != b->h) return a->h < b->h;
+    return a->tick < b->tick;
+}
+
+static int wpush(WHeap *q, WEnt e) {
+    if (q->n == q->cap) {
+        size_t cap = q->cap ? 2 * q->cap : 1024;
+        WEnt *v = PyMem_Realloc(q->v, cap * sizeof(WEnt));
+        if (v == NULL) { PyErr_NoMemory(); return -1; }
+        q->v = v;
+        q->cap = cap;
+    }
+    size_t i = q->n++;
+    while (i > 0) {
+        size_t p = (i - 1) / 2;
+        if (!wless(&e, &q->v[p])) break;
+        q->v[i] = q->v[p];
+        i = p;
+    }
+    q->v[i] = e;
+    return 0;
+}
+
+static WEnt wpop(WHeap *q) {
+    WEnt *h = q->v, top = h[0], last = h[--q->n];
+    size_t i = 0, m = q->n;
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= m) break;
+        if (c + 1 < m && wless(&h[c + 1], &h[c])) c++;
+        if (!wless(&h[c], &last)) break;
+        h[i] = h[c];
+        i = c;
+    }
+    if (m) h[i] = last;
+    return top;
+}
+
+static PyObject *Kernel_bounded_wastar(Kernel *k, PyObject *args, PyObject *kwds) {
+    static char *kwlist[] = {"init", "cost", "weight", "bound", "stop", NULL};
+    PyObject *init, *costs, *stop = Py_None, *result = NULL;
+    double weight, bound;
+    if (!PyArg_ParseTupleAndKeywords(args, kwds, "OOdd|O", kwlist, &init, &costs, &weight, &bound, &stop))
+        return NULL;
+    int32_t ns = load_state(k, init), npref = 0, words = k->words, na = k->na;
+    if (ns < 0) return NULL;
+    Store st = {.words = words};
+    WHeap open = {0};
+    double *cost = NULL, *bestg = NULL;
+    size_t gcap = 0;
+    int added;
+    size_t na1 = (size_t)(na ? na : 1);
+    int32_t *pref = PyMem_Malloc(na1 * sizeof(int32_t)), *succ = PyMem_Malloc(na1 * sizeof(int32_t));
+    int32_t *sf = PyMem_Malloc(((size_t)k->nf + 1) * sizeof(int32_t));
+    uint64_t *cur = PyMem_Calloc((size_t)words + 1, sizeof(uint64_t));
+    uint64_t *nxt = PyMem_Calloc((size_t)words + 1, sizeof(uint64_t));
+    if (!pref || !succ || !sf || !cur || !nxt) { PyErr_NoMemory(); goto error; }
+    {
+        PyObject *fc = PySequence_Fast(costs, "cost");
+        if (fc == NULL) goto error;
+        if (PySequence_Fast_GET_SIZE(fc) != na) {
+            Py_DECREF(fc);
+            PyErr_SetString(PyExc_ValueError, "cost: expected one per action");
+            goto error;
+        }
+        if (!(cost = xcalloc(na1, sizeof(double)))) { Py_DECREF(fc); goto error; }
+        for (int32_t a = 0; a < na; a++) {
+            cost[a] = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(fc, a));
+            if (cost[a] == -1.0 && PyErr_Occurred()) { Py_DECREF(fc); goto error; }
+        }
+        Py_DECREF(fc);
+    }
+    memcpy(cur, k->bits, (size_t)words * sizeof(uint64_t));
+    memcpy(sf, k->sf, (size_t)ns * sizeof(int32_t));
+    double h0 = evaluate_core(k, cur, sf, ns, pref, &npref);
+    if (isnan(h0) && PyErr_Occurred()) goto error;
+    if (h0 == INFINITY) { result = Py_None; Py_INCREF(result); goto error; }
+    if (store_add(&st, cur, UINT32_MAX, -1, &added) < 0) goto error;
+    uint64_t tick = 0;
+    gcap = st.cap;
+    if (!(bestg = PyMem_Malloc(gcap * sizeof(double)))) { PyErr_NoMemory(); goto error; }
+    bestg[0] = 0.0;
+    if (wpush(&open, (WEnt){weight * h0, h0, tick++, 0}) < 0) goto error;
+    while (open.n) {
+        WEnt e = wpop(&open);
+        double g = bestg[e.sid];
+        memcpy(cur, st.bits + (size_t)e.sid * (size_t)words, (size_t)words * sizeof(uint64_t));
+        if (goal_holds(k, cur)) {
+            if (g >= bound) continue;
+            result = plan_of(&st, e.sid);
+            goto error;
+        }
+        if (PyErr_CheckSignals() < 0) goto error;
+        if (stop != Py_None) {
+            PyObject *r = PyObject_CallNoArgs(stop);
+            if (r == NULL) goto error;
+            int t = PyObject_IsTrue(r);
+            Py_DECREF(r);
+            if (t < 0) goto error;
+            if (t) break;
+        }
+        ns = facts_of(cur, words, sf);
+        int32_t n = applicable_core(k, cur, sf, ns, succ);
+        for (int32_t i = 0; i < n; i++) {
+            int32_t a = succ[i];
+            double ng = g + cost[a];
+            if (ng >= bound) continue;
+            memcpy(nxt, cur, (size_t)words * sizeof(uint64_t));
+            for (int32_t j = k->del.off[a]; j < k->del.off[a + 1]; j++) CLRBIT(nxt, k->del.v[j]);
+            for (int32_t j = k->add.off[a]; j < k->add.off[a + 1]; j++) SETBIT(nxt, k->add.v[j]);
+            long long sid = store_add(&st, nxt, e.sid, a, &added);
+            if (sid < 0) goto error;
+            if (st.cap > gcap) {
+                double *v = PyMem_Realloc(bestg, st.cap * sizeof(double));
+                if (v == NULL) { PyErr_NoMemory(); goto error; }
+                bestg = v;
+                gcap = st.cap;
+            }
+            if (added) bestg[sid] = INFINITY;
+            if (!(ng < bestg[sid])) continue;
+            bestg[sid] = ng;
+            st.parent[sid] = e.sid;
+            st.action[sid] = a;
+            int32_t nn = facts_of(nxt, words, sf);
+            double hv = evaluate_core(k, nxt, sf, nn, pref, &npref);
+            if (isnan(hv) && PyErr_Occurred()) goto error;
+            if (hv == INFINITY) continue;
+            if (wpush(&open, (WEnt){ng + weight * hv, hv, tick++, (uint32_t)sid}) < 0) goto error;
+        }
+    }
+    result = Py_None;
+    Py_INCREF(result);
+error:
+    PyMem_Free(pref);
+    PyMem_Free(succ);
+    PyMem_Free(sf);
+    PyMem_Free(cur);
+    PyMem_Free(nxt);
+    PyMem_Free(cost);
+    PyMem_Free(bestg);
+    PyMem_Free(open.v);
+    PyMem_Free(st.bits);
+    PyMem_Free(st.hash);
+    PyMem_Free(st.parent);
+    PyMem_Free(st.action);
+    PyMem_Free(st.slot);
+    return result;
+}
