@@ -14,9 +14,10 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
-from nowplan.core.atoms import EQUALITY, Atom, ConflictRule, Goal, Rules, Term, ValueRule, Var
+from nowplan.core.atoms import EQUALITY, Atom, AtMostOne, ConflictRule, Goal, Rules, Term, ValueRule, Var
 from nowplan.core.facts import FactTable
 from nowplan.core.operators import Operator
+from nowplan.core.state import State
 from nowplan.errors import ModelError
 
 TestFn = Callable[[Any, tuple[Term, ...], Any], bool]
@@ -54,9 +55,15 @@ class Domain:
         dup = {n for n in names if names.count(n) > 1}
         if dup:
             raise ModelError(f"domain {self.name}: operator names repeated: {sorted(dup)}")
+        changed = {e.predicate for o in self.operators for e in o.effects}
         for op in self.operators:
             for p in op.preconditions:
                 self.check_atom(p.atom, where=f"precondition of operator {op.name}")
+                if p.static and p.atom.predicate in changed:
+                    raise ModelError(
+                        f"operator {op.name}: static({p.atom}) but an operator changes "
+                        f"'{p.atom.predicate}'; give it a criticality (Precondition(atom, n)) instead"
+                    )
             for e in op.effects:
                 self.check_atom(e, where=f"effect of operator {op.name}")
             unknown = {
@@ -163,6 +170,8 @@ class Problem:
     def __post_init__(self) -> None:
         for a in self.goal.atoms:
             self.domain.check_atom(a, where=f"goal of {self.name}")
+        if isinstance(self.init, State):
+            check_groups(self, self.init)
 
     @cached_property
     def all_objects(self) -> dict[str, str | None]:
@@ -173,3 +182,47 @@ class Problem:
             return sorted(self.all_objects)
         ok = self.domain.subtypes(t)
         return sorted(o for o, ot in self.all_objects.items() if ot in ok)
+
+
+def check_groups(problem: Problem, state: State) -> None:
+    """The state obeys the domain's ``at_most_one``/``exactly_one`` rules, else a ModelError naming the group."""
+    dom = problem.domain
+    for rule in dom.conflicts:
+        if not isinstance(rule, AtMostOne):
+            continue
+        seen: dict[Any, Atom] = {}
+        for pred in rule.predicates:
+            for args in state.facts(pred):
+                a = Atom(pred, tuple(args))
+                g = rule.key_of(a)
+                if g is None:
+                    continue
+                if g in seen:
+                    raise ModelError(
+                        f"{problem.name}: the initial state has {seen[g]} and {a}, but the domain's "
+                        f"{rule} allows one; fix the initial state or the rule"
+                    )
+                seen[g] = a
+        if rule.at_least_one:
+            for g in _listable_groups(rule, problem):
+                if g not in seen:
+                    raise ModelError(
+                        f"{problem.name}: the initial state has no {' or '.join(rule.predicates)} atom for "
+                        f"{g!r}, but the domain's {rule} asks for one; add it to the initial state"
+                    )
+
+
+def _listable_groups(rule: AtMostOne, problem: Problem) -> list[Any]:
+    if rule.key == ():
+        return [()]
+    if not isinstance(rule.key, int):
+        return []
+    types = {
+        p.arg_types[rule.key]
+        for name in rule.predicates
+        if (p := problem.domain.predicates.get(name)) is not None and len(p.arg_types) > rule.key
+    }
+    if len(types) != 1 or None in types:
+        return []
+    (t,) = types
+    return list(problem.objects_of(t))
