@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal
+from nowplan.belief.protocols import HasState, ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.operators import Action
@@ -60,12 +61,11 @@ def support_for(domain_name: str) -> MonitorSupport:
 
 def state_of(belief: Any) -> State:
     """The belief's point state (the observed world model)."""
-    st = getattr(belief, "state", None)
-    if isinstance(st, State):
-        return st
+    if isinstance(belief, HasState) and isinstance(belief.state, State):
+        return belief.state
     if isinstance(belief, State):
         return belief
-    if hasattr(belief, "atoms"):
+    if isinstance(belief, ListsFacts):
         return State(belief.atoms())
     raise ModelError(
         f"the monitor needs a point belief with a State (got {type(belief).__name__}); "

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal
+from nowplan.belief.protocols import ListsFacts
 from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
@@ -31,8 +32,7 @@ from nowplan.planning.grounding import Grounder
 def can_relax(grounder: Grounder, belief: Any) -> bool:
     dom = grounder.domain
     return (
-        hasattr(belief, "atoms")
-        and hasattr(belief, "facts")
+        isinstance(belief, ListsFacts)
         and not any(op.generators for op in dom.operators)
         and all(p.test is None and p.boolean for p in dom.predicates.values())
     )

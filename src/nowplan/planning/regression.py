@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 from nowplan.core.atoms import Atom, Goal, conjoin, contradiction
+from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
@@ -107,7 +108,7 @@ def preimage(
 
 def static_drop(domain: Domain, belief: Any) -> frozenset[str]:
     """Static predicates checked at grounding and kept out of pre-images (when the belief lists facts)."""
-    if not hasattr(belief, "facts"):
+    if not isinstance(belief, ListsFacts):
         return frozenset()
     return frozenset(n for n in domain.static_predicates if domain.predicates[n].test is None)
 
