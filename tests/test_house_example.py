@@ -102,3 +102,17 @@ def test_the_cli_runs_renders_and_fails_the_house(tmp_path: Path) -> None:
     assert run.returncode == 0, run.stderr
     assert "outcome: reached" in run.stdout
     assert '"event": "frame"' in trace.read_text()
+
+
+def test_the_tutorial_shows_the_example_files_as_they_are() -> None:
+    """docs/writing-a-domain.md quotes each file of the example whole; they must not drift apart."""
+    import re
+
+    doc = (EXAMPLE.parents[1] / "docs" / "writing-a-domain.md").read_text()
+    quoted = re.findall(r"File `examples/house/([\w/.]+)`:\n\n```\w+\n(.*?)\n```\n", doc, flags=re.S)
+    assert {name for name, _ in quoted} == {
+        "pyproject.toml", "house_domain/__init__.py", "house_domain/model.py", "house_domain/world.py",
+        "house_domain/scenarios.py", "house_domain/render.py",
+    }
+    for name, text in quoted:
+        assert text == (EXAMPLE / name).read_text().rstrip("\n"), f"the tutorial's copy of {name} is stale"
