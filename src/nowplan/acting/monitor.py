@@ -180,7 +180,7 @@ class Monitor(Mechanism):
                 f"(seed 003), but domain {ex.domain.name}'s belief is a {type(ex.belief).__name__}, "
                 "not a point state; drop the monitor switch from the strategy"
             ) from err
-        self.support = support_for(ex.domain.name)
+        self.support = support_for(ex.domain)
         self._goal_key = goal_key(ex.problem.goal)
         if self.config.library_path is not None:
             self.library = PlanLibrary(self.config.library_path)

@@ -1,13 +1,13 @@
 """What the expected-vs-observed monitor needs from a domain (seed 003).
 
-A domain registers a :class:`MonitorSupport` under its name: a distance
+A domain carries a :class:`MonitorSupport` (``Domain(monitor=...)``): a distance
 between world models (states), optionally its own planner (the seed uses
 a means-ends planner; without one the monitor uses the regression
 planner), an ``adapt`` function that fits a stored or continued action
 sequence to the current state (the seed's low-level behaviours, e.g. the
 arm starts from wherever it is), and the predicates that describe the
 agent's own body and so never enter a restore target.  A domain that
-registers nothing gets :func:`fluent_distance`, the number of fluents whose
+gives none gets :func:`fluent_distance`, the number of fluents whose
 values differ.
 """
 
@@ -47,16 +47,9 @@ class MonitorSupport:
     ignore: frozenset[str] = frozenset()  # predicates of the agent's own body
 
 
-_SUPPORT: dict[str, MonitorSupport] = {}
-
-
-def register_support(domain_name: str, support: MonitorSupport) -> MonitorSupport:
-    _SUPPORT[domain_name] = support
-    return support
-
-
-def support_for(domain_name: str) -> MonitorSupport:
-    return _SUPPORT.get(domain_name, MonitorSupport())
+def support_for(domain: Domain) -> MonitorSupport:
+    """The domain's own support (``Domain(monitor=...)``), else the fluent-count distance alone."""
+    return domain.monitor or MonitorSupport()
 
 
 def state_of(belief: Any) -> State:

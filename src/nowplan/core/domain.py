@@ -12,13 +12,17 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nowplan.core.atoms import EQUALITY, Atom, AtMostOne, ConflictRule, Goal, Rules, Term, ValueRule, Var
 from nowplan.core.facts import FactTable
 from nowplan.core.operators import Operator
 from nowplan.core.state import State
 from nowplan.errors import ModelError
+
+if TYPE_CHECKING:
+    from nowplan.acting.monitor_support import MonitorSupport
+    from nowplan.acting.resources import ResourceModel
 
 TestFn = Callable[[Any, tuple[Term, ...], Any], bool]
 
@@ -49,6 +53,12 @@ class Domain:
     # strategy switches that cannot work on this domain, each with the reason and what to use
     # instead; a strategy naming one is refused before the run starts
     unsupported: Mapping[str, str] = field(default_factory=dict, hash=False, compare=False)
+    # how the declared resources are estimated and shared (the peephole's ordering; default:
+    # the declared uses at order 0)
+    resources: ResourceModel | None = field(default=None, hash=False, compare=False)
+    # what the expected-vs-observed monitor needs (distance between states, an own planner,
+    # plan adaptation, body predicates; default: the number of differing fluents)
+    monitor: MonitorSupport | None = field(default=None, hash=False, compare=False)
 
     def __post_init__(self) -> None:
         names = [o.name for o in self.operators]

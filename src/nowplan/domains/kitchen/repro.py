@@ -18,11 +18,9 @@ import statistics
 from typing import Any
 
 from nowplan.experiments.reproductions import (
-    Reproduction,
     ReproductionOptions,
     ReproductionResult,
     ReproStatus,
-    register,
     side_by_side,
 )
 
@@ -123,4 +121,3 @@ def run(options: ReproductionOptions) -> ReproductionResult:
     return result
 
 
-REPRODUCTION = register(Reproduction("004", "seed 004 Table I: SS-Replan variants on the kitchen tasks", run))

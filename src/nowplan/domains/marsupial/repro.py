@@ -24,11 +24,9 @@ from pathlib import Path
 from typing import Any
 
 from nowplan.experiments.reproductions import (
-    Reproduction,
     ReproductionOptions,
     ReproductionResult,
     ReproStatus,
-    register,
 )
 
 log = logging.getLogger(__name__)
@@ -365,4 +363,3 @@ def write_outputs(
     return paths
 
 
-register(Reproduction("002", "RCHPN vs HPN on marsupial logistics (Figs. 3 and 4)", reproduce))
