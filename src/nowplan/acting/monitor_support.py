@@ -41,6 +41,8 @@ def fluent_distance(a: State, b: State) -> float:
 
 @dataclass(frozen=True)
 class MonitorSupport:
+    """What a domain gives the expected-vs-observed monitor (``Domain(monitor=...)``)."""
+
     distance: Distance = fluent_distance
     planner: StatePlanner | None = field(default=None, compare=False)
     adapt: Adapt | None = field(default=None, compare=False)

@@ -36,6 +36,11 @@ Key = tuple[str, tuple[Term, ...]]
 
 
 class ParticleBelief:
+    """Weighted sampled states; override ``likelihood`` (the sensor) and ``predict`` (noisy actions).
+
+    ``threshold`` (in (0.5, 1]) is the probability a fluent value needs to be believed.
+    """
+
     def __init__(
         self, particles: Sequence[State], weights: Sequence[float] | None = None, *,
         seed: int = 0, threshold: float = 0.9,

@@ -29,6 +29,14 @@ TestFn = Callable[[Any, tuple[Term, ...], Any], bool]
 
 @dataclass(frozen=True)
 class Predicate:
+    """A fluent's name, arity and argument types (``None``: any object).
+
+    ``rule`` decides entailment between values of one fluent (default equality;
+    :class:`~nowplan.core.atoms.ToleranceRule` for tolerances); ``test``, if
+    given, decides truth from the belief (``test(belief, args, value)``)
+    instead of looking the fluent up; ``boolean=False`` for valued fluents.
+    """
+
     name: str
     arity: int
     arg_types: tuple[str | None, ...] = ()
@@ -39,6 +47,18 @@ class Predicate:
 
 @dataclass(frozen=True)
 class Domain:
+    """The agent's model: predicates, operators, types, and what the engine asks of a domain.
+
+    ``conflicts`` are rules saying which atoms never hold together
+    (:func:`~nowplan.core.atoms.at_most_one`, :func:`~nowplan.core.atoms.exactly_one`,
+    :func:`~nowplan.core.atoms.excludes`); ``triggers`` are reconsideration tests
+    ``fn(plan, belief) -> reason | None``; ``planner`` the domain's own planner
+    (the ``domain-planner`` switch); ``unsupported`` the strategy switches it
+    refuses, with why; ``resources`` its :class:`~nowplan.acting.resources.ResourceModel`;
+    ``monitor`` its :class:`~nowplan.acting.monitor_support.MonitorSupport`.
+    Construction checks every operator's atoms against the predicates.
+    """
+
     name: str
     predicates: Mapping[str, Predicate] = field(hash=False)
     operators: tuple[Operator, ...] = ()

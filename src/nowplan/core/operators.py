@@ -93,6 +93,13 @@ CostFn = Callable[[Bindings, Any], float]
 
 @dataclass(frozen=True)
 class Operator:
+    """An operator schema: parameters, preconditions (each with a criticality), effects, cost.
+
+    ``cost`` is a number or ``fn(bindings, belief)``; ``param_types`` name each
+    parameter's type; ``resources`` are what achieving it uses (the peephole);
+    ``generators`` bind parameters that no precondition or effect fixes.
+    """
+
     name: str
     params: tuple[Var, ...]
     preconditions: tuple[Precondition, ...] = ()

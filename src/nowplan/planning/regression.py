@@ -39,6 +39,8 @@ log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class PlannerConfig:
+    """Settings of the regression planner (budgets, heuristic, search options)."""
+
     max_nodes: int = 50_000  # expansions for the full search
     time_limit: float = 60.0  # seconds for one call (all methods), on ``clock``
     # "wall" (elapsed time) or "cpu" (this process's CPU time: the same searches end on a loaded
