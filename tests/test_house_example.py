@@ -43,6 +43,7 @@ def test_the_example_is_a_plugin_with_an_entry_point(house: DomainSpec) -> None:
     assert eps == {"house": "house_domain:SPEC"}
     assert house.source == "module house_domain" and house.name == "house"
     assert house.matrix_scenario in house.scenarios and house.renderer is not None
+    assert house.model is not None and house.model.name == "house"
 
 
 def test_model_world_and_scenarios_fit_in_150_lines() -> None:

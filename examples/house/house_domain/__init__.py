@@ -2,11 +2,12 @@
 
 from nowplan.api import DomainSpec
 
+from house_domain.model import DOMAIN
 from house_domain.render import render
 from house_domain.scenarios import SCENARIOS
 
 SPEC = DomainSpec(
     name="house",
     description="a one-gripper robot fetches a cup from behind a locked door (the tutorial domain)",
-    scenarios=SCENARIOS, default_scenario="fetch", matrix_scenario="sticky", renderer=render,
+    model=DOMAIN, scenarios=SCENARIOS, default_scenario="fetch", matrix_scenario="sticky", renderer=render,
 )

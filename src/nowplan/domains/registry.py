@@ -54,7 +54,7 @@ DemoFn = Callable[[Any], int]  # parsed `nowplan demo` arguments -> exit code
 class DomainSpec:
     """Everything a domain provides, found by discovery (no registry keyed by name elsewhere).
 
-    What the engine needs while planning and acting travels on the model
+    What the engine needs while planning and acting travels on the ``model``
     (:class:`nowplan.core.domain.Domain`: operators, conflict rules, triggers,
     its own planner, resource model, monitor support); the spec adds what
     the command line and the tests need: ``scenarios`` (name -> ``seed ->
@@ -75,6 +75,9 @@ class DomainSpec:
     matrix_scenario: str = ""
     matrix_slow: bool = False
     reproductions: tuple[Reproduction, ...] = ()  # `nowplan reproduce SEED` runs these
+    # the model, when one Domain serves every scenario (a domain built per map, like marsupial's,
+    # leaves it None: each Episode's problem carries its own)
+    model: Domain | None = None
     source: str = ""  # where it was found: an entry point or a module (set by discovery)
 
     def scenario(self, name: str) -> ScenarioFn:

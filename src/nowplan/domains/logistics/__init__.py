@@ -21,6 +21,7 @@ SPEC = register(
         scenarios=_scenarios,
         default_scenario="small",
         matrix_scenario="tiny-failures",
+        model=DOMAIN,
     )
 )
 

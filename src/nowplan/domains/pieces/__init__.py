@@ -51,6 +51,7 @@ SPEC = register(
         demo=_demo,
         matrix_scenario="tiny-disturbed",
         matrix_slow=True,
+        model=DOMAIN,
         reproductions=(Reproduction(
             "003", "seed 003: expected-vs-observed replanning on shuffled pieces under disturbances", _reproduce,
         ),),
