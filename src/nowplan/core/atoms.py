@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol, runtime_checkable
 
 
 @dataclass(frozen=True, order=True)
@@ -136,6 +136,19 @@ class AtLeastRule(ValueRule):
 EQUALITY = ValueRule()
 
 ConflictRule = Callable[[Atom, Atom], bool]
+
+
+@runtime_checkable
+class KeyedRule(Protocol):
+    """A conflict rule that is "at most one true atom per key": checked in linear time, not pairwise.
+
+    ``group_keys(atom)`` lists the atom's groups (empty: none); two different
+    atoms sharing a group conflict.  :class:`AtMostOne` is one.
+    """
+
+    def group_keys(self, a: Atom) -> list[Any]: ...
+
+    def __call__(self, a: Atom, b: Atom) -> bool: ...
 
 
 KeyFn = Callable[[Atom], Hashable]
@@ -361,8 +374,8 @@ def conjoin(goal: Goal, extra: Iterable[Atom], rules: Rules = DEFAULT_RULES) -> 
 
 def _keyed(rules: Rules) -> tuple[list[Any], list[ConflictRule]]:
     """Split conflict rules into keyed ones (with ``group_keys``) and plain pairwise ones."""
-    keyed = [c for c in rules.conflicts if hasattr(c, "group_keys")]
-    plain = [c for c in rules.conflicts if not hasattr(c, "group_keys")]
+    keyed = [c for c in rules.conflicts if isinstance(c, KeyedRule)]
+    plain = [c for c in rules.conflicts if not isinstance(c, KeyedRule)]
     return keyed, plain
 
 

@@ -30,7 +30,7 @@ from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from nowplan.core.atoms import Atom, Goal, Var, contradiction
+from nowplan.core.atoms import Atom, Goal, KeyedRule, Var, contradiction
 from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
@@ -414,8 +414,8 @@ class _Excluder:
         self.rules = domain.rules
         self.reached = sorted(reached)
         self.memo: dict[Atom, frozenset[Atom]] = {}
-        keyed = [c for c in self.rules.conflicts if hasattr(c, "group_keys")]
-        self.plain = [c for c in self.rules.conflicts if not hasattr(c, "group_keys")]
+        keyed = [c for c in self.rules.conflicts if isinstance(c, KeyedRule)]
+        self.plain = [c for c in self.rules.conflicts if not isinstance(c, KeyedRule)]
         self.groups: dict[Any, list[Atom]] = {}
         self.keyed = keyed
         for a in self.reached:
