@@ -9,6 +9,7 @@ example's directory on the path (the in-process tests), through ``nowplan
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 import tomllib
@@ -117,3 +118,24 @@ def test_the_tutorial_shows_the_example_files_as_they_are() -> None:
     }
     for name, text in quoted:
         assert text == (EXAMPLE / name).read_text().rstrip("\n"), f"the tutorial's copy of {name} is stale"
+
+
+def test_pip_installing_the_example_registers_its_entry_point(tmp_path: Path) -> None:
+    """A real install (a wheel built by pip into a target directory) is found through its entry point."""
+    pytest.importorskip("setuptools", reason="building the example's wheel offline needs setuptools")
+    target, source = tmp_path / "site", tmp_path / "house"
+    shutil.copytree(EXAMPLE, source, ignore=shutil.ignore_patterns("build", "*.egg-info", "__pycache__"))
+    build = subprocess.run(
+        [sys.executable, "-m", "pip", "install", "--quiet", "--no-deps", "--no-build-isolation",
+         "--no-index", "--target", str(target), str(source)],
+        capture_output=True, text=True, timeout=300,
+    )
+    if build.returncode != 0:
+        pytest.skip(f"pip could not build the example offline: {build.stderr.strip().splitlines()[-1:]}")
+    assert (target / "house_domain" / "model.py").exists()
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(target), *sys.path])}
+    env.pop("NOWPLAN_DOMAINS", None)
+    listed = subprocess.run([sys.executable, "-m", "nowplan.cli", "domains"], capture_output=True, text=True,
+                            env=env, timeout=120)
+    assert listed.returncode == 0, listed.stderr
+    assert "from entry point house = house_domain:SPEC" in listed.stdout
