@@ -29,7 +29,6 @@ from nowplan.core.atoms import Goal
 from nowplan.core.operators import Action
 from nowplan.acting import peephole as ph
 from nowplan.acting.arrange import Arrange, Subgoal, depends
-from nowplan.acting.resources import register_resource_model
 from nowplan.domains.marsupial import model as mm
 from nowplan.domains.marsupial import loader as lp
 from nowplan.domains.marsupial.grid import Hold, can_share
@@ -63,7 +62,7 @@ def shareable(resource: tuple[Any, ...], first: Sequence[Action], second: Sequen
         return False
     return lp.can_stow_in_turn(hold, door, [(x, shapes[x]) for x in order])  # as the library's test
 
-register_resource_model(mm.NAME, dataclasses.replace(mm.RESOURCES, shareable=shareable))
+mm.RESOURCES = dataclasses.replace(mm.RESOURCES, shareable=shareable)  # make_domain() gives it to each domain
 
 orig_spo = ph.Reorderer.select_parallel_ops
 def spo(self: ph.Reorderer, ops: list[Action], goals: list[Goal]) -> tuple[list[Action], list[Goal], int]:

@@ -27,8 +27,8 @@ def test_every_seed_has_a_reproduction(seed: str) -> None:
 @pytest.mark.parametrize("seed", ["000", "004"])
 def test_unlanded_reproduction_says_so(seed: str, capsys: pytest.CaptureFixture[str],
                                        monkeypatch: pytest.MonkeyPatch) -> None:
-    reproductions.registered()  # domains register on first use; then take one away
-    monkeypatch.delitem(reproductions._REGISTRY, seed)
+    declared = reproductions.declared()  # the domains' specs declare them; take one away
+    monkeypatch.setattr(reproductions, "declared", lambda: {k: v for k, v in declared.items() if k != seed})
     assert cli_main(["reproduce", seed, "--json", "--quick"]) == 3
     captured = capsys.readouterr()
     doc = json.loads(captured.out)
@@ -62,7 +62,9 @@ def test_a_registered_reproduction_runs(monkeypatch: pytest.MonkeyPatch, capsys:
         seen.append(opts)
         return ReproductionResult("003", ReproStatus.DONE, rows=[{"task": "t", "steps": 4.0}], notes="toy")
 
-    monkeypatch.setitem(reproductions._REGISTRY, "003", Reproduction("003", "a toy reproduction", run))
+    declared = reproductions.declared()
+    monkeypatch.setattr(reproductions, "declared",
+                        lambda: {**declared, "003": Reproduction("003", "a toy reproduction", run)})
     assert cli_main(["reproduce", "3", "--quick", "--out", str(tmp_path), "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["status"] == "done" and doc["rows"] == [{"task": "t", "steps": 4.0}]
@@ -75,3 +77,11 @@ def test_side_by_side_table() -> None:
     assert t.header[:3] == ("task", "success_pct (ours)", "success_pct (paper)")
     cook = next(r for r in t.rows if r[0] == "Cook")
     assert cook[1:3] == ("90", "100")
+
+
+def test_each_seed_comes_from_the_spec_of_the_domain_that_runs_it() -> None:
+    from nowplan.domains.registry import get_domain
+
+    owners = {r.seed: name for name in ("namo", "marsupial", "pieces", "kitchen")
+              for r in get_domain(name).reproductions}
+    assert owners == {"000": "namo", "002": "marsupial", "003": "pieces", "004": "kitchen"}

@@ -24,6 +24,7 @@ from typing import Any
 
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.strategy import Strategy, check_supported
+from nowplan.belief.protocols import check_belief
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap, flat_levels
@@ -91,6 +92,7 @@ class Executive:
         # action: the bound on re-planning a step that keeps failing while the belief does not change
         self._refinements: Counter[Hashable] = Counter()
         check_supported(self.domain, strategy)
+        check_belief(self.domain, belief)
         if strategy.domain_planner and self.domain.planner is None:
             raise ScenarioError(
                 f"domain {self.domain.name} has no planner of its own; "

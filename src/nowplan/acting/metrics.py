@@ -9,6 +9,8 @@ from typing import Any
 
 
 class Outcome(enum.Enum):
+    """How a run ended."""
+
     REACHED = "reached"  # the goal holds in the agent's belief (and the world's state)
     FAILED = "failed"  # a strategy gave up (the reason says why)
     LIMIT = "limit"  # an action, replan or time budget ran out
@@ -16,6 +18,8 @@ class Outcome(enum.Enum):
 
 @dataclass
 class Metrics:
+    """What one run measured: its outcome and reason, actions, costs, plans, replans and times."""
+
     outcome: Outcome = Outcome.FAILED
     reason: str = ""
     actions: int = 0

@@ -51,6 +51,7 @@ from nowplan.acting.monitor_support import (
     target_goal,
 )
 from nowplan.acting.plan_library import PlanLibrary, StoredPlan, goal_key, state_key
+from nowplan.belief.protocols import Reobserves
 from nowplan.core.atoms import Goal, entails
 from nowplan.core.levels import flat_levels
 from nowplan.core.state import State
@@ -132,12 +133,11 @@ class Monitor(Mechanism):
             ex.trace.emit("note", text=f"monitor: surprise (dm={dm:g}) but the goal holds")
             return
         order, repairs, dm1 = self._alternatives(ex, f, expected, observed, dm)
-        reobserve = getattr(ex.belief, "reobserve", None)
-        if not repairs and callable(reobserve):
+        if not repairs and isinstance(ex.belief, Reobserves):
             # nothing can be planned from this model: perhaps it is misperceived; look once more
             ex.trace.emit("note", text=f"monitor: no alternative could be planned (dm={dm:g}); observing again")
             self.stats.reobservations += 1
-            reobserve()
+            ex.belief.reobserve()
             observed = state_of(ex.belief)
             dm = float(self.support.distance(expected, observed))
             if dm == 0:
@@ -180,7 +180,7 @@ class Monitor(Mechanism):
                 f"(seed 003), but domain {ex.domain.name}'s belief is a {type(ex.belief).__name__}, "
                 "not a point state; drop the monitor switch from the strategy"
             ) from err
-        self.support = support_for(ex.domain.name)
+        self.support = support_for(ex.domain)
         self._goal_key = goal_key(ex.problem.goal)
         if self.config.library_path is not None:
             self.library = PlanLibrary(self.config.library_path)

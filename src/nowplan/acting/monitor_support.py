@@ -1,13 +1,13 @@
 """What the expected-vs-observed monitor needs from a domain (seed 003).
 
-A domain registers a :class:`MonitorSupport` under its name: a distance
+A domain carries a :class:`MonitorSupport` (``Domain(monitor=...)``): a distance
 between world models (states), optionally its own planner (the seed uses
 a means-ends planner; without one the monitor uses the regression
 planner), an ``adapt`` function that fits a stored or continued action
 sequence to the current state (the seed's low-level behaviours, e.g. the
 arm starts from wherever it is), and the predicates that describe the
 agent's own body and so never enter a restore target.  A domain that
-registers nothing gets :func:`fluent_distance`, the number of fluents whose
+gives none gets :func:`fluent_distance`, the number of fluents whose
 values differ.
 """
 
@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal
+from nowplan.belief.protocols import HasState, ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.operators import Action
@@ -40,32 +41,26 @@ def fluent_distance(a: State, b: State) -> float:
 
 @dataclass(frozen=True)
 class MonitorSupport:
+    """What a domain gives the expected-vs-observed monitor (``Domain(monitor=...)``)."""
+
     distance: Distance = fluent_distance
     planner: StatePlanner | None = field(default=None, compare=False)
     adapt: Adapt | None = field(default=None, compare=False)
     ignore: frozenset[str] = frozenset()  # predicates of the agent's own body
 
 
-_SUPPORT: dict[str, MonitorSupport] = {}
-
-
-def register_support(domain_name: str, support: MonitorSupport) -> MonitorSupport:
-    _SUPPORT[domain_name] = support
-    return support
-
-
-def support_for(domain_name: str) -> MonitorSupport:
-    return _SUPPORT.get(domain_name, MonitorSupport())
+def support_for(domain: Domain) -> MonitorSupport:
+    """The domain's own support (``Domain(monitor=...)``), else the fluent-count distance alone."""
+    return domain.monitor or MonitorSupport()
 
 
 def state_of(belief: Any) -> State:
     """The belief's point state (the observed world model)."""
-    st = getattr(belief, "state", None)
-    if isinstance(st, State):
-        return st
+    if isinstance(belief, HasState) and isinstance(belief.state, State):
+        return belief.state
     if isinstance(belief, State):
         return belief
-    if hasattr(belief, "atoms"):
+    if isinstance(belief, ListsFacts):
         return State(belief.atoms())
     raise ModelError(
         f"the monitor needs a point belief with a State (got {type(belief).__name__}); "

@@ -33,6 +33,8 @@ from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
+from nowplan.belief.protocols import check_belief
+from nowplan.belief.protocols import AfterAction, HasHeuristic, HasStreams
 from nowplan.core.domain import Problem
 from nowplan.core.levels import flat_levels
 from nowplan.core.operators import Action
@@ -90,6 +92,7 @@ class OnlinePolicy:
         on_action: Callable[[Any, Action], None] | None = None,
     ) -> None:
         check_supported(problem.domain, strategy)
+        check_belief(problem.domain, belief)
         self.problem = problem
         self.on_action = on_action  # observers (e.g. a renderer); never change control flow
         self.domain = problem.domain
@@ -104,7 +107,7 @@ class OnlinePolicy:
         self.rng = random.Random(seed)
         self.trace = trace or Trace()
         self.metrics = Metrics()
-        self.streams = getattr(belief, "streams", None)
+        self.streams = belief.streams if isinstance(belief, HasStreams) else None
         self.levels = flat_levels()
         self.planning_s = 0.0  # wall time spent planning and binding streams
         self.constrained_ok = 0
@@ -115,7 +118,8 @@ class OnlinePolicy:
     def _plan(self, prev: tuple[SkeletonStep, ...] | None, deadline: float) -> PlanResult:
         goal = self.problem.goal
         # a domain may offer its own goal-distance estimate through the belief (regression's hook)
-        ctx = PlanningContext((), {"online": True, "heuristic": getattr(self.belief, "planning_heuristic", None)})
+        h = self.belief.planning_heuristic if isinstance(self.belief, HasHeuristic) else None
+        ctx = PlanningContext((), {"online": True, "heuristic": h})
         if self.reuse and prev:
             self.constrained_tried += 1
             budget = max(min(self.reuse_budget, deadline - time.perf_counter()), 0.01)
@@ -128,11 +132,10 @@ class OnlinePolicy:
                 return res
             self.trace.emit("note", text=f"constrained replanning failed ({res.reason}); unconstrained")
         base = self.strategy.planner
-        grow = getattr(self.streams, "grow", None)
-        if self.streams is not None and hasattr(self.streams, "reset_level"):
+        if self.streams is not None:
             self.streams.reset_level()
         while True:
-            level = int(getattr(self.streams, "level", 1))
+            level = self.streams.level if self.streams is not None else 1
             cfg = replace(base, max_generator_values=base.max_generator_values * level)
             remaining = deadline - time.perf_counter()
             if remaining < cfg.time_limit:
@@ -141,7 +144,7 @@ class OnlinePolicy:
                 self.domain, self.problem.objects, self.belief, goal, self.levels, cfg, ctx, self.rng
             )
             # adaptive sampling: a search that ran out of candidates gets larger sample pools
-            if res.solved or res.status is PlanStatus.TIME_LIMIT or not callable(grow) or not grow():
+            if res.solved or res.status is PlanStatus.TIME_LIMIT or self.streams is None or not self.streams.grow():
                 return res
             self.trace.emit("note", text=f"planning failed ({res.reason}); sample pools grow")
 
@@ -217,9 +220,8 @@ class OnlinePolicy:
             self.belief.update(first, obs)
             self.trace.emit("observation", n=self.metrics.actions - 1, action=first.pddl(),
                             success=obs.success, observation=obs.info or None)
-            hook = getattr(self.belief, "after_action", None)
-            if callable(hook):
-                hook(self.trace, first, obs)
+            if isinstance(self.belief, AfterAction) and self.belief.after_action is not None:
+                self.belief.after_action(self.trace, first, obs)
             if self.on_action is not None:
                 self.on_action(self, first)
             # Alg. 1 line 17: the unexecuted tail constrains the next plan (if it went as planned)

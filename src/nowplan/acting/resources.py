@@ -16,7 +16,7 @@ operators' declared resources:
 The estimate also records the *effort*: the cost of those small plans, which
 says how far the step is from being achievable in the current state (the
 greedy tie-breaker of seed 002 Fig. 2).  A domain describes how its
-resources behave with a :class:`ResourceModel` registered under its name.
+resources behave with a :class:`ResourceModel` it carries (``Domain(resources=...)``).
 """
 
 from __future__ import annotations
@@ -71,17 +71,11 @@ class ResourceModel:
 
 
 DEFAULT_MODEL = ResourceModel()
-_MODELS: dict[str, ResourceModel] = {}
-
-
-def register_resource_model(domain_name: str, model: ResourceModel) -> ResourceModel:
-    """Called by a domain package at import time."""
-    _MODELS[domain_name] = model
-    return model
 
 
 def resource_model(domain: Domain) -> ResourceModel:
-    return _MODELS.get(domain.name, DEFAULT_MODEL)
+    """The domain's own model (``Domain(resources=...)``), else the declared uses at order 0."""
+    return domain.resources or DEFAULT_MODEL
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,8 @@ MECHANISM_MODULES = (
 
 @dataclass(frozen=True)
 class Strategy:
+    """A parsed strategy (:func:`parse_strategy`): its switches, budgets and planner settings."""
+
     name: str = "hpn"
     switches: tuple[str, ...] = ("hpn",)
     hierarchical: bool = True  # plan over criticality levels (False: flat, every step primitive)
@@ -117,6 +119,7 @@ def _load() -> None:
 
 
 def strategy_names() -> list[str]:
+    """The strategy switches (``hpn``, ``flat``, ``online``, ``peephole``, ...) a strategy string may join with '+'."""
     _load()
     return sorted(SWITCHES)
 

@@ -18,6 +18,12 @@ from nowplan.worlds.base import Observation
 
 
 class SymbolicBelief:
+    """A point belief over a symbolic :class:`State` that lists its facts (the common case).
+
+    It offers ``value``, ``facts``/``atoms`` and ``state`` (see
+    :mod:`nowplan.belief.protocols`); derive from it to add a domain's own update.
+    """
+
     def __init__(self, state: State) -> None:
         self.state = state
 

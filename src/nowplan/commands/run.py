@@ -78,15 +78,16 @@ def main(args: argparse.Namespace) -> int:
     if args.trace is not None and args.trace.is_dir():
         raise UsageError(f"--trace {args.trace} is a directory; give a file path, e.g. {args.trace / 'trace.jsonl'}")
     episode = build_episode(args)
-    for attr in ("failure_prob", "exogenous_prob"):
-        val = getattr(args, attr)
-        if val is not None:
-            if not hasattr(episode.world, attr):
-                raise UsageError(f"--{attr.replace('_', '-')} is not supported by this domain's world")
-            if attr == "exogenous_prob" and val and getattr(episode.world, "exogenous", True) is None:
-                raise UsageError("--exogenous-prob: this world has no exogenous changes to make (a PDDL "
-                                 "problem has none); drop it, or use a domain scenario that has them")
-            setattr(episode.world, attr, val)
+    if args.failure_prob is not None or args.exogenous_prob is not None:
+        from nowplan.worlds.base import FaultInjection
+
+        if not isinstance(episode.world, FaultInjection):
+            raise UsageError("--failure-prob/--exogenous-prob: this domain's world takes no faults "
+                             "(it is not a nowplan SimulatedWorld and has no set_faults); drop them")
+        try:
+            episode.world.set_faults(failure_prob=args.failure_prob, exogenous_prob=args.exogenous_prob)
+        except ValueError as exc:
+            raise UsageError(f"--failure-prob/--exogenous-prob: {exc}") from exc
     render = None
     if args.frames:
         if not args.trace:

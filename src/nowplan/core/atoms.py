@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol, runtime_checkable
 
 
 @dataclass(frozen=True, order=True)
@@ -138,26 +138,132 @@ EQUALITY = ValueRule()
 ConflictRule = Callable[[Atom, Atom], bool]
 
 
+@runtime_checkable
+class KeyedRule(Protocol):
+    """A conflict rule that is "at most one true atom per key": checked in linear time, not pairwise.
+
+    ``group_keys(atom)`` lists the atom's groups (empty: none); two different
+    atoms sharing a group conflict.  :class:`AtMostOne` is one.
+    """
+
+    def group_keys(self, a: Atom) -> list[Any]: ...
+
+    def __call__(self, a: Atom, b: Atom) -> bool: ...
+
+
+KeyFn = Callable[[Atom], Hashable]
+
+
 @dataclass(frozen=True)
 class AtMostOne:
-    """A conflict rule: at most one true atom of ``predicates`` per value of argument ``key``.
+    """A conflict rule: at most one true atom of ``predicates`` per key.
 
+    ``key`` says which atoms share a group: an argument index (``0``: per
+    first argument), a tuple of indices (``()``: all the atoms of
+    ``predicates`` form one group, e.g. "the robot is in one room"), or a
+    function of the atom (``None``: the atom is in no group).
     ``AtMostOne(("at", "in"))`` says an object is at one place or in one
     vehicle at a time.  It exposes ``group_keys`` so goals are checked in
-    linear time.
+    linear time.  Write it with :func:`at_most_one` or :func:`exactly_one`.
     """
 
     predicates: tuple[str, ...]
-    key: int = 0
+    key: int | tuple[int, ...] | KeyFn = 0
+    # exactly_one: a problem's initial state must also have one (checked by Problem)
+    at_least_one: bool = False
+
+    def key_of(self, a: Atom) -> Hashable | None:
+        """The atom's group (``None``: in no group); ignores the atom's value."""
+        if a.predicate not in self.predicates:
+            return None
+        k = self.key
+        if isinstance(k, int):
+            return a.args[k] if len(a.args) > k else None
+        if isinstance(k, tuple):
+            if any(i >= len(a.args) for i in k):
+                return None
+            return tuple(a.args[i] for i in k)
+        return k(a)
 
     def group_keys(self, a: Atom) -> list[Any]:
-        if a.value is not True or a.predicate not in self.predicates or len(a.args) <= self.key:
+        if a.value is not True:
             return []
-        return [(self.predicates, a.args[self.key])]
+        g = self.key_of(a)
+        return [] if g is None else [(self.predicates, g)]
 
     def __call__(self, a: Atom, b: Atom) -> bool:
         ka, kb = self.group_keys(a), self.group_keys(b)
         return bool(ka) and ka == kb and a != b
+
+    def __str__(self) -> str:
+        name = "exactly_one" if self.at_least_one else "at_most_one"
+        return f"{name}({', '.join(map(repr, self.predicates))}, key={self.key!r})"
+
+
+def at_most_one(*predicates: str, key: int | tuple[int, ...] | KeyFn = 0) -> AtMostOne:
+    """At most one true atom of these predicates per key (a conflict rule for ``Domain(conflicts=…)``).
+
+    ``at_most_one("at", "holding", key=0)``: an item is at one place or held,
+    not both; ``at_most_one("robot_in", key=())``: the robot is in one room;
+    ``key=(0, 1)`` groups by the first two arguments; ``key=fn`` by
+    ``fn(atom)`` (``None``: no group).  The planner prunes every subgoal
+    that asks for two atoms of one group.
+    """
+    if not predicates:
+        raise ValueError("at_most_one needs at least one predicate name")
+    return AtMostOne(tuple(predicates), key)
+
+
+def exactly_one(*predicates: str, key: int | tuple[int, ...] | KeyFn = 0) -> AtMostOne:
+    """Like :func:`at_most_one`, and a problem's initial state must have one true atom per group.
+
+    The groups checked are those one can list: with ``key=()`` the single
+    group; with an argument index, every object of the type the predicates
+    declare at that index (``Predicate.arg_types``).  A violating initial state
+    is a :class:`nowplan.errors.ModelError` naming the group.
+    """
+    if not predicates:
+        raise ValueError("exactly_one needs at least one predicate name")
+    return AtMostOne(tuple(predicates), key, at_least_one=True)
+
+
+def _match(pattern: Atom, a: Atom, bound: dict[Var, Any]) -> bool:
+    """Extend ``bound`` so that ``pattern`` matches ``a`` (same predicate, args and value)."""
+    if pattern.predicate != a.predicate or len(pattern.args) != len(a.args) or pattern.value != a.value:
+        return False
+    for p, x in zip(pattern.args, a.args, strict=True):
+        if isinstance(p, Var):
+            have = bound.setdefault(p, x)
+            if have != x:
+                return False
+        elif p != x:
+            return False
+    return True
+
+
+@dataclass(frozen=True)
+class Excludes:
+    """A conflict rule: an atom matching ``a`` and one matching ``b`` never hold together.
+
+    Variables shared by the two patterns must take the same value:
+    ``excludes(atom("hand_empty", h), atom("holding", h, o))`` says a free
+    hand holds nothing.  Write it with :func:`excludes`.
+    """
+
+    a: Atom
+    b: Atom
+
+    def __call__(self, x: Atom, y: Atom) -> bool:
+        bound: dict[Var, Any] = {}
+        return _match(self.a, x, bound) and _match(self.b, y, bound)
+
+    def __str__(self) -> str:
+        return f"excludes({self.a}, {self.b})"
+
+
+def excludes(a: Atom, b: Atom) -> Excludes:
+    """``a`` and ``b`` (patterns; shared variables must agree) cannot hold together."""
+    return Excludes(a, b)
 
 
 @dataclass(frozen=True)
@@ -268,8 +374,8 @@ def conjoin(goal: Goal, extra: Iterable[Atom], rules: Rules = DEFAULT_RULES) -> 
 
 def _keyed(rules: Rules) -> tuple[list[Any], list[ConflictRule]]:
     """Split conflict rules into keyed ones (with ``group_keys``) and plain pairwise ones."""
-    keyed = [c for c in rules.conflicts if hasattr(c, "group_keys")]
-    plain = [c for c in rules.conflicts if not hasattr(c, "group_keys")]
+    keyed = [c for c in rules.conflicts if isinstance(c, KeyedRule)]
+    plain = [c for c in rules.conflicts if not isinstance(c, KeyedRule)]
     return keyed, plain
 
 

@@ -12,18 +12,31 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from nowplan.core.atoms import EQUALITY, Atom, ConflictRule, Goal, Rules, Term, ValueRule, Var
+from nowplan.core.atoms import EQUALITY, Atom, AtMostOne, ConflictRule, Goal, Rules, Term, ValueRule, Var
 from nowplan.core.facts import FactTable
 from nowplan.core.operators import Operator
+from nowplan.core.state import State
 from nowplan.errors import ModelError
+
+if TYPE_CHECKING:
+    from nowplan.acting.monitor_support import MonitorSupport
+    from nowplan.acting.resources import ResourceModel
 
 TestFn = Callable[[Any, tuple[Term, ...], Any], bool]
 
 
 @dataclass(frozen=True)
 class Predicate:
+    """A fluent's name, arity and argument types (``None``: any object).
+
+    ``rule`` decides entailment between values of one fluent (default equality;
+    :class:`~nowplan.core.atoms.ToleranceRule` for tolerances); ``test``, if
+    given, decides truth from the belief (``test(belief, args, value)``)
+    instead of looking the fluent up; ``boolean=False`` for valued fluents.
+    """
+
     name: str
     arity: int
     arg_types: tuple[str | None, ...] = ()
@@ -34,6 +47,18 @@ class Predicate:
 
 @dataclass(frozen=True)
 class Domain:
+    """The agent's model: predicates, operators, types, and what the engine asks of a domain.
+
+    ``conflicts`` are rules saying which atoms never hold together
+    (:func:`~nowplan.core.atoms.at_most_one`, :func:`~nowplan.core.atoms.exactly_one`,
+    :func:`~nowplan.core.atoms.excludes`); ``triggers`` are reconsideration tests
+    ``fn(plan, belief) -> reason | None``; ``planner`` the domain's own planner
+    (the ``domain-planner`` switch); ``unsupported`` the strategy switches it
+    refuses, with why; ``resources`` its :class:`~nowplan.acting.resources.ResourceModel`;
+    ``monitor`` its :class:`~nowplan.acting.monitor_support.MonitorSupport`.
+    Construction checks every operator's atoms against the predicates.
+    """
+
     name: str
     predicates: Mapping[str, Predicate] = field(hash=False)
     operators: tuple[Operator, ...] = ()
@@ -48,15 +73,27 @@ class Domain:
     # strategy switches that cannot work on this domain, each with the reason and what to use
     # instead; a strategy naming one is refused before the run starts
     unsupported: Mapping[str, str] = field(default_factory=dict, hash=False, compare=False)
+    # how the declared resources are estimated and shared (the peephole's ordering; default:
+    # the declared uses at order 0)
+    resources: ResourceModel | None = field(default=None, hash=False, compare=False)
+    # what the expected-vs-observed monitor needs (distance between states, an own planner,
+    # plan adaptation, body predicates; default: the number of differing fluents)
+    monitor: MonitorSupport | None = field(default=None, hash=False, compare=False)
 
     def __post_init__(self) -> None:
         names = [o.name for o in self.operators]
         dup = {n for n in names if names.count(n) > 1}
         if dup:
             raise ModelError(f"domain {self.name}: operator names repeated: {sorted(dup)}")
+        changed = {e.predicate for o in self.operators for e in o.effects}
         for op in self.operators:
             for p in op.preconditions:
                 self.check_atom(p.atom, where=f"precondition of operator {op.name}")
+                if p.static and p.atom.predicate in changed:
+                    raise ModelError(
+                        f"operator {op.name}: static({p.atom}) but an operator changes "
+                        f"'{p.atom.predicate}'; give it a criticality (Precondition(atom, n)) instead"
+                    )
             for e in op.effects:
                 self.check_atom(e, where=f"effect of operator {op.name}")
             unknown = {
@@ -163,6 +200,8 @@ class Problem:
     def __post_init__(self) -> None:
         for a in self.goal.atoms:
             self.domain.check_atom(a, where=f"goal of {self.name}")
+        if isinstance(self.init, State):
+            check_groups(self, self.init)
 
     @cached_property
     def all_objects(self) -> dict[str, str | None]:
@@ -173,3 +212,47 @@ class Problem:
             return sorted(self.all_objects)
         ok = self.domain.subtypes(t)
         return sorted(o for o, ot in self.all_objects.items() if ot in ok)
+
+
+def check_groups(problem: Problem, state: State) -> None:
+    """The state obeys the domain's ``at_most_one``/``exactly_one`` rules, else a ModelError naming the group."""
+    dom = problem.domain
+    for rule in dom.conflicts:
+        if not isinstance(rule, AtMostOne):
+            continue
+        seen: dict[Any, Atom] = {}
+        for pred in rule.predicates:
+            for args in state.facts(pred):
+                a = Atom(pred, tuple(args))
+                g = rule.key_of(a)
+                if g is None:
+                    continue
+                if g in seen:
+                    raise ModelError(
+                        f"{problem.name}: the initial state has {seen[g]} and {a}, but the domain's "
+                        f"{rule} allows one; fix the initial state or the rule"
+                    )
+                seen[g] = a
+        if rule.at_least_one:
+            for g in _listable_groups(rule, problem):
+                if g not in seen:
+                    raise ModelError(
+                        f"{problem.name}: the initial state has no {' or '.join(rule.predicates)} atom for "
+                        f"{g!r}, but the domain's {rule} asks for one; add it to the initial state"
+                    )
+
+
+def _listable_groups(rule: AtMostOne, problem: Problem) -> list[Any]:
+    if rule.key == ():
+        return [()]
+    if not isinstance(rule.key, int):
+        return []
+    types = {
+        p.arg_types[rule.key]
+        for name in rule.predicates
+        if (p := problem.domain.predicates.get(name)) is not None and len(p.arg_types) > rule.key
+    }
+    if len(types) != 1 or None in types:
+        return []
+    (t,) = types
+    return list(problem.objects_of(t))

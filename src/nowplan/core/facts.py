@@ -23,7 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Hashable, Iterable
 from typing import TYPE_CHECKING, Any
-from nowplan.core.atoms import EQUALITY, Atom, Goal, Rules, Term
+from nowplan.core.atoms import EQUALITY, Atom, Goal, KeyedRule, Rules, Term
 
 if TYPE_CHECKING:
     from nowplan.core.operators import Action
@@ -36,8 +36,8 @@ class FactTable:
 
     def __init__(self, rules: Rules) -> None:
         self.rules = rules
-        self.keyed = tuple(c for c in rules.conflicts if hasattr(c, "group_keys"))
-        self.plain = tuple(c for c in rules.conflicts if not hasattr(c, "group_keys"))
+        self.keyed = tuple(c for c in rules.conflicts if isinstance(c, KeyedRule))
+        self.plain = tuple(c for c in rules.conflicts if not isinstance(c, KeyedRule))
         self.ids: dict[Atom, int] = {}
         self.atoms: list[Atom] = []
         self.fluent: list[int] = []

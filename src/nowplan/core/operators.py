@@ -42,8 +42,22 @@ class Resource:
 
 @dataclass(frozen=True)
 class Precondition:
+    """A precondition and its criticality (higher: considered at more abstract levels).
+
+    ``static=True`` (write it :func:`static`) marks a precondition on a
+    predicate no operator changes: it needs no criticality of its own, since
+    it is checked when the operator is grounded, at every level; the operator
+    gives it its highest criticality so it adds no abstraction level.
+    """
+
     atom: Atom
     criticality: int = 0
+    static: bool = False
+
+
+def static(a: Atom) -> Precondition:
+    """A static precondition (e.g. ``static(atom("connects", d, r1, r2))``): no criticality needed."""
+    return Precondition(a, 0, static=True)
 
 
 GeneratorFn = Callable[..., Iterable[Mapping[Var, Any]]]
@@ -79,6 +93,13 @@ CostFn = Callable[[Bindings, Any], float]
 
 @dataclass(frozen=True)
 class Operator:
+    """An operator schema: parameters, preconditions (each with a criticality), effects, cost.
+
+    ``cost`` is a number or ``fn(bindings, belief)``; ``param_types`` name each
+    parameter's type; ``resources`` are what achieving it uses (the peephole);
+    ``generators`` bind parameters that no precondition or effect fixes.
+    """
+
     name: str
     params: tuple[Var, ...]
     preconditions: tuple[Precondition, ...] = ()
@@ -94,6 +115,10 @@ class Operator:
     def __post_init__(self) -> None:
         if self.param_types and len(self.param_types) != len(self.params):
             raise ValueError(f"operator {self.name}: param_types and params differ in length")
+        if any(p.static for p in self.preconditions):
+            top = max((p.criticality for p in self.preconditions if not p.static), default=0)
+            pres = tuple(Precondition(p.atom, top, True) if p.static else p for p in self.preconditions)
+            object.__setattr__(self, "preconditions", pres)
 
     @property
     def criticalities(self) -> tuple[int, ...]:

@@ -23,10 +23,13 @@ import importlib
 import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nowplan.core.domain import Domain, Problem
 from nowplan.errors import ScenarioError
+
+if TYPE_CHECKING:
+    from nowplan.experiments.reproductions import Reproduction
 
 ENTRY_POINT_GROUP = "nowplan.domains"
 ENV_VAR = "NOWPLAN_DOMAINS"
@@ -49,6 +52,17 @@ DemoFn = Callable[[Any], int]  # parsed `nowplan demo` arguments -> exit code
 
 @dataclass
 class DomainSpec:
+    """Everything a domain provides, found by discovery (no registry keyed by name elsewhere).
+
+    What the engine needs while planning and acting travels on the ``model``
+    (:class:`nowplan.core.domain.Domain`: operators, conflict rules, triggers,
+    its own planner, resource model, monitor support); the spec adds what
+    the command line and the tests need: ``scenarios`` (name -> ``seed ->
+    Episode``), a ``renderer`` for frames, a ``demo``, the paper
+    ``reproductions`` it runs, and the small ``matrix_scenario`` that the
+    strategy-matrix test runs under every strategy.
+    """
+
     name: str
     description: str
     scenarios: Mapping[str, ScenarioFn]
@@ -60,6 +74,10 @@ class DomainSpec:
     # whether that run is slow (then the matrix marks it @slow)
     matrix_scenario: str = ""
     matrix_slow: bool = False
+    reproductions: tuple[Reproduction, ...] = ()  # `nowplan reproduce SEED` runs these
+    # the model, when one Domain serves every scenario (a domain built per map, like marsupial's,
+    # leaves it None: each Episode's problem carries its own)
+    model: Domain | None = None
     source: str = ""  # where it was found: an entry point or a module (set by discovery)
 
     def scenario(self, name: str) -> ScenarioFn:

@@ -1,10 +1,10 @@
-"""Reproductions of the seed papers' tables: a registry the domain packages fill.
+"""Reproductions of the seed papers' tables, declared by the domains that run them.
 
-A domain package that can reproduce a seed's table calls :func:`register`
-at import time with a :class:`Reproduction` whose ``run`` function sweeps
+A domain that can reproduce a seed's table lists a :class:`Reproduction` in
+its spec (``DomainSpec(reproductions=...)``), whose ``run`` function sweeps
 its configurations (quick or full) and returns a
 :class:`ReproductionResult` with rows shaped like the paper's
-(:mod:`nowplan.experiments.papers`).  A seed nobody has registered yet
+(:mod:`nowplan.experiments.papers`).  A seed no domain declares
 gets an honest ``not_implemented`` result: no rows, the paper's numbers,
 and a note saying what is missing.
 """
@@ -79,9 +79,6 @@ class Reproduction:
     run: ReproduceFn
 
 
-_REGISTRY: dict[str, Reproduction] = {}
-
-
 def seeds() -> list[str]:
     return sorted(PAPERS)
 
@@ -95,26 +92,27 @@ def normalize_seed(text: str) -> str:
     return s
 
 
-def register(repro: Reproduction) -> Reproduction:
-    """Called by a domain package at import time."""
-    seed = normalize_seed(repro.seed)
-    _REGISTRY[seed] = repro
-    return repro
-
-
-def _load_domains() -> None:
-    """Import the domain packages, which register their reproductions."""
-    from nowplan.domains.registry import domain_names
+def declared() -> dict[str, Reproduction]:
+    """Every reproduction the domains' specs declare, by seed (two for one seed is an error)."""
+    from nowplan.domains.registry import domain_names, get_domain
 
     try:
-        domain_names()
+        names = domain_names()
     except ImportError as exc:  # a domain package still under construction must not hide the rest
         log.warning("could not load every domain package: %s", exc)
+        return {}
+    out: dict[str, Reproduction] = {}
+    for name in names:
+        for repro in get_domain(name).reproductions:
+            seed = normalize_seed(repro.seed)
+            if seed in out:
+                raise ScenarioError(f"two domains declare a reproduction of seed {seed}; keep one")
+            out[seed] = repro
+    return out
 
 
 def registered() -> list[str]:
-    _load_domains()
-    return sorted(_REGISTRY)
+    return sorted(declared())
 
 
 def paper_of(seed: str) -> SeedPaper:
@@ -124,9 +122,8 @@ def paper_of(seed: str) -> SeedPaper:
 def reproduce(seed: str, options: ReproductionOptions | None = None) -> ReproductionResult:
     """Run the registered reproduction of ``seed``, or say plainly why there is none."""
     s = normalize_seed(seed)
-    _load_domains()
     paper = PAPERS[s]
-    repro = _REGISTRY.get(s)
+    repro = declared().get(s)
     if repro is None:
         return not_implemented(paper)
     opts = options or ReproductionOptions()

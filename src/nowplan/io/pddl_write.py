@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from nowplan.core.atoms import Atom, Term, Var
+from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain, Problem
 from nowplan.core.operators import Operator
 from nowplan.errors import ModelError
@@ -166,7 +167,7 @@ def domain_text(domain: Domain, level: int | None = None) -> str:
 
 
 def _init_atoms(init: Any) -> list[Atom]:
-    if not hasattr(init, "atoms"):
+    if not isinstance(init, ListsFacts):
         raise ModelError("the initial belief is not a symbolic State; it cannot be written as PDDL")
     atoms = [a for a in init.atoms() if a.predicate != EQUALITY]
     for a in atoms:

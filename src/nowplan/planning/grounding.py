@@ -17,6 +17,7 @@ from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping, Seq
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal, Var
+from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
@@ -72,7 +73,7 @@ class Grounder:
         self._cache: dict[Atom, list[Action]] = {}
         self._static_cache: dict[Atom, bool] = {}
         self._by_type: dict[str | None, list[str]] = {}
-        self._facts_ok = hasattr(belief, "facts")
+        self._facts_ok = isinstance(belief, ListsFacts)
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
         self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
         self.signature: Hashable = None  # the objects and static facts (with a belief that lists facts)

@@ -22,20 +22,31 @@ from dataclasses import dataclass
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal
+from nowplan.belief.protocols import ListsFacts
 from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.grounding import Grounder
 
 
-def can_relax(grounder: Grounder, belief: Any) -> bool:
+def relax_unsupported(grounder: Grounder, belief: Any) -> str | None:
+    """Why the ground relaxed exploration (h_add, h_max, h_FF) cannot run here, or ``None`` if it can."""
     dom = grounder.domain
-    return (
-        hasattr(belief, "atoms")
-        and hasattr(belief, "facts")
-        and not any(op.generators for op in dom.operators)
-        and all(p.test is None and p.boolean for p in dom.predicates.values())
-    )
+    if not isinstance(belief, ListsFacts):
+        return f"the belief {type(belief).__name__} does not list its facts (no facts()/atoms())"
+    for op in dom.operators:
+        if op.generators:
+            return f"operator {op.name} has generators"
+    for p in dom.predicates.values():
+        if p.test is not None:
+            return f"predicate {p.name} has a test"
+        if not p.boolean:
+            return f"predicate {p.name} is not boolean"
+    return None
+
+
+def can_relax(grounder: Grounder, belief: Any) -> bool:
+    return relax_unsupported(grounder, belief) is None
 
 
 @dataclass(frozen=True)

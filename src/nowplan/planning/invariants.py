@@ -25,6 +25,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 
 from nowplan.core.atoms import Atom, Term, Var
+from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Operator
 
@@ -193,7 +194,7 @@ def initially_valid(group: MutexGroup, atoms: Iterable[Atom]) -> bool:
 
 def infer_mutexes(domain: Domain, init: object, max_size: int = 4) -> tuple[MutexGroup, ...]:
     """Invariant groups of ``domain`` that hold in ``init`` (a :class:`State` or atoms)."""
-    atoms = list(init.atoms()) if hasattr(init, "atoms") else list(init)  # type: ignore[call-overload]
+    atoms = list(init.atoms()) if isinstance(init, ListsFacts) else list(init)  # type: ignore[call-overload]
     out = []
     for g in find_invariants(domain, max_size):
         # a group whose members are never true and never added is useless

@@ -19,6 +19,8 @@ from nowplan.core.operators import Action
 
 
 class PlanStatus(enum.Enum):
+    """How a planning call ended."""
+
     SOLVED = "solved"
     UNSOLVABLE = "unsolvable"
     NODE_LIMIT = "node_limit"

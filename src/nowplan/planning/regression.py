@@ -22,13 +22,14 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 from nowplan.core.atoms import Atom, Goal, conjoin, contradiction
+from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding import Grounder
-from nowplan.planning.heuristics import can_relax, hadd_ids
+from nowplan.planning.heuristics import hadd_ids, relax_unsupported
 from nowplan.planning.relaxed import LazyRelaxed, Supporter
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.subgoals import ActionFacts, NodeIndex, action_facts, regress
@@ -38,6 +39,8 @@ log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class PlannerConfig:
+    """Settings of the regression planner (budgets, heuristic, search options)."""
+
     max_nodes: int = 50_000  # expansions for the full search
     time_limit: float = 60.0  # seconds for one call (all methods), on ``clock``
     # "wall" (elapsed time) or "cpu" (this process's CPU time: the same searches end on a loaded
@@ -107,9 +110,24 @@ def preimage(
     return conjoin(Goal(frozenset(remaining)), pre, rules)
 
 
+_FALLBACKS_LOGGED: set[tuple[str, str, str]] = set()
+
+
+def _log_fallback(domain: str, heuristic: str, why: str) -> None:
+    """Say once per (domain, heuristic, reason) that the planner counts unmet atoms instead."""
+    key = (domain, heuristic, why)
+    if key not in _FALLBACKS_LOGGED:
+        _FALLBACKS_LOGGED.add(key)
+        log.info(
+            "domain %s: heuristic %s falls back to counting unmet atoms: %s "
+            "(PlannerConfig(lazy_relaxation=True) keeps a relaxed estimate with tests and generators)",
+            domain, heuristic, why,
+        )
+
+
 def static_drop(domain: Domain, belief: Any) -> frozenset[str]:
     """Static predicates checked at grounding and kept out of pre-images (when the belief lists facts)."""
-    if not hasattr(belief, "facts"):
+    if not isinstance(belief, ListsFacts):
         return frozenset()
     return frozenset(n for n in domain.static_predicates if domain.predicates[n].test is None)
 
@@ -179,7 +197,8 @@ class _Search:
         self.relaxed: LazyRelaxed | None = None
         # a domain's own estimate, fn(goal, belief, holds) -> cost, passed as context.extras["heuristic"]
         self.domain_h = context.extras.get("heuristic") if context is not None else None
-        self._can_relax = can_relax(self.grounder, belief)
+        self._no_relax = relax_unsupported(self.grounder, belief)
+        self._can_relax = self._no_relax is None
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
         self._ground_hadd: dict[int, float] | None = None
         self._ctx: tuple[frozenset[int], Goal] | None = None
@@ -208,6 +227,8 @@ class _Search:
             if self._ground_hadd is None:
                 self._ground_hadd = hadd_ids(self.grounder, self.levels, self.drop, self.cost)
             self.hadd = self._ground_hadd
+        else:
+            _log_fallback(self.grounder.domain.name, name, str(self._no_relax))
 
     def _goal_of(self, context: frozenset[int]) -> Goal:
         if self._ctx is None or self._ctx[0] is not context:

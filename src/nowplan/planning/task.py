@@ -30,7 +30,8 @@ from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from nowplan.core.atoms import Atom, Goal, Var, contradiction
+from nowplan.core.atoms import Atom, Goal, KeyedRule, Var, contradiction
+from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action, Operator
@@ -38,7 +39,7 @@ from nowplan.core.operators import Action, Operator
 
 def forward_unsupported(domain: Domain, belief: Any) -> str | None:
     """Why forward search cannot run on this domain and belief, or ``None`` if it can."""
-    if not (hasattr(belief, "atoms") and hasattr(belief, "facts")):
+    if not isinstance(belief, ListsFacts):
         return "the belief does not list its facts"
     if any(op.generators for op in domain.operators):
         return "operators have generators"
@@ -415,8 +416,8 @@ class _Excluder:
         self.rules = domain.rules
         self.reached = sorted(reached)
         self.memo: dict[Atom, frozenset[Atom]] = {}
-        keyed = [c for c in self.rules.conflicts if hasattr(c, "group_keys")]
-        self.plain = [c for c in self.rules.conflicts if not hasattr(c, "group_keys")]
+        keyed = [c for c in self.rules.conflicts if isinstance(c, KeyedRule)]
+        self.plain = [c for c in self.rules.conflicts if not isinstance(c, KeyedRule)]
         self.groups: dict[Any, list[Atom]] = {}
         self.keyed = keyed
         for a in self.reached:

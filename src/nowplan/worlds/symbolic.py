@@ -9,23 +9,27 @@ function.
 
 from __future__ import annotations
 
-import logging
 import random
 from collections.abc import Callable
-from typing import Literal
+from typing import Any, Literal
 
 from nowplan.core.atoms import Atom
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action
 from nowplan.core.state import State
-from nowplan.worlds.base import Observation
-
-log = logging.getLogger(__name__)
+from nowplan.worlds.base import SimulatedWorld
 
 ExogenousFn = Callable[[State, random.Random], list[Atom]]
 
 
-class SymbolicWorld:
+class SymbolicWorld(SimulatedWorld):
+    """The true :class:`State` of a symbolic domain, with failures and exogenous changes.
+
+    ``exogenous(state, rng)`` returns the atoms an exogenous change makes true
+    (or false); ``observe="full"`` reports the whole state after each action,
+    ``"outcome"`` only success or failure.
+    """
+
     def __init__(
         self,
         domain: Domain,
@@ -37,38 +41,32 @@ class SymbolicWorld:
         exogenous_prob: float = 0.0,
         observe: Literal["full", "outcome"] = "full",
     ) -> None:
-        if not 0.0 <= failure_prob <= 1.0 or not 0.0 <= exogenous_prob <= 1.0:
-            raise ValueError("failure_prob and exogenous_prob must be in [0, 1]")
         self.domain = domain
         self.state = state
-        self.rng = random.Random(seed)
-        self.failure_prob = failure_prob
         self.exogenous = exogenous
-        self.exogenous_prob = exogenous_prob
-        self.observe = observe
-        self.failures = 0
-        self.exogenous_events = 0
+        self.observe_mode = observe
+        super().__init__(seed=seed, failure_prob=failure_prob, exogenous_prob=exogenous_prob)
+
+    @property
+    def has_exogenous(self) -> bool:
+        return self.exogenous is not None
 
     def applicable(self, action: Action) -> bool:
         return all(self.domain.holds(p, self.state) for p in action.preconditions(None))
 
-    def execute(self, action: Action) -> Observation:
-        ok = self.applicable(action)
-        info: dict[str, object] = {}
-        if not ok:
-            info["reason"] = "preconditions false in the world"
-        elif self.failure_prob and self.rng.random() < self.failure_prob:
-            ok = False
-            self.failures += 1
-            info["reason"] = "injected failure"
-        if ok:
-            self.state = self.state.apply(action.effects())
-        changes: list[Atom] = []
-        if self.exogenous is not None and self.exogenous_prob and self.rng.random() < self.exogenous_prob:
-            changes = self.exogenous(self.state, self.rng)
-            if changes:
-                self.state = self.state.apply(changes)
-                self.exogenous_events += 1
-        log.debug("world executed %s: success=%s", action, ok)
-        data = self.state if self.observe == "full" else None
-        return Observation(ok, data, tuple(str(c) for c in changes), info)
+    def refuse(self, action: Action) -> str | None:
+        return None if self.applicable(action) else "preconditions false in the world"
+
+    def apply(self, action: Action) -> None:
+        self.state = self.state.apply(action.effects())
+
+    def exogenous_change(self) -> list[str]:
+        if self.exogenous is None:
+            return []
+        changes = self.exogenous(self.state, self.rng)
+        if changes:
+            self.state = self.state.apply(changes)
+        return [str(c) for c in changes]
+
+    def observe(self, action: Action, success: bool) -> Any:
+        return self.state if self.observe_mode == "full" else None

@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from nowplan.domains.registry import DomainSpec, register
+from nowplan.experiments.reproductions import Reproduction
 
 
 def _scenario(task: str) -> Any:
@@ -34,6 +35,12 @@ def _demo(args: Any) -> int:
     return main(args)
 
 
+def _reproduce(options: Any) -> Any:
+    from nowplan.domains.kitchen.repro import run
+
+    return run(options)
+
+
 SPEC = register(
     DomainSpec(
         name="kitchen",
@@ -44,7 +51,6 @@ SPEC = register(
         demo=_demo,
         matrix_scenario="inspect",
         matrix_slow=True,
+        reproductions=(Reproduction("004", "seed 004 Table I: SS-Replan variants on the kitchen tasks", _reproduce),),
     )
 )
-
-from nowplan.domains.kitchen import repro as _repro  # noqa: E402,F401  (registers reproduction 004)

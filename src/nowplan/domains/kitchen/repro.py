@@ -19,11 +19,9 @@ from typing import Any
 
 from nowplan.experiments import progress
 from nowplan.experiments.reproductions import (
-    Reproduction,
     ReproductionOptions,
     ReproductionResult,
     ReproStatus,
-    register,
     side_by_side,
 )
 from nowplan.experiments.verdicts import Comparison, Verdict, judged
@@ -150,6 +148,3 @@ def comparisons(rows: list[dict[str, Any]], paper: list[dict[str, Any]]) -> list
             ours_text=" / ".join(f"{ours[(label, v)]:g}" for v in VARIANTS),
             paper_text=" / ".join(f"{theirs[(label, v)]:g}" for v in VARIANTS if (label, v) in theirs)))
     return out
-
-
-REPRODUCTION = register(Reproduction("004", "seed 004 Table I: SS-Replan variants on the kitchen tasks", run))

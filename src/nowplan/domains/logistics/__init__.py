@@ -23,6 +23,7 @@ SPEC = register(
         default_scenario="small",
         matrix_scenario="tiny-failures",
         renderer=render_png,
+        model=DOMAIN,
     )
 )
 

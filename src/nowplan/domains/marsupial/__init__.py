@@ -8,13 +8,21 @@ from __future__ import annotations
 
 import argparse
 import importlib.util
+from typing import Any
 
 from nowplan.domains.marsupial.model import PLANNER, make_domain
 from nowplan.domains.marsupial.problems import REGIMES, ff_instance, generate
 from nowplan.domains.marsupial.scenarios import data_uri, episode, renderer, scenarios
 from nowplan.domains.registry import DomainSpec, register
+from nowplan.experiments.reproductions import Reproduction
 
 DEMO_PACKAGES = {"tiny": 2, "small": 3, "medium": 4, "large": 6}
+
+
+def _reproduce(options: Any) -> Any:
+    from nowplan.domains.marsupial.repro import reproduce
+
+    return reproduce(options)
 
 
 def demo(args: argparse.Namespace) -> int:
@@ -69,9 +77,8 @@ SPEC = register(
         demo=demo,
         extras={"regimes": dict(REGIMES)},
         matrix_scenario="single-2",
+        reproductions=(Reproduction("002", "RCHPN vs HPN on marsupial logistics (Figs. 3 and 4)", _reproduce),),
     )
 )
-
-from nowplan.domains.marsupial import repro as _repro  # noqa: E402,F401  (registers seed 002)
 
 __all__ = ["SPEC", "REGIMES", "episode", "ff_instance", "generate", "make_domain"]

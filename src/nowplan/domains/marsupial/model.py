@@ -43,7 +43,7 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping
 from typing import Any
 
-from nowplan.acting.resources import ResourceModel, register_resource_model
+from nowplan.acting.resources import ResourceModel
 from nowplan.core.atoms import AtMostOne, Atom, Var, atom
 from nowplan.core.domain import Domain, Predicate
 from nowplan.core.operators import (
@@ -340,7 +340,7 @@ def make_domain(reach: Mapping[str, frozenset[str]], plane: str = "plane") -> Do
 
     conflicts = (AtMostOne(("at", "in")), CityRule(reach))
     return Domain(NAME, PREDICATES, operators(Where(reach, plane)), TYPES, conflicts=conflicts,
-                  unsupported=UNSUPPORTED)
+                  unsupported=UNSUPPORTED, resources=RESOURCES)
 
 
 _FLAT_WHY = (
@@ -390,11 +390,8 @@ def vehicle_shareable(resource: tuple[Any, ...], first: Any, second: Any, belief
     return lp.can_stow_in_turn(hold, door, [(x, shapes[x]) for x in order])
 
 
-RESOURCES = register_resource_model(
-    NAME,
-    ResourceModel(
-        orders={"load": 1, "same_city": 1, "unload": 1},
-        arrangeable=frozenset({"load", "unload", "same_city"}),
-        shareable=vehicle_shareable,
-    ),
+RESOURCES = ResourceModel(  # every marsupial domain carries it (make_domain)
+    orders={"load": 1, "same_city": 1, "unload": 1},
+    arrangeable=frozenset({"load", "unload", "same_city"}),
+    shareable=vehicle_shareable,
 )

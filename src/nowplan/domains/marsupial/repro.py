@@ -25,11 +25,9 @@ from typing import Any
 
 from nowplan.experiments import progress
 from nowplan.experiments.reproductions import (
-    Reproduction,
     ReproductionOptions,
     ReproductionResult,
     ReproStatus,
-    register,
 )
 from nowplan.experiments.verdicts import Comparison, judged
 
@@ -398,4 +396,3 @@ def write_outputs(
     return paths
 
 
-register(Reproduction("002", "RCHPN vs HPN on marsupial logistics (Figs. 3 and 4)", reproduce))

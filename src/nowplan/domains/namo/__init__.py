@@ -16,6 +16,7 @@ from typing import Any
 from nowplan.domains.namo.model import DOMAIN, build_domain
 from nowplan.domains.namo.scenarios import SCENARIOS, episode, make
 from nowplan.domains.registry import DomainSpec, register
+from nowplan.experiments.reproductions import Reproduction
 
 
 def _render(world: Any, belief: Any) -> bytes:
@@ -30,6 +31,12 @@ def _demo(args: Any) -> int:
     return main(args)
 
 
+def _reproduce(options: Any) -> Any:
+    from nowplan.domains.namo.reproduction import reproduce_000
+
+    return reproduce_000(options)
+
+
 SPEC = register(
     DomainSpec(
         name="namo",
@@ -39,11 +46,8 @@ SPEC = register(
         default_scenario="domain1",
         demo=_demo,
         matrix_scenario="simple",
+        reproductions=(Reproduction("000", "seed 000: BHPN reconsideration on NAMO (Table I)", _reproduce),),
     )
 )
-
-from nowplan.domains.namo.reproduction import register_reproduction  # noqa: E402
-
-register_reproduction()
 
 __all__ = ["DOMAIN", "SPEC", "SCENARIOS", "build_domain", "episode", "make"]

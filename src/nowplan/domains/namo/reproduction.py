@@ -27,11 +27,9 @@ from typing import Any
 
 from nowplan.acting.strategy import parse_strategy
 from nowplan.experiments.reproductions import (
-    Reproduction,
     ReproductionOptions,
     ReproductionResult,
     ReproStatus,
-    register,
     side_by_side,
 )
 from nowplan.experiments import progress
@@ -309,10 +307,6 @@ def write_outputs(out_dir: Any, rows: Sequence[dict[str, Any]], records: Sequenc
     runs = out / "runs.json"
     runs.write_text(json.dumps(list(records), indent=1), encoding="utf-8")
     return [files.markdown, files.html, runs]
-
-
-def register_reproduction() -> None:
-    register(Reproduction("000", "seed 000: BHPN reconsideration on NAMO (Table I)", reproduce_000))
 
 
 def fastest_of(runs: Sequence[Sequence[dict[str, Any]]]) -> list[dict[str, Any]]:

@@ -10,13 +10,10 @@ from __future__ import annotations
 from functools import partial
 from typing import Any
 
-from nowplan.acting.monitor_support import register_support
 from nowplan.domains.pieces.model import DOMAIN
 from nowplan.domains.pieces.scenarios import SIZES, episode, generate, make_episode
-from nowplan.domains.pieces.support import SUPPORT
 from nowplan.domains.registry import DomainSpec, register
 from nowplan.experiments.reproductions import Reproduction
-from nowplan.experiments.reproductions import register as register_reproduction
 
 DISTURBED = 0.2
 
@@ -54,11 +51,11 @@ SPEC = register(
         demo=_demo,
         matrix_scenario="tiny-disturbed",
         matrix_slow=True,
+        model=DOMAIN,
+        reproductions=(Reproduction(
+            "003", "seed 003: expected-vs-observed replanning on shuffled pieces under disturbances", _reproduce,
+        ),),
     )
 )
-register_support(DOMAIN.name, SUPPORT)
-register_reproduction(Reproduction(
-    "003", "seed 003: expected-vs-observed replanning on shuffled pieces under disturbances", _reproduce,
-))
 
 __all__ = ["DOMAIN", "SPEC", "SIZES", "episode", "generate", "make_episode"]

@@ -21,6 +21,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from nowplan.acting.monitor_support import MonitorSupport
 from nowplan.core.atoms import Atom, Goal, Var, atom
 from nowplan.core.domain import Domain, Predicate, Problem
 from nowplan.core.operators import Operator, Precondition
@@ -79,9 +80,34 @@ def _means_ends(*args: Any, **kwargs: Any) -> Any:
     return means_ends_for_executive(*args, **kwargs)
 
 
+def _support() -> MonitorSupport:
+    """The monitor's support (seed 003): model distance, the means-ends planner, arm re-routing.
+
+    Its functions live in modules that import this one, so they are looked up on first use.
+    """
+
+    def planner(*args: Any, **kwargs: Any) -> Any:
+        from nowplan.domains.pieces.meansends import plan_means_ends
+
+        return plan_means_ends(*args, **kwargs)
+
+    def adapt(actions: Any, state: Any) -> Any:
+        from nowplan.domains.pieces.support import start_arm_from_here
+
+        return start_arm_from_here(actions, state)
+
+    def distance(a: Any, b: Any) -> float:
+        from nowplan.domains.pieces.support import model_distance
+
+        return model_distance(a, b)
+
+    return MonitorSupport(distance=distance, planner=planner, adapt=adapt, ignore=frozenset({"arm_at"}))
+
+
 DOMAIN = Domain(
     "pieces", PREDICATES, OPERATORS, {"cell": None, "kind": None},
     constants={kd: "kind" for kd in KINDS}, conflicts=(one_occupant,), planner=_means_ends,
+    monitor=_support(),
 )
 
 

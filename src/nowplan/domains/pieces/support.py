@@ -1,13 +1,12 @@
-"""What the shuffled-pieces domain gives the monitor: a model distance, its planner, arm adaptation."""
+"""What the shuffled-pieces domain gives the monitor (pieces.model puts them in DOMAIN.monitor): a model distance and arm adaptation."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 
-from nowplan.acting.monitor_support import MonitorSupport
 from nowplan.core.operators import Action
 from nowplan.core.state import State
-from nowplan.domains.pieces.meansends import arm_move, plan_means_ends
+from nowplan.domains.pieces.meansends import arm_move
 
 
 def model_distance(a: State, b: State) -> float:
@@ -36,9 +35,3 @@ def start_arm_from_here(actions: Sequence[Action], state: State) -> list[Action]
         out.append(act)
         arm = str(act.args[2])
     return out
-
-
-SUPPORT = MonitorSupport(
-    distance=model_distance, planner=plan_means_ends, adapt=start_arm_from_here,
-    ignore=frozenset({"arm_at"}),
-)

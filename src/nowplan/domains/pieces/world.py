@@ -59,8 +59,15 @@ class PiecesWorld:
     def state(self) -> State:
         return self.board.to_state()
 
+    def set_faults(self, *, failure_prob: float | None = None, exogenous_prob: float | None = None) -> None:
+        """``nowplan run --exogenous-prob`` (disturbances); failures of the arm are not simulated."""
+        if failure_prob:
+            raise ValueError("the pieces world does not inject arm failures; use --exogenous-prob (disturbances)")
+        if exogenous_prob is not None:
+            self.exogenous_prob = exogenous_prob
+
     @property
-    def exogenous_prob(self) -> float:  # `nowplan run --exogenous-prob` sets this
+    def exogenous_prob(self) -> float:
         return self.disturbances.prob
 
     @exogenous_prob.setter

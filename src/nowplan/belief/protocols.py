@@ -1,0 +1,144 @@
+"""What the engine asks of a belief: one required method and named optional capabilities.
+
+Every belief implements :class:`~nowplan.worlds.base.Belief` (``update``).
+What else it offers decides which parts of the engine can use it; each
+capability is a :class:`typing.Protocol`, tested with ``isinstance`` in one
+place, never by probing attribute names:
+
+=====================  ================================================  ===========================================
+capability             members                                           used by
+=====================  ================================================  ===========================================
+:class:`HasValues`     ``value(key)``: a fluent's value (``None``:       truth of atoms whose predicate has no test
+                       unknown/absent)
+:class:`ListsFacts`    ``facts(predicate)``, ``atoms()``                 static facts at grounding, h_add / h_FF,
+                                                                         forward search, mutex inference, PDDL out
+:class:`HasState`      ``state``: a point :class:`State`                 the expected-vs-observed monitor
+:class:`Reobserves`    ``reobserve()``: look again                       the monitor, when nothing can be planned
+:class:`HasStreams`    ``streams``: a :class:`StreamSet`                 the online policy (sampling pools grow)
+:class:`HasHeuristic`  ``planning_heuristic(goal, belief, holds)``       the online policy's planner
+:class:`AfterAction`   ``after_action(trace, action, observation)``      the online policy (e.g. a demo's frames)
+=====================  ================================================  ===========================================
+
+:func:`check_belief` is called once when a run starts: a belief that lacks
+``update``, or lacks ``value`` while some predicate has no test, is a
+:class:`~nowplan.errors.ModelError` in one line.  Base classes for the
+common cases: :class:`nowplan.belief.symbolic.SymbolicBelief` (an observed
+symbolic state that lists its facts) and
+:class:`nowplan.belief.particles.ParticleBelief` (weighted samples).
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable, Iterable, Iterator
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
+
+from nowplan.core.atoms import Atom, Goal, Term
+from nowplan.core.operators import Action
+from nowplan.errors import ModelError
+from nowplan.worlds.base import Belief, Observation
+
+if TYPE_CHECKING:
+    from nowplan.core.domain import Domain
+    from nowplan.core.state import State
+    from nowplan.planning.streams import StreamSet
+    from nowplan.trace import Trace
+
+log = logging.getLogger(__name__)
+
+Key = tuple[str, tuple[Term, ...]]
+
+
+@runtime_checkable
+class HasValues(Protocol):
+    """``value(key)``: the value of fluent ``(predicate, args)``; ``None`` or ``False`` when it does not hold."""
+
+    def value(self, key: Key) -> Any: ...
+
+
+@runtime_checkable
+class ListsFacts(Protocol):
+    """The belief lists its true facts (a closed world): grounding, relaxed heuristics, forward search."""
+
+    def facts(self, predicate: str) -> Iterable[tuple[Term, ...]]: ...
+
+    def atoms(self) -> Iterator[Atom]: ...
+
+
+@runtime_checkable
+class HasState(Protocol):
+    """A point belief: ``state`` is the one :class:`State` it takes to be true (the monitor compares it)."""
+
+    @property
+    def state(self) -> State: ...
+
+
+@runtime_checkable
+class Reobserves(Protocol):
+    """``reobserve()`` takes a fresh look at the world (the monitor asks when no repair can be planned)."""
+
+    def reobserve(self) -> None: ...
+
+
+@runtime_checkable
+class HasStreams(Protocol):
+    """``streams``: the :class:`StreamSet` whose sampling pools the online policy grows on failure."""
+
+    @property
+    def streams(self) -> StreamSet | None: ...
+
+
+DomainHeuristic = Callable[[Goal, Any, Callable[[Atom], bool]], float]
+
+
+@runtime_checkable
+class HasHeuristic(Protocol):
+    """``planning_heuristic(goal, belief, holds) -> cost``: a domain's goal-distance estimate."""
+
+    @property
+    def planning_heuristic(self) -> DomainHeuristic | None: ...
+
+
+@runtime_checkable
+class AfterAction(Protocol):
+    """``after_action(trace, action, observation)``: called by the online policy after each action."""
+
+    @property
+    def after_action(self) -> Callable[[Trace, Action, Observation], None] | None: ...
+
+
+CAPABILITIES: tuple[tuple[str, type], ...] = (
+    ("value", HasValues),
+    ("facts", ListsFacts),
+    ("state", HasState),
+    ("reobserve", Reobserves),
+    ("streams", HasStreams),
+    ("planning_heuristic", HasHeuristic),
+    ("after_action", AfterAction),
+)
+
+
+def capabilities(belief: object) -> list[str]:
+    """The optional capabilities ``belief`` offers, by name (for logs and ``check_belief``)."""
+    return [name for name, proto in CAPABILITIES if isinstance(belief, proto)]
+
+
+def check_belief(domain: Domain, belief: object) -> None:
+    """Called once when a run starts: a belief the engine cannot use is one clear error."""
+    kind = type(belief).__name__
+    if not isinstance(belief, Belief):
+        raise ModelError(
+            f"the belief {kind} has no update(action, observation); implement it or derive from "
+            "nowplan.api.SymbolicBelief"
+        )
+    untested = sorted(n for n, p in domain.predicates.items() if p.test is None)
+    if untested and not isinstance(belief, HasValues):
+        raise ModelError(
+            f"the belief {kind} has no value(key), so predicates without a test ({', '.join(untested[:3])}"
+            f"{', …' if len(untested) > 3 else ''}) cannot be evaluated; add value() or give them tests"
+        )
+    log.info("belief %s offers: %s", kind, ", ".join(capabilities(belief)) or "update only")
+
+
+def lists_facts(belief: object) -> bool:
+    return isinstance(belief, ListsFacts)
