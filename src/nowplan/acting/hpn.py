@@ -22,7 +22,9 @@ from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
 from typing import Any
 
+from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
+from nowplan.acting.progress import Cycle, CycleDetector, belief_fingerprint, situation
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
@@ -33,7 +35,7 @@ from nowplan.planning.context import PlanningContext
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.regression import plan as regression_plan
 from nowplan.trace import Trace
-from nowplan.worlds.base import World
+from nowplan.worlds.base import Observation, World
 
 log = logging.getLogger(__name__)
 
@@ -90,6 +92,11 @@ class Executive:
         # refinements of each step of each plan (by content, see refinement_key) since the last
         # action: the bound on re-planning a step that keeps failing while the belief does not change
         self._refinements: Counter[Hashable] = Counter()
+        # the progress guard: cycles across actions, and the plan committed to after one
+        self.progress = CycleDetector(strategy.max_cycles)
+        self._committed = False
+        self._commit_id: int | None = None  # the plan committed to (None: the next top-level plan)
+        self.last_observation = Observation()
         check_supported(self.domain, strategy)
         if strategy.domain_planner and self.domain.planner is None:
             raise ScenarioError(
@@ -145,6 +152,8 @@ class Executive:
             )
         self.stack.append(fr)
         self.trace.emit("push", plan_id=fr.plan_id, depth=len(self.stack))
+        if self._committed and self._commit_id is None and len(self.stack) == 2:
+            self._commit_id = fr.plan_id
         for m in self.mechanisms:
             m.after_push(self, fr)
         return fr
@@ -152,6 +161,9 @@ class Executive:
     def pop(self, reason: str) -> Frame:
         f = self.stack.pop()
         self.trace.emit("pop", plan_id=f.plan_id, reason=reason)
+        if self._committed and f.plan_id == self._commit_id:
+            self._committed, self._commit_id = False, None
+            self.trace.emit("note", plan_id=f.plan_id, text=f"progress: commitment ends ({reason})")
         if reason in ("not applicable", "failed") and not f.root:
             self._pending_trigger = self._pending_trigger or "failure"
         return f
@@ -230,6 +242,7 @@ class Executive:
                 "failure", plan_id=f.plan_id, index=f.i, action=action.pddl(),
                 reason=str(obs.info.get("reason", "expected result does not hold")),
             )
+        self.last_observation = obs
 
     def reconsider(self) -> None:
         """After each action, every mechanism may reconsider the plan stack (seed 000 Fig. 2, line 14)."""
@@ -240,6 +253,43 @@ class Executive:
         """Mark the next plan made as a replan, with what triggered it."""
         self._pending_trigger = trigger
         self._pending_reason = reason
+
+    # -- the progress guard ------------------------------------------------------------
+    @property
+    def committed(self) -> bool:
+        """After a cycle: reconsidering mechanisms keep the current plan until it ends."""
+        return self._committed
+
+    def situation(self) -> Hashable | None:
+        """The belief's fingerprint and the plan stack's goals (None: the belief has none)."""
+        fp = belief_fingerprint(self.belief)
+        if fp is None:
+            return None
+        return situation(fp, (f.plan.goal for f in self.stack))
+
+    def watch(self, obs: Observation) -> tuple[Outcome, str] | None:
+        """After an action and the reconsiderations: a livelock's outcome, or None."""
+        now = self.situation()
+        if now is None:
+            return None
+        cyc = self.progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
+        if cyc is None:
+            return None
+        self.metrics.cycles = cyc.count
+        return self.on_cycle(cyc)
+
+    def on_cycle(self, cyc: Cycle) -> tuple[Outcome, str] | None:
+        self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, text=cyc.describe())
+        if self.progress.livelocked:
+            return Outcome.LIVELOCK, (
+                f"livelock: cycle {cyc.count} of at most {self.progress.max_cycles}: {cyc.describe()}, "
+                "although the executive had committed to its plan"
+            )
+        self._committed = True
+        self._commit_id = self.stack[1].plan_id if len(self.stack) > 1 else None
+        self.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plan "
+                        "(no reconsideration until it is finished or fails)")
+        return None
 
     def goal_holds(self) -> bool:
         return self.domain.satisfies(self.belief, self.problem.goal)
@@ -266,6 +316,9 @@ class Executive:
         goal = self.problem.goal
         root_plan = Plan((PlanStep(None, TRUE), PlanStep(None, goal)), self.base_levels)
         self.push(root_plan, None, root=True)
+        start = self.situation()
+        if start is not None:
+            self.progress.start(start)
         outcome, reason = Outcome.REACHED, ""
         consecutive_failures = 0
         while self.stack:
@@ -324,9 +377,14 @@ class Executive:
             else:
                 self.execute(f, action)
                 self.reconsider()
+                stop = self.watch(self.last_observation)
+                if stop is not None:
+                    outcome, reason = stop
+                    break
         if outcome is Outcome.REACHED and not self.goal_holds():
             outcome, reason = Outcome.FAILED, "plan stack emptied before the goal held"
         self.metrics.outcome = outcome
         self.metrics.reason = reason
+        judge(self.domain, self.problem.goal, self.belief, self.world, self.metrics, self.trace)
         self.metrics.wall_s = time.perf_counter() - self._t0
         return self.metrics

@@ -9,9 +9,10 @@ from typing import Any
 
 
 class Outcome(enum.Enum):
-    REACHED = "reached"  # the goal holds in the agent's belief (and the world's state)
+    REACHED = "reached"  # the goal holds in the world's state (in the belief when the world cannot tell)
     FAILED = "failed"  # a strategy gave up (the reason says why)
     LIMIT = "limit"  # an action, replan or time budget ran out
+    LIVELOCK = "livelock"  # the agent's own actions kept bringing it back (nowplan.acting.progress)
 
 
 @dataclass
@@ -26,6 +27,12 @@ class Metrics:
     replans: int = 0
     plan_failures: int = 0
     wall_s: float = 0.0
+    # judged in the world (see nowplan.worlds.base.Inspectable): does the goal hold in the world's
+    # true state (None: the world cannot tell), and the goal's atoms on which belief and world disagree
+    goal_in_world: bool | None = None
+    goal_in_belief: bool | None = None
+    disagreement: tuple[str, ...] = ()
+    cycles: int = 0  # cycles detected by the progress guard
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -39,6 +46,10 @@ class Metrics:
             "replans": self.replans,
             "plan_failures": self.plan_failures,
             "wall_s": round(self.wall_s, 6),
+            "goal_in_world": self.goal_in_world,
+            "goal_in_belief": self.goal_in_belief,
+            "disagreement": list(self.disagreement),
+            "cycles": self.cycles,
         }
 
     def summary(self) -> str:
@@ -50,4 +61,6 @@ class Metrics:
             f"plans made: {self.plans_made}, replans: {self.replans}, "
             f"planner failures: {self.plan_failures}\n"
             f"planning CPU time: {self.planning_cpu_s:.3f} s, wall time: {self.wall_s:.3f} s"
+            + (f"\nbelief and world disagree on: {', '.join(self.disagreement)}" if self.disagreement else "")
+            + (f"\ncycles detected: {self.cycles}" if self.cycles else "")
         )

@@ -122,6 +122,8 @@ class Monitor(Mechanism):
         prev, self._prev = self._prev, None
         if prev is None or len(ex.stack) < 2:
             return
+        if ex.committed:
+            return  # after a cycle: the executive's own failure handling, no stack rewrites
         f = ex.stack[-1]
         action = f.plan.steps[f.i].action if 0 < f.i <= f.n else None
         if f.root or action is None:
@@ -231,7 +233,7 @@ class Monitor(Mechanism):
             index = _state_index(pool, domain)
         else:
             index = self._library_index(domain)
-        best: tuple[float, float, int] | None = None
+        best: tuple[float, float, float, int] | None = None
         out: Candidate | None = None
         for s, (rank, sp, j) in index.items():
             d = float(self.support.distance(s, observed))

@@ -49,6 +49,10 @@ class SymbolicWorld:
         self.failures = 0
         self.exogenous_events = 0
 
+    def true_state(self) -> State:
+        """The world's state (for judging success at the end of a run; never for acting)."""
+        return self.state
+
     def applicable(self, action: Action) -> bool:
         return all(self.domain.holds(p, self.state) for p in action.preconditions(None))
 

@@ -1,0 +1,111 @@
+"""The progress guarantee: detect cycles across actions and say when a run is a livelock.
+
+The budgets (actions, planner calls, time) bound every run, but a budget alone says
+nothing about *why* a run did not finish.  The mechanisms that reconsider the plan
+stack (aggressive and selective replanning, serendipity, the monitor) can each undo
+the agent's own work: replan toward another item after every action and shuttle
+between two rooms, or resume an earlier step and drop the sub-plan that fetched a key.
+Such a loop keeps taking actions, so the executive's "no progress" guard (refinements
+without an action) never fires.
+
+This module watches the agent's *situation* after every action: a fingerprint of the
+belief (its facts) together with the goals of the plan stack.  A **cycle** is a return
+to a situation seen before such that, since that earlier visit,
+
+* at least one action succeeded (failed actions change nothing, so retrying a sticky
+  door is not a cycle), and
+* the world reported no exogenous change (a package carried back by somebody else
+  is the world's doing, not the strategy's).
+
+Only the agent's own choices can then have brought it back: a livelock.  The executive
+answers the first cycle by *committing* to its current plan (the reconsidering
+mechanisms hold off until that plan is finished or fails: hysteresis, as SS-Replan
+constrains replanning to the previous plan so that it makes progress) and ends the run
+with :attr:`~nowplan.acting.metrics.Outcome.LIVELOCK` and the cycle's description when
+cycles reach ``max_cycles`` (default 3).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Iterable
+from dataclasses import dataclass
+from typing import Any, Protocol, runtime_checkable
+
+from nowplan.core.state import State
+
+
+@runtime_checkable
+class Fingerprinted(Protocol):
+    """A belief that can say which situation it is in (equal fingerprints = same belief)."""
+
+    def fingerprint(self) -> Hashable: ...
+
+
+def belief_fingerprint(belief: Any) -> Hashable | None:
+    """The belief's fingerprint: its own, or its point state's facts; None when it has neither."""
+    if isinstance(belief, Fingerprinted):
+        return belief.fingerprint()
+    if isinstance(belief, State):
+        return belief
+    st = getattr(belief, "state", None)  # a symbolic belief keeps its facts as a State
+    if isinstance(st, State):
+        return st
+    return None
+
+
+@dataclass(frozen=True)
+class Cycle:
+    """A situation reached again by the agent's own actions."""
+
+    length: int  # actions since the earlier visit
+    count: int  # cycles detected in this run so far (this one included)
+    first_visit: int  # the action count at the earlier visit
+    visit: int  # the action count now
+
+    def describe(self) -> str:
+        return (
+            f"the belief and the plan stack's goals after action {self.visit} are those after action "
+            f"{self.first_visit}, reached again by the agent's own actions ({self.length} action(s), "
+            "no exogenous change in between)"
+        )
+
+
+class CycleDetector:
+    """Remembers situations by fingerprint; reports a :class:`Cycle` on a clean return."""
+
+    def __init__(self, max_cycles: int = 3) -> None:
+        if max_cycles < 1:
+            raise ValueError("max_cycles must be >= 1")
+        self.max_cycles = max_cycles
+        self.cycles = 0
+        self._t = 0
+        self._last_visit: dict[Hashable, int] = {}
+        self._last_success = -1  # action count of the last successful action
+        self._last_exogenous = -1  # action count of the last exogenous change
+
+    def start(self, situation: Hashable) -> None:
+        """The situation before the first action."""
+        self._last_visit[situation] = 0
+
+    def observe(self, situation: Hashable, *, succeeded: bool, exogenous: bool) -> Cycle | None:
+        """The situation after one more action; a :class:`Cycle` if it closes one."""
+        self._t += 1
+        if succeeded:
+            self._last_success = self._t
+        if exogenous:
+            self._last_exogenous = self._t
+        prev = self._last_visit.get(situation)
+        self._last_visit[situation] = self._t
+        if prev is None or self._last_exogenous > prev or self._last_success <= prev:
+            return None
+        self.cycles += 1
+        return Cycle(self._t - prev, self.cycles, prev, self._t)
+
+    @property
+    def livelocked(self) -> bool:
+        return self.cycles >= self.max_cycles
+
+
+def situation(belief_fp: Hashable, goals: Iterable[Hashable]) -> Hashable:
+    """The fingerprint the detector compares: the belief's and the plan stack's goals."""
+    return (belief_fp, tuple(goals))
