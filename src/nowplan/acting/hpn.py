@@ -95,7 +95,7 @@ class Executive:
         # the progress guard: cycles across actions, and the plan committed to after one
         self.progress = CycleDetector(strategy.max_cycles)
         self._committed = False
-        self._commit_id: int | None = None  # the plan committed to (None: the next top-level plan)
+        self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
         self.last_observation = Observation()
         check_supported(self.domain, strategy)
         if strategy.domain_planner and self.domain.planner is None:
@@ -152,8 +152,6 @@ class Executive:
             )
         self.stack.append(fr)
         self.trace.emit("push", plan_id=fr.plan_id, depth=len(self.stack))
-        if self._committed and self._commit_id is None and len(self.stack) == 2:
-            self._commit_id = fr.plan_id
         for m in self.mechanisms:
             m.after_push(self, fr)
         return fr
@@ -161,9 +159,6 @@ class Executive:
     def pop(self, reason: str) -> Frame:
         f = self.stack.pop()
         self.trace.emit("pop", plan_id=f.plan_id, reason=reason)
-        if self._committed and f.plan_id == self._commit_id:
-            self._committed, self._commit_id = False, None
-            self.trace.emit("note", plan_id=f.plan_id, text=f"progress: commitment ends ({reason})")
         if reason in ("not applicable", "failed") and not f.root:
             self._pending_trigger = self._pending_trigger or "failure"
         return f
@@ -257,7 +252,7 @@ class Executive:
     # -- the progress guard ------------------------------------------------------------
     @property
     def committed(self) -> bool:
-        """After a cycle: reconsidering mechanisms keep the current plan until it ends."""
+        """After a cycle: reconsidering mechanisms keep the current plans until there is progress."""
         return self._committed
 
     def situation(self) -> Hashable | None:
@@ -265,6 +260,12 @@ class Executive:
         fp = belief_fingerprint(self.belief)
         if fp is None:
             return None
+        if fp not in self._beliefs_seen:
+            self._beliefs_seen.add(fp)
+            if self._committed:  # progress: a belief never held before ends the commitment
+                self._committed = False
+                self.progress.forget(cycles=True)
+                self.trace.emit("note", text="progress: a belief not held before; commitment ends")
         return situation(fp, (f.plan.goal for f in self.stack))
 
     def watch(self, obs: Observation) -> tuple[Outcome, str] | None:
@@ -286,9 +287,9 @@ class Executive:
                 "although the executive had committed to its plan"
             )
         self._committed = True
-        self._commit_id = self.stack[1].plan_id if len(self.stack) > 1 else None
-        self.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plan "
-                        "(no reconsideration until it is finished or fails)")
+        self.progress.forget()
+        self.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plans "
+                        "(no reconsideration until the belief is one not held before)")
         return None
 
     def goal_holds(self) -> bool:

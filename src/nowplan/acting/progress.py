@@ -18,11 +18,14 @@ to a situation seen before such that, since that earlier visit,
   is the world's doing, not the strategy's).
 
 Only the agent's own choices can then have brought it back: a livelock.  The executive
-answers the first cycle by *committing* to its current plan (the reconsidering
-mechanisms hold off until that plan is finished or fails: hysteresis, as SS-Replan
-constrains replanning to the previous plan so that it makes progress) and ends the run
-with :attr:`~nowplan.acting.metrics.Outcome.LIVELOCK` and the cycle's description when
-cycles reach ``max_cycles`` (default 3).
+answers a cycle by *committing* to its current plans (the reconsidering mechanisms
+hold off until the belief is one never held before — progress — however the plans
+fare meanwhile: hysteresis, as SS-Replan constrains replanning to the previous plan so
+that it makes progress; the online policy executes the rest of its last plan).  The
+situations seen before the commitment are forgotten: retracing them under the committed
+plans is not a new cycle, but a cycle made while committed is, and the run ends with
+:attr:`~nowplan.acting.metrics.Outcome.LIVELOCK` and the cycle's description when cycles
+reach ``max_cycles`` (default 3) without progress in between.
 """
 
 from __future__ import annotations
@@ -100,6 +103,13 @@ class CycleDetector:
             return None
         self.cycles += 1
         return Cycle(self._t - prev, self.cycles, prev, self._t)
+
+    def forget(self, *, cycles: bool = False) -> None:
+        """Forget the situations seen (after committing: only cycles made since count); ``cycles``
+        also resets the count (after progress)."""
+        self._last_visit.clear()
+        if cycles:
+            self.cycles = 0
 
     @property
     def livelocked(self) -> bool:
