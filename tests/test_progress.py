@@ -118,6 +118,8 @@ def test_a_livelock_ends_with_its_reason_within_three_cycles(strategy):
     cycles = tr.of("cycle")
     assert len(cycles) == 3 and max(c["length"] for c in cycles) <= 4
     assert m.actions <= 4 + 3 * 4  # three cycles of at most 4 actions after the first pass, not a budget
+    # after committing only cycles made since count: each starts where the previous one was seen
+    assert all(b["n"] - b["length"] >= a["n"] for a, b in zip(cycles, cycles[1:]))
     assert tr.of("run_end")[0]["outcome"] == "livelock"
 
 
@@ -214,3 +216,15 @@ def test_aggressive_replanning_commits_after_a_cycle_in_the_corridor():
     assert m.outcome is Outcome.REACHED, (m.outcome, m.reason)
     assert m.cycles >= 1 and m.actions <= 20
     assert any("committing" in e["text"] for e in tr.of("note"))
+
+
+def test_forget_keeps_the_present_situation():
+    d = CycleDetector()
+    d.start("a")
+    d.observe("b", succeeded=True, exogenous=False)
+    assert d.observe("a", succeeded=True, exogenous=False) is not None
+    d.forget(keep="a")  # committed: earlier visits no longer count, the present one does
+    assert d.observe("b", succeeded=True, exogenous=False) is None
+    assert d.observe("a", succeeded=True, exogenous=False) is not None and d.cycles == 2
+    d.forget(cycles=True)
+    assert d.cycles == 0 and d.observe("a", succeeded=True, exogenous=False) is None

@@ -277,9 +277,9 @@ class Executive:
         if cyc is None:
             return None
         self.metrics.cycles = cyc.count
-        return self.on_cycle(cyc)
+        return self.on_cycle(cyc, now)
 
-    def on_cycle(self, cyc: Cycle) -> tuple[Outcome, str] | None:
+    def on_cycle(self, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:
         self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, text=cyc.describe())
         if self.progress.livelocked:
             return Outcome.LIVELOCK, (
@@ -287,7 +287,7 @@ class Executive:
                 "although the executive had committed to its plan"
             )
         self._committed = True
-        self.progress.forget()
+        self.progress.forget(keep=now)
         self.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plans "
                         "(no reconsideration until the belief is one not held before)")
         return None

@@ -183,7 +183,7 @@ class OnlinePolicy:
             return Outcome.LIVELOCK, (f"livelock: cycle {cyc.count} of at most {progress.max_cycles}: "
                                       f"{cyc.describe()}, although the policy had committed to its plan")
         self._tail = plan[1:] if obs.success else plan
-        progress.forget()
+        progress.forget(keep=now)
         self.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plan "
                         f"({len(self._tail)} action(s)) instead of replanning after every action")
         return None

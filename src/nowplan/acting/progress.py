@@ -104,10 +104,12 @@ class CycleDetector:
         self.cycles += 1
         return Cycle(self._t - prev, self.cycles, prev, self._t)
 
-    def forget(self, *, cycles: bool = False) -> None:
-        """Forget the situations seen (after committing: only cycles made since count); ``cycles``
-        also resets the count (after progress)."""
+    def forget(self, *, keep: Hashable | None = None, cycles: bool = False) -> None:
+        """Forget the situations seen (after committing: only cycles made since count), except
+        ``keep`` (the situation now); ``cycles`` also resets the count (after progress)."""
         self._last_visit.clear()
+        if keep is not None:
+            self._last_visit[keep] = self._t
         if cycles:
             self.cycles = 0
 

@@ -59,6 +59,10 @@ class PiecesWorld:
     def state(self) -> State:
         return self.board.to_state()
 
+    def true_state(self) -> State:
+        """The board as it is (success is judged on it at the end of a run)."""
+        return self.state
+
     @property
     def exogenous_prob(self) -> float:  # `nowplan run --exogenous-prob` sets this
         return self.disturbances.prob
