@@ -10,6 +10,7 @@ import sqlite3
 import tempfile
 from pathlib import Path
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -56,6 +57,7 @@ def _content(base: bytes, drawn: object) -> bytes:
     return drawn if isinstance(drawn, bytes) else mutate(base, drawn)  # type: ignore[arg-type]
 
 
+@pytest.mark.timeout(300, method="thread")  # a parser loop fails the run (see pyproject.toml)
 @FUZZ
 @given(drawn=CONTENT)
 def test_criticality_files(drawn):
@@ -75,6 +77,19 @@ def test_criticality_files(drawn):
             apply_criticality(dom, spec)
         except NowplanError:
             pass
+
+
+@pytest.mark.timeout(300, method="thread")  # a parser loop fails the run (see pyproject.toml)
+@pytest.mark.timeout(300, method="thread")
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(drawn=CONTENT)
+def test_criticality_files_on_the_command_line(drawn, capsys):
+    base = (DATA / "logistics.crit").read_bytes()
+    with tempfile.TemporaryDirectory() as d:
+        p = Path(d) / "x.crit"
+        p.write_bytes(_content(base, drawn))
+        _cli(["plan", str(DATA / "domain.pddl"), str(DATA / "p01.pddl"), "--criticality", str(p),
+              "--time-limit", "5"], capsys)
 
 
 @FUZZ
@@ -109,6 +124,7 @@ def _store_bytes() -> bytes:
 _STORE: list[bytes] = []
 
 
+@pytest.mark.timeout(300, method="thread")  # a parser loop fails the run (see pyproject.toml)
 @FUZZ
 @given(drawn=CONTENT)
 def test_run_store_files(drawn, capsys):
@@ -134,6 +150,7 @@ def test_run_store_with_a_damaged_middle_page(capsys):
     assert sqlite3.sqlite_version  # the test ran against the stdlib's SQLite
 
 
+@pytest.mark.timeout(300, method="thread")  # a parser loop fails the run (see pyproject.toml)
 @FUZZ
 @given(drawn=CONTENT)
 def test_trace_files(drawn, capsys):
