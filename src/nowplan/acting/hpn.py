@@ -223,6 +223,8 @@ class Executive:
         self.metrics.action_counts[action.name] += 1
         self.metrics.execution_cost += cost
         self.belief.update(action, obs)
+        self.metrics.failed_actions += not obs.success
+        self.metrics.exogenous_changes += bool(obs.exogenous)
         self._refinements.clear()
         self.trace.emit(
             "observation", n=self.metrics.actions - 1, action=action.pddl(), success=obs.success,

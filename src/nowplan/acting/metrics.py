@@ -33,6 +33,13 @@ class Metrics:
     goal_in_belief: bool | None = None
     disagreement: tuple[str, ...] = ()
     cycles: int = 0  # cycles detected by the progress guard
+    failed_actions: int = 0  # actions the world reported failed
+    exogenous_changes: int = 0  # observations that reported a change the world made by itself
+
+    def world_summary(self) -> str:
+        """What the world did meanwhile, for a reason that a budget ended a run."""
+        return (f"{self.failed_actions} of {self.actions} actions failed, {self.exogenous_changes} exogenous "
+                f"change(s), {self.cycles} cycle(s) detected")
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -50,6 +57,8 @@ class Metrics:
             "goal_in_belief": self.goal_in_belief,
             "disagreement": list(self.disagreement),
             "cycles": self.cycles,
+            "failed_actions": self.failed_actions,
+            "exogenous_changes": self.exogenous_changes,
         }
 
     def summary(self) -> str:

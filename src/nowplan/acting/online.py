@@ -158,6 +158,8 @@ class OnlinePolicy:
         self.metrics.action_counts[first.name] += 1
         self.metrics.execution_cost += first.cost(self.belief)
         self.belief.update(first, obs)
+        self.metrics.failed_actions += not obs.success
+        self.metrics.exogenous_changes += bool(obs.exogenous)
         self.trace.emit("observation", n=self.metrics.actions - 1, action=first.pddl(),
                         success=obs.success, observation=obs.info or None)
         if obs.exogenous:

@@ -51,13 +51,18 @@ class Strategy:
     time_limit: float = 600.0
 
     def exhausted(self, metrics: Metrics, elapsed: float) -> tuple[Outcome, str] | None:
-        """The budget that has run out, as ``(LIMIT, reason)``, or None."""
+        """The budget that has run out, as ``(LIMIT, reason)``, or None.
+
+        The reason says what the world did meanwhile (failed actions, exogenous changes, cycles),
+        so a run a budget ended is told apart from a livelock (which ends sooner, as such).
+        """
+        why = f" ({metrics.world_summary()})"
         if metrics.actions >= self.max_actions:
-            return Outcome.LIMIT, f"action budget of {self.max_actions} spent"
+            return Outcome.LIMIT, f"action budget of {self.max_actions} spent" + why
         if metrics.plans_made + metrics.plan_failures >= self.max_plans:
-            return Outcome.LIMIT, f"planning budget of {self.max_plans} calls spent"
+            return Outcome.LIMIT, f"planning budget of {self.max_plans} calls spent" + why
         if elapsed > self.time_limit:
-            return Outcome.LIMIT, f"time limit of {self.time_limit:g} s reached"
+            return Outcome.LIMIT, f"time limit of {self.time_limit:g} s reached" + why
         return None
 
     def mechanisms(self) -> list[Mechanism]:
