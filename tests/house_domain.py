@@ -160,3 +160,29 @@ def episode(seed: int, sticky_p: float = 0.2) -> Episode:
     prob = Problem(DOMAIN, objects, believed, Goal.of([atom("at", "mug", "living")]), f"house-s{seed}")
     return Episode(prob, HouseWorld(truth, seed + 1, sticky_p), HouseBelief(believed),
                    f"house: mug in the {mug_room}, believed in the {BELIEVED}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python tests/house_domain.py STRATEGY[,STRATEGY…] [FIRST_SEED LAST_SEED [TIME_LIMIT]]``:
+    success per strategy over the seeds (the figures of tests/test_house.py's sweep)."""
+    import sys
+
+    from nowplan.acting.run import run_episode
+    from nowplan.acting.strategy import parse_strategy
+
+    args = sys.argv[1:] if argv is None else argv
+    first, last = (int(args[1]), int(args[2])) if len(args) > 2 else (0, 19)
+    limit = float(args[3]) if len(args) > 3 else 60.0
+    for name in args[0].split(","):
+        runs = [(s, run_episode(episode(s), parse_strategy(name, time_limit=limit), seed=s))
+                for s in range(first, last + 1)]
+        ok = sum(m.outcome.value == "reached" for _, m in runs)
+        bad = "; ".join(f"seed {s}: {m.outcome.value} after {m.actions} actions ({m.reason[:60]})"
+                        for s, m in runs if m.outcome.value != "reached")
+        print(f"{name}: {ok}/{len(runs)} reached, mean actions "
+              f"{sum(m.actions for _, m in runs) / len(runs):.1f}" + (f"; {bad}" if bad else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

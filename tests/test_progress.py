@@ -16,6 +16,7 @@ from nowplan.domains.registry import Episode
 from nowplan.trace import Trace
 from nowplan.worlds.symbolic import SymbolicWorld
 
+from corridor_domain import corridor
 from test_mechanisms import CHAIN, PREDS, op
 
 
@@ -162,48 +163,15 @@ def test_reached_means_the_goal_holds_in_the_world():
     assert ok.outcome is Outcome.REACHED and ok.goal_in_world is True and ok.disagreement == ()
 
 
-# -- serendipity resumes forward only ---------------------------------------------------------
-# a corridor a-b-c-d; the door c-d is locked, its key lies at a.  The abstract plan (locks have
-# criticality 1) is a->b->c->d; refining c->d fetches the key, walking back through b, where the
-# abstract plan's earlier pre-image holds again.  Resuming there dropped the key sub-plan: a loop.
-def _corridor():
-    from nowplan.core.atoms import AtMostOne, Var
-    from nowplan.core.domain import Predicate
-    from nowplan.core.operators import Operator, Precondition
-
-    x, y = Var("x"), Var("y")
-    preds = {"at": Predicate("at", 1), "link": Predicate("link", 2), "open": Predicate("open", 2),
-             "has_key": Predicate("has_key", 0), "key_at": Predicate("key_at", 1)}
-    ops = (
-        Operator("go", (x, y), (Precondition(atom("at", x), 2), Precondition(atom("link", x, y), 2),
-                                Precondition(atom("open", x, y), 1)),
-                 (atom("at", y), atom("at", x, value=False))),
-        Operator("take", (x,), (Precondition(atom("at", x), 1), Precondition(atom("key_at", x), 1)),
-                 (atom("has_key"), atom("key_at", x, value=False))),
-        Operator("unlock", (x, y), (Precondition(atom("at", x), 1), Precondition(atom("has_key"), 1),
-                                    Precondition(atom("link", x, y), 1)),
-                 (atom("open", x, y),)),
-    )
-    dom = Domain("corridor", preds, ops, conflicts=(AtMostOne(("at",)),))
-    rooms = "abcd"
-    facts = [atom("at", "a"), atom("key_at", "a")]
-    for p, q in zip(rooms, rooms[1:]):
-        facts += [atom("link", p, q), atom("link", q, p)]
-        if (p, q) != ("c", "d"):
-            facts += [atom("open", p, q), atom("open", q, p)]
-    init = State(facts)
-    prob = Problem(dom, {r: None for r in rooms}, init, Goal.of([atom("at", "d")]))
-    return Episode(prob, SymbolicWorld(dom, init), SymbolicBelief(init))
-
-
+# -- serendipity resumes forward only (tests/corridor_domain.py) ----------------------------------
 @pytest.mark.parametrize("strategy", ["hpn+serendipity", "hpn+flexible+serendipity",
                                       "hpn+flexible+serendipity+selective"])
 def test_serendipity_does_not_resume_a_step_behind_the_one_worked_on(strategy):
     tr = Trace()
-    m = run_episode(_corridor(), parse_strategy(strategy, max_actions=200), trace=tr)
+    m = run_episode(corridor(), parse_strategy(strategy, max_actions=200), trace=tr)
     assert m.outcome is Outcome.REACHED, (m.outcome, m.reason)
     assert m.action_counts["unlock"] == 1 and m.actions <= 12
-    plain = run_episode(_corridor(), parse_strategy("hpn"))
+    plain = run_episode(corridor(), parse_strategy("hpn"))
     assert m.actions == plain.actions
     assert m.cycles == 0  # the forward-only rule, not the progress guard, keeps the key sub-plan
 
@@ -212,7 +180,7 @@ def test_aggressive_replanning_commits_after_a_cycle_in_the_corridor():
     # replanning from the root after every step walks back toward the locked door each time the
     # key sub-plan has taken a step away from it; the guard sees the cycle and commits
     tr = Trace()
-    m = run_episode(_corridor(), parse_strategy("hpn+aggressive", max_actions=200), trace=tr)
+    m = run_episode(corridor(), parse_strategy("hpn+aggressive", max_actions=200), trace=tr)
     assert m.outcome is Outcome.REACHED, (m.outcome, m.reason)
     assert m.cycles >= 1 and m.actions <= 20
     assert any("committing" in e["text"] for e in tr.of("note"))
