@@ -196,3 +196,14 @@ def test_forget_keeps_the_present_situation():
     assert d.observe("a", succeeded=True, exogenous=False) is not None and d.cycles == 2
     d.forget(cycles=True)
     assert d.cycles == 0 and d.observe("a", succeeded=True, exogenous=False) is None
+
+
+def test_a_cycle_with_a_failure_commits_but_does_not_count_toward_a_livelock():
+    d = CycleDetector(max_cycles=1)
+    d.start("a")
+    d.observe("b", succeeded=True, exogenous=False)
+    d.observe("b", succeeded=False, exogenous=False)  # a failed step made the agent change its mind
+    cyc = d.observe("a", succeeded=True, exogenous=False)
+    assert cyc is not None and not cyc.clean and "some failed" in cyc.describe()
+    assert d.seen == 1 and d.cycles == 0 and not d.livelocked
+    assert d.observe("b", succeeded=True, exogenous=False).clean and d.livelocked

@@ -278,12 +278,13 @@ class Executive:
         cyc = self.progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
         if cyc is None:
             return None
-        self.metrics.cycles = cyc.count
+        self.metrics.cycles = self.progress.seen
         return self.on_cycle(cyc, now)
 
     def on_cycle(self, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:
-        self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, text=cyc.describe())
-        if self.progress.livelocked:
+        self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
+                        text=cyc.describe())
+        if cyc.clean and self.progress.livelocked:
             return Outcome.LIVELOCK, (
                 f"livelock: cycle {cyc.count} of at most {self.progress.max_cycles}: {cyc.describe()}, "
                 "although the executive had committed to its plan"

@@ -179,9 +179,10 @@ class OnlinePolicy:
         cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
         if cyc is None:
             return None
-        self.metrics.cycles = cyc.count
-        self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, text=cyc.describe())
-        if progress.livelocked:
+        self.metrics.cycles = progress.seen
+        self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
+                        text=cyc.describe())
+        if cyc.clean and progress.livelocked:
             return Outcome.LIVELOCK, (f"livelock: cycle {cyc.count} of at most {progress.max_cycles}: "
                                       f"{cyc.describe()}, although the policy had committed to its plan")
         self._tail = plan[1:] if obs.success else plan

@@ -17,15 +17,17 @@ to a situation seen before such that, since that earlier visit,
 * the world reported no exogenous change (a package carried back by somebody else
   is the world's doing, not the strategy's).
 
-Only the agent's own choices can then have brought it back: a livelock.  The executive
-answers a cycle by *committing* to its current plans (the reconsidering mechanisms
+Only the agent's own choices can then have brought it back.  A cycle in which an action
+failed is often HPN's failure-driven replanning choosing another order (a re-grasp that
+undoes a placement); a cycle with no failure at all is the strategy undoing its own work.
+The executive answers every cycle by *committing* to its current plans (the reconsidering mechanisms
 hold off until the belief is one never held before — progress — however the plans
 fare meanwhile: hysteresis, as SS-Replan constrains replanning to the previous plan so
 that it makes progress; the online policy executes the rest of its last plan).  The
 situations seen before the commitment are forgotten: retracing them under the committed
 plans is not a new cycle, but a cycle made while committed is, and the run ends with
 :attr:`~nowplan.acting.metrics.Outcome.LIVELOCK` and the cycle's description when cycles
-reach ``max_cycles`` (default 3) without progress in between.
+with no failed action reach ``max_cycles`` (default 3) without progress in between.
 """
 
 from __future__ import annotations
@@ -61,15 +63,16 @@ class Cycle:
     """A situation reached again by the agent's own actions."""
 
     length: int  # actions since the earlier visit
-    count: int  # cycles detected in this run so far (this one included)
+    count: int  # cycles with no failed action since progress (this one included if clean)
     first_visit: int  # the action count at the earlier visit
     visit: int  # the action count now
+    clean: bool = True  # no action failed in the cycle
 
     def describe(self) -> str:
         return (
             f"the belief and the plan stack's goals after action {self.visit} are those after action "
             f"{self.first_visit}, reached again by the agent's own actions ({self.length} action(s), "
-            "no exogenous change in between)"
+            f"no exogenous change{', no failure' if self.clean else ', some failed'} in between)"
         )
 
 
@@ -80,11 +83,13 @@ class CycleDetector:
         if max_cycles < 1:
             raise ValueError("max_cycles must be >= 1")
         self.max_cycles = max_cycles
-        self.cycles = 0
+        self.cycles = 0  # cycles with no failed action (they count toward a livelock)
+        self.seen = 0  # every cycle
         self._t = 0
         self._last_visit: dict[Hashable, int] = {}
         self._last_success = -1  # action count of the last successful action
         self._last_exogenous = -1  # action count of the last exogenous change
+        self._last_failure = -1  # action count of the last failed action
 
     def start(self, situation: Hashable) -> None:
         """The situation before the first action."""
@@ -95,14 +100,18 @@ class CycleDetector:
         self._t += 1
         if succeeded:
             self._last_success = self._t
+        else:
+            self._last_failure = self._t
         if exogenous:
             self._last_exogenous = self._t
         prev = self._last_visit.get(situation)
         self._last_visit[situation] = self._t
         if prev is None or self._last_exogenous > prev or self._last_success <= prev:
             return None
-        self.cycles += 1
-        return Cycle(self._t - prev, self.cycles, prev, self._t)
+        clean = self._last_failure <= prev
+        self.seen += 1
+        self.cycles += clean
+        return Cycle(self._t - prev, self.cycles, prev, self._t, clean)
 
     def forget(self, *, keep: Hashable | None = None, cycles: bool = False) -> None:
         """Forget the situations seen (after committing: only cycles made since count), except
