@@ -207,3 +207,20 @@ def test_a_cycle_with_a_failure_commits_but_does_not_count_toward_a_livelock():
     assert cyc is not None and not cyc.clean and "some failed" in cyc.describe()
     assert d.seen == 1 and d.cycles == 0 and not d.livelocked
     assert d.observe("b", succeeded=True, exogenous=False).clean and d.livelocked
+
+
+def test_an_action_the_world_always_refuses_ends_stalled_not_by_the_budget():
+    for strategy in ("hpn", "hpn+flexible", "online"):
+        init = State([atom("s0")])
+        prob = Problem(CHAIN, {}, init, Goal.of([atom("s3")]))
+        world = SymbolicWorld(CHAIN, init, failure_prob=1.0)
+        m = run_episode(Episode(prob, world, SymbolicBelief(init)), parse_strategy(strategy, max_stalls=10))
+        assert m.outcome is Outcome.FAILED and m.reason.startswith("stalled: (step1) failed 10 times"), m.reason
+        assert "injected failure" in m.reason and m.actions <= 11  # not the 1 000-action budget
+    d = CycleDetector()
+    d.start("a")
+    for _ in range(3):
+        d.observe("a", succeeded=False, exogenous=False)
+    assert d.stalled == 3
+    d.observe("a", succeeded=True, exogenous=False)
+    assert d.stalled == 0

@@ -24,7 +24,7 @@ from typing import Any
 
 from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
-from nowplan.acting.progress import Cycle, CycleDetector, belief_fingerprint, situation
+from nowplan.acting.progress import Cycle, CycleDetector, belief_fingerprint, situation, stall_reason
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
@@ -97,6 +97,7 @@ class Executive:
         self._committed = False
         self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
         self.last_observation = Observation()
+        self.last_action: Action | None = None
         check_supported(self.domain, strategy)
         if strategy.domain_planner and self.domain.planner is None:
             raise ScenarioError(
@@ -240,6 +241,7 @@ class Executive:
                 reason=str(obs.info.get("reason", "expected result does not hold")),
             )
         self.last_observation = obs
+        self.last_action = action
 
     def reconsider(self) -> None:
         """After each action, every mechanism may reconsider the plan stack (seed 000 Fig. 2, line 14)."""
@@ -276,6 +278,8 @@ class Executive:
         if now is None:
             return None
         cyc = self.progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
+        if self.progress.stalled >= self.strategy.max_stalls:
+            return Outcome.FAILED, stall_reason(self.progress.stalled, self.last_action, obs)
         if cyc is None:
             return None
         self.metrics.cycles = self.progress.seen

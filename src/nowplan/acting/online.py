@@ -32,7 +32,7 @@ from nowplan.acting.deferred import resolve
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
-from nowplan.acting.progress import CycleDetector, belief_fingerprint, situation
+from nowplan.acting.progress import CycleDetector, belief_fingerprint, situation, stall_reason
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.core.domain import Problem
@@ -177,6 +177,8 @@ class OnlinePolicy:
         if now is None:
             return None
         cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
+        if progress.stalled >= self.strategy.max_stalls:
+            return Outcome.FAILED, stall_reason(progress.stalled, plan[0], obs)
         if cyc is None:
             return None
         self.metrics.cycles = progress.seen

@@ -28,6 +28,12 @@ situations seen before the commitment are forgotten: retracing them under the co
 plans is not a new cycle, but a cycle made while committed is, and the run ends with
 :attr:`~nowplan.acting.metrics.Outcome.LIVELOCK` and the cycle's description when cycles
 with no failed action reach ``max_cycles`` (default 3) without progress in between.
+
+A loop can also stand still: an action that fails again and again and leaves the
+situation as it was (a door the belief thinks open, in a world that reports outcomes
+only).  Retrying is right while failures are chance; ``stalled`` counts the failures in a
+row, and the executive gives up with its reason at ``Strategy.max_stalls`` (default 25: a
+chance of 0.5**25, about 3e-8, at a 50 % failure rate).
 """
 
 from __future__ import annotations
@@ -36,7 +42,9 @@ from collections.abc import Hashable, Iterable
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
+from nowplan.core.operators import Action
 from nowplan.core.state import State
+from nowplan.worlds.base import Observation
 
 
 @runtime_checkable
@@ -90,10 +98,13 @@ class CycleDetector:
         self._last_success = -1  # action count of the last successful action
         self._last_exogenous = -1  # action count of the last exogenous change
         self._last_failure = -1  # action count of the last failed action
+        self.stalled = 0  # failed actions in a row that left the situation as it was
+        self._prev: Hashable | None = None
 
     def start(self, situation: Hashable) -> None:
         """The situation before the first action."""
         self._last_visit[situation] = 0
+        self._prev = situation
 
     def observe(self, situation: Hashable, *, succeeded: bool, exogenous: bool) -> Cycle | None:
         """The situation after one more action; a :class:`Cycle` if it closes one."""
@@ -104,6 +115,8 @@ class CycleDetector:
             self._last_failure = self._t
         if exogenous:
             self._last_exogenous = self._t
+        self.stalled = self.stalled + 1 if (not succeeded and situation == self._prev) else 0
+        self._prev = situation
         prev = self._last_visit.get(situation)
         self._last_visit[situation] = self._t
         if prev is None or self._last_exogenous > prev or self._last_success <= prev:
@@ -125,6 +138,15 @@ class CycleDetector:
     @property
     def livelocked(self) -> bool:
         return self.cycles >= self.max_cycles
+
+
+def stall_reason(times: int, action: Action | None, obs: Observation) -> str:
+    """Why a run that stood still was given up."""
+    what = action.pddl() if action is not None else "the last action"
+    why = obs.info.get("reason")
+    return (f"stalled: {what} failed {times} times in a row and left the belief and the plan stack as "
+            f"they were{f' (last: {why})' if why else ''}; the world refuses it, or the belief is wrong "
+            "and the world reports outcomes only")
 
 
 def situation(belief_fp: Hashable, goals: Iterable[Hashable]) -> Hashable:

@@ -46,6 +46,7 @@ class Strategy:
     max_depth: int = 64
     max_refinements: int = 5  # refinements of one plan step without an action before it is given up
     max_cycles: int = 3  # progress guard: cycles (nowplan.acting.progress) before a run ends as a livelock
+    max_stalls: int = 25  # progress guard: failures in a row that leave the situation unchanged
     max_retries: int = 2  # flexible: setbacks a plan may retry before it is replanned (Fig. 4)
     domain_planner: bool = False  # plan with the domain's own planner (Domain.planner) when it has one
     time_limit: float = 600.0
