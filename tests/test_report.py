@@ -44,8 +44,8 @@ def test_report_tables_from_known_records(tmp_path: Path) -> None:
     blocks = build_report(records, "Known <report>", "test")
     md_tables = [b for b in blocks if type(b).__name__ == "Table"]
     outcomes, metrics = md_tables[0], md_tables[1]
-    assert ("logistics", "small", "hpn", "3", "2", "1", "0", "0", "0-2") in outcomes.rows
-    assert ("logistics", "small", "flat", "2", "1", "0", "0", "1", "0-1") in outcomes.rows
+    assert ("logistics", "small", "hpn", "3", "2", "1", "0", "0", "0", "0-2") in outcomes.rows
+    assert ("logistics", "small", "flat", "2", "1", "0", "0", "0", "1", "0-1") in outcomes.rows
     hpn = next(r for r in metrics.rows if r[2] == "hpn")
     assert hpn[3] == "3" and hpn[4] == "12 ± 1.2"  # actions 10, 12, 14: sd 2, se 2/sqrt(3)
     page = render_html(blocks)
@@ -61,7 +61,7 @@ def test_report_on_a_stored_sweep(tmp_path: Path, capsys: pytest.CaptureFixture[
     assert cli_main(["report", str(store), "-o", str(out)]) == 0
     assert "report.html" in capsys.readouterr().out
     md = (out / "report.md").read_text()
-    assert "| logistics | small | hpn | 3 | 3 | 0 | 0 | 0 | 0-2 |" in md
+    assert "| logistics | small | hpn | 3 | 3 | 0 | 0 | 0 | 0 | 0-2 |" in md
     assert "| logistics | small | hpn+aggressive | 3 |" in md
     assert re.search(r"\| logistics \| small \| hpn \| 3 \| [\d.]+ ± [\d.]+ \|", md)
     assert "![" in md and (out / "logistics-small.png").read_bytes().startswith(b"\x89PNG")

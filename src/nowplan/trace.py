@@ -30,6 +30,8 @@ EVENTS = (
     "exogenous",
     "frame",
     "note",
+    "cycle",  # the progress guard saw the agent's own actions bring it back (nowplan.acting.progress)
+    "disagreement",  # at the end of a run: the goal atoms on which belief and world disagree
     "run_end",
 )
 

@@ -1,4 +1,10 @@
-"""Aggressive replanning: replan from the root after every action (seed 000 IV)."""
+"""Aggressive replanning: replan from the root after every action (seed 000 IV).
+
+With hysteresis: after the progress guard saw a cycle (:mod:`nowplan.acting.progress`,
+e.g. a replan toward another item after every action that shuttles the robot between two
+rooms) the executive is *committed* and the current plan is kept until it is finished or
+fails; replanning after every action resumes then.
+"""
 
 from __future__ import annotations
 
@@ -14,6 +20,8 @@ class AggressiveReplan(Mechanism):
     name = "aggressive"
 
     def after_action(self, ex: Executive) -> None:
+        if ex.committed:
+            return
         if len(ex.stack) > 1 and not ex.goal_holds():
             while len(ex.stack) > 1:
                 ex.pop("replaced")

@@ -22,7 +22,9 @@ from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
 from typing import Any
 
+from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
+from nowplan.acting.progress import Cycle, CycleDetector, belief_fingerprint, situation, stall_reason
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import check_belief
 from nowplan.core.atoms import TRUE, Goal
@@ -34,7 +36,7 @@ from nowplan.planning.context import PlanningContext
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.regression import plan as regression_plan
 from nowplan.trace import Trace
-from nowplan.worlds.base import World
+from nowplan.worlds.base import Observation, World
 
 log = logging.getLogger(__name__)
 
@@ -91,6 +93,12 @@ class Executive:
         # refinements of each step of each plan (by content, see refinement_key) since the last
         # action: the bound on re-planning a step that keeps failing while the belief does not change
         self._refinements: Counter[Hashable] = Counter()
+        # the progress guard: cycles across actions, and the plan committed to after one
+        self.progress = CycleDetector(strategy.max_cycles)
+        self._committed = False
+        self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
+        self.last_observation = Observation()
+        self.last_action: Action | None = None
         check_supported(self.domain, strategy)
         check_belief(self.domain, belief)
         if strategy.domain_planner and self.domain.planner is None:
@@ -218,6 +226,8 @@ class Executive:
         self.metrics.action_counts[action.name] += 1
         self.metrics.execution_cost += cost
         self.belief.update(action, obs)
+        self.metrics.failed_actions += not obs.success
+        self.metrics.exogenous_changes += bool(obs.exogenous)
         self._refinements.clear()
         self.trace.emit(
             "observation", n=self.metrics.actions - 1, action=action.pddl(), success=obs.success,
@@ -232,6 +242,8 @@ class Executive:
                 "failure", plan_id=f.plan_id, index=f.i, action=action.pddl(),
                 reason=str(obs.info.get("reason", "expected result does not hold")),
             )
+        self.last_observation = obs
+        self.last_action = action
 
     def reconsider(self) -> None:
         """After each action, every mechanism may reconsider the plan stack (seed 000 Fig. 2, line 14)."""
@@ -242,6 +254,52 @@ class Executive:
         """Mark the next plan made as a replan, with what triggered it."""
         self._pending_trigger = trigger
         self._pending_reason = reason
+
+    # -- the progress guard ------------------------------------------------------------
+    @property
+    def committed(self) -> bool:
+        """After a cycle: reconsidering mechanisms keep the current plans until there is progress."""
+        return self._committed
+
+    def situation(self) -> Hashable | None:
+        """The belief's fingerprint and the plan stack's goals (None: the belief has none)."""
+        fp = belief_fingerprint(self.belief)
+        if fp is None:
+            return None
+        if fp not in self._beliefs_seen:
+            self._beliefs_seen.add(fp)
+            if self._committed:  # progress: a belief never held before ends the commitment
+                self._committed = False
+                self.progress.forget(cycles=True)
+                self.trace.emit("note", text="progress: a belief not held before; commitment ends")
+        return situation(fp, (f.plan.goal for f in self.stack))
+
+    def watch(self, obs: Observation) -> tuple[Outcome, str] | None:
+        """After an action and the reconsiderations: a livelock's outcome, or None."""
+        now = self.situation()
+        if now is None:
+            return None
+        cyc = self.progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
+        if self.progress.stalled >= self.strategy.max_stalls:
+            return Outcome.FAILED, stall_reason(self.progress.stalled, self.last_action, obs)
+        if cyc is None:
+            return None
+        self.metrics.cycles = self.progress.seen
+        return self.on_cycle(cyc, now)
+
+    def on_cycle(self, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:
+        self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
+                        text=cyc.describe())
+        if cyc.clean and self.progress.livelocked:
+            return Outcome.LIVELOCK, (
+                f"livelock: cycle {cyc.count} of at most {self.progress.max_cycles}: {cyc.describe()}, "
+                "although the executive had committed to its plan"
+            )
+        self._committed = True
+        self.progress.forget(keep=now)
+        self.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plans "
+                        "(no reconsideration until the belief is one not held before)")
+        return None
 
     def goal_holds(self) -> bool:
         return self.domain.satisfies(self.belief, self.problem.goal)
@@ -268,6 +326,9 @@ class Executive:
         goal = self.problem.goal
         root_plan = Plan((PlanStep(None, TRUE), PlanStep(None, goal)), self.base_levels)
         self.push(root_plan, None, root=True)
+        start = self.situation()
+        if start is not None:
+            self.progress.start(start)
         outcome, reason = Outcome.REACHED, ""
         consecutive_failures = 0
         while self.stack:
@@ -326,9 +387,14 @@ class Executive:
             else:
                 self.execute(f, action)
                 self.reconsider()
+                stop = self.watch(self.last_observation)
+                if stop is not None:
+                    outcome, reason = stop
+                    break
         if outcome is Outcome.REACHED and not self.goal_holds():
             outcome, reason = Outcome.FAILED, "plan stack emptied before the goal held"
         self.metrics.outcome = outcome
         self.metrics.reason = reason
+        judge(self.domain, self.problem.goal, self.belief, self.world, self.metrics, self.trace)
         self.metrics.wall_s = time.perf_counter() - self._t0
         return self.metrics

@@ -11,9 +11,10 @@ from typing import Any
 class Outcome(enum.Enum):
     """How a run ended."""
 
-    REACHED = "reached"  # the goal holds in the agent's belief (and the world's state)
+    REACHED = "reached"  # the goal holds in the world's state (in the belief when the world cannot tell)
     FAILED = "failed"  # a strategy gave up (the reason says why)
     LIMIT = "limit"  # an action, replan or time budget ran out
+    LIVELOCK = "livelock"  # the agent's own actions kept bringing it back (nowplan.acting.progress)
 
 
 @dataclass
@@ -30,6 +31,19 @@ class Metrics:
     replans: int = 0
     plan_failures: int = 0
     wall_s: float = 0.0
+    # judged in the world (see nowplan.worlds.base.Inspectable): does the goal hold in the world's
+    # true state (None: the world cannot tell), and the goal's atoms on which belief and world disagree
+    goal_in_world: bool | None = None
+    goal_in_belief: bool | None = None
+    disagreement: tuple[str, ...] = ()
+    cycles: int = 0  # cycles detected by the progress guard
+    failed_actions: int = 0  # actions the world reported failed
+    exogenous_changes: int = 0  # observations that reported a change the world made by itself
+
+    def world_summary(self) -> str:
+        """What the world did meanwhile, for a reason that a budget ended a run."""
+        return (f"{self.failed_actions} of {self.actions} actions failed, {self.exogenous_changes} exogenous "
+                f"change(s), {self.cycles} cycle(s) detected")
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -43,6 +57,12 @@ class Metrics:
             "replans": self.replans,
             "plan_failures": self.plan_failures,
             "wall_s": round(self.wall_s, 6),
+            "goal_in_world": self.goal_in_world,
+            "goal_in_belief": self.goal_in_belief,
+            "disagreement": list(self.disagreement),
+            "cycles": self.cycles,
+            "failed_actions": self.failed_actions,
+            "exogenous_changes": self.exogenous_changes,
         }
 
     def summary(self) -> str:
@@ -55,4 +75,6 @@ class Metrics:
             f"planner failures: {self.plan_failures}\n"
             f"planning CPU time: {self.planning_cpu_s:.3f} s; wall time of the whole run: {self.wall_s:.3f} s "
             "(planning, acting, the simulated world, and drawing frames if any)"
+            + (f"\nbelief and world disagree on: {', '.join(self.disagreement)}" if self.disagreement else "")
+            + (f"\ncycles detected: {self.cycles}" if self.cycles else "")
         )

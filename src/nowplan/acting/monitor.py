@@ -53,6 +53,7 @@ from nowplan.acting.monitor_support import (
 from nowplan.acting.plan_library import PlanLibrary, StoredPlan, goal_key, state_key
 from nowplan.belief.protocols import Reobserves
 from nowplan.core.atoms import Goal, entails
+from nowplan.core.domain import Domain
 from nowplan.core.levels import flat_levels
 from nowplan.core.state import State
 from nowplan.errors import ModelError, ScenarioError
@@ -68,6 +69,8 @@ __all__ = ["Monitor", "MonitorConfig", "default_config", "monitor_settings"]
 log = logging.getLogger(__name__)
 
 _ACTIVE: MonitorConfig | None = None
+
+Rank = tuple[float, float, int]  # how the monitor breaks ties between equally close states
 
 
 def default_config() -> MonitorConfig:
@@ -100,6 +103,8 @@ class Monitor(Mechanism):
         self._prev: State | None = None
         self._goal_key = ""
         self._next_mem_id = -1
+        self._index: dict[State, tuple[Rank, StoredPlan, int]] = {}
+        self._indexed = 0  # how many of self.plans are in self._index
 
     # -- hooks ---------------------------------------------------------------------
     def after_push(self, ex: Executive, frame: Frame) -> None:
@@ -118,6 +123,8 @@ class Monitor(Mechanism):
         prev, self._prev = self._prev, None
         if prev is None or len(ex.stack) < 2:
             return
+        if ex.committed:
+            return  # after a cycle: the executive's own failure handling, no stack rewrites
         f = ex.stack[-1]
         action = f.plan.steps[f.i].action if 0 < f.i <= f.n else None
         if f.root or action is None:
@@ -158,7 +165,7 @@ class Monitor(Mechanism):
         self, ex: Executive, f: Frame, expected: State, observed: State, dm: float,
     ) -> tuple[list[Alternative], list[Repair], float | None]:
         """The alternatives to try, the repairs that could be planned (one, or all when comparing), dm1."""
-        cand = self._closest(observed) if self.config.uses_library else None
+        cand = self._closest(observed, ex.domain) if self.config.uses_library else None
         dm1 = cand.distance if cand is not None else None
         order = order_to_try(self.config, dm, dm1)
         repairs: list[Repair] = []
@@ -188,6 +195,7 @@ class Monitor(Mechanism):
         else:
             self.library = None
             self.plans = []
+        self._index, self._indexed = {}, 0
         log.info("monitor: %d stored plan(s) toward this goal", len(self.plans))
 
     def _own_planner(self) -> Any:
@@ -219,20 +227,32 @@ class Monitor(Mechanism):
             self.stats.stored += 1
         self.current = found
 
-    def _closest(self, observed: State) -> Candidate | None:
+    def _closest(self, observed: State, domain: Domain) -> Candidate | None:
         if self.config.library_scope == "path":
             pool = [self.current] if self.current is not None else []
+            index = _state_index(pool, domain)
         else:
-            pool = self.plans
-        best: tuple[float, float, int] | None = None
+            index = self._library_index(domain)
+        best: tuple[float, float, float, int] | None = None
         out: Candidate | None = None
-        for sp in pool:
-            for j, s in enumerate(sp.states):
-                d = float(self.support.distance(s, observed))
-                key = (d, -j / max(len(sp.states), 1), sp.id)
-                if best is None or key < best:
-                    best, out = key, Candidate(sp, j, d)
+        for s, (rank, sp, j) in index.items():
+            d = float(self.support.distance(s, observed))
+            key = (d, *rank)
+            if best is None or key < best:
+                best, out = key, Candidate(sp, j, d)
         return out
+
+    def _library_index(self, domain: Domain) -> dict[State, tuple[Rank, StoredPlan, int]]:
+        """Each distinct state of the stored plans once, with its preferred occurrence.
+
+        Replanning after every surprise stores a plan each time, and most of their states are
+        shared; measuring the distance once per distinct state instead of once per occurrence
+        keeps the closest-state search linear in what the library knows, not in its history.
+        """
+        if self._indexed < len(self.plans):
+            _state_index(self.plans[self._indexed:], domain, self._index)
+            self._indexed = len(self.plans)
+        return self._index
 
     # -- planning ----------------------------------------------------------------------
     def _plan(self, ex: Executive, state: State, goal: Goal) -> PlanResult:
@@ -361,6 +381,33 @@ class Monitor(Mechanism):
         if isinstance(made, dict):
             made[id(plan)] = {"method": method, "cpu_s": round(cpu_s, 6), "expanded": 0}
         ex.push(plan, parent)
+
+
+def _state_index(
+    plans: list[StoredPlan],
+    domain: Domain,
+    into: dict[State, tuple[Rank, StoredPlan, int]] | None = None,
+) -> dict[State, tuple[Rank, StoredPlan, int]]:
+    """Distinct states -> (tie-break rank, plan, index).
+
+    Among states equally close to the observed one the monitor goes to the one with the
+    cheapest stored path to the goal (seed 003 keeps intermediate states "known to have the
+    best path from where they are to the final state"), then the one later in its plan, then
+    the lower plan id.  Preferring position alone re-entered repair plans that had detours in
+    them: under faults the library fills with such plans and the runs grew 10x longer.
+    """
+    out = {} if into is None else into
+    for sp in plans:
+        costs = [a.cost() for a in sp.rebuild(domain)]
+        remaining = sum(costs)
+        for j, st in enumerate(sp.states):
+            rank = (remaining, -j / max(len(sp.states), 1), sp.id)
+            if j < len(costs):
+                remaining -= costs[j]
+            old = out.get(st)
+            if old is None or rank < old[0]:
+                out[st] = (rank, sp, j)
+    return out
 
 
 def _factory(decision: str | None) -> Any:

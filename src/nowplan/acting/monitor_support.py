@@ -35,8 +35,7 @@ Adapt = Callable[[Sequence[Action], State], list[Action]]
 
 def fluent_distance(a: State, b: State) -> float:
     """How many fluents have different values in ``a`` and ``b`` (absent = False)."""
-    keys = {x.key for x in a.atoms()} | {x.key for x in b.atoms()}
-    return float(sum(1 for k in keys if a.value(k) != b.value(k)))
+    return float(a.differing(b))
 
 
 @dataclass(frozen=True)

@@ -30,7 +30,9 @@ from typing import Any
 
 from nowplan.acting.deferred import resolve
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
+from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
+from nowplan.acting.progress import CycleDetector, belief_fingerprint, situation, stall_reason
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import check_belief
@@ -43,6 +45,7 @@ from nowplan.planning.context import PlanningContext
 from nowplan.planning.plan import PlanResult, PlanStatus
 from nowplan.planning.regression import plan as regression_plan
 from nowplan.trace import Trace
+from nowplan.worlds.base import Observation
 
 log = logging.getLogger(__name__)
 
@@ -109,6 +112,7 @@ class OnlinePolicy:
         self.metrics = Metrics()
         self.streams = belief.streams if isinstance(belief, HasStreams) else None
         self.levels = flat_levels()
+        self._tail: list[Action] = []  # after a cycle: the rest of the plan committed to
         self.planning_s = 0.0  # wall time spent planning and binding streams
         self.constrained_ok = 0
         self.constrained_tried = 0
@@ -148,8 +152,66 @@ class OnlinePolicy:
                 return res
             self.trace.emit("note", text=f"planning failed ({res.reason}); sample pools grow")
 
+    def _act(self, first: Action, plan_id: int) -> Observation:
+        """Execute one action, update the belief, trace both."""
+        self.trace.emit("action", plan_id=plan_id, index=1, action=first.pddl(),
+                        cost=first.cost(self.belief), n=self.metrics.actions)
+        obs: Observation = self.world.execute(first)
+        self.metrics.actions += 1
+        self.metrics.action_counts[first.name] += 1
+        self.metrics.execution_cost += first.cost(self.belief)
+        self.belief.update(first, obs)
+        self.metrics.failed_actions += not obs.success
+        self.metrics.exogenous_changes += bool(obs.exogenous)
+        self.trace.emit("observation", n=self.metrics.actions - 1, action=first.pddl(),
+                        success=obs.success, observation=obs.info or None)
+        if obs.exogenous:
+            self.trace.emit("exogenous", n=self.metrics.actions - 1, change=list(obs.exogenous))
+        if isinstance(self.belief, AfterAction) and self.belief.after_action is not None:
+            self.belief.after_action(self.trace, first, obs)
+        if self.on_action is not None:
+            self.on_action(self, first)
+        return obs
+
+    def _watch(self, progress: CycleDetector, obs: Observation, plan: list[Action]) -> tuple[Outcome, str] | None:
+        """The progress guard after an action: commit to ``plan``'s rest on a cycle; a livelock's outcome."""
+        now = self._situation()
+        if now is None:
+            return None
+        cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
+        if progress.stalled >= self.strategy.max_stalls:
+            return Outcome.FAILED, stall_reason(progress.stalled, plan[0], obs)
+        if cyc is None:
+            return None
+        self.metrics.cycles = progress.seen
+        self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
+                        text=cyc.describe())
+        if cyc.clean and progress.livelocked:
+            return Outcome.LIVELOCK, (f"livelock: cycle {cyc.count} of at most {progress.max_cycles}: "
+                                      f"{cyc.describe()}, although the policy had committed to its plan")
+        self._tail = plan[1:] if obs.success else plan
+        progress.forget(keep=now)
+        self.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plan "
+                        f"({len(self._tail)} action(s)) instead of replanning after every action")
+        return None
+
     def _budget_left(self, t0: float) -> tuple[Outcome, str] | None:
         return self.strategy.exhausted(self.metrics, time.perf_counter() - t0)
+
+    def _situation(self) -> Any:
+        fp = belief_fingerprint(self.belief)
+        return None if fp is None else situation(fp, (self.problem.goal,))
+
+    def _committed_step(self) -> Action | None:
+        """After a cycle: the next action of the plan committed to, while its preconditions hold."""
+        if not self._tail:
+            return None
+        nxt = self._tail[0]
+        if all(self.domain.holds(a, self.belief) for a in nxt.preconditions(None)):
+            return nxt
+        self._tail = []
+        self.trace.emit("note", text="progress: commitment ends (the committed plan's next step is not applicable)")
+        return None
 
     def run(self) -> Metrics:
         t0 = time.perf_counter()
@@ -157,6 +219,11 @@ class OnlinePolicy:
         prev: tuple[SkeletonStep, ...] | None = None
         outcome, reason = Outcome.FAILED, ""
         retries = 0
+        progress = CycleDetector(self.strategy.max_cycles)
+        self._tail = []
+        start = self._situation()
+        if start is not None:
+            progress.start(start)
         while True:
             if self.domain.satisfies(self.belief, self.problem.goal):
                 outcome, reason = Outcome.REACHED, ""
@@ -165,6 +232,18 @@ class OnlinePolicy:
             if over is not None:
                 outcome, reason = over
                 break
+            committed = self._committed_step()
+            if committed is not None:
+                rest = self._tail[1:]
+                obs = self._act(committed, self._plan_id - 1)
+                # a failed step is retried while its preconditions hold
+                self._tail = rest if obs.success else [committed, *rest]
+                stop = self._watch(progress, obs, [committed, *rest])
+                if stop is not None:
+                    outcome, reason = stop
+                    break
+                prev = None
+                continue
             tp = time.perf_counter()
             res = self._plan(prev, deadline)
             self.metrics.planning_cpu_s += res.cpu_time_s
@@ -211,23 +290,16 @@ class OnlinePolicy:
             )
             self._plan_id += 1
             first = actions[0]
-            self.trace.emit("action", plan_id=self._plan_id - 1, index=1, action=first.pddl(),
-                            cost=first.cost(self.belief), n=self.metrics.actions)
-            obs = self.world.execute(first)
-            self.metrics.actions += 1
-            self.metrics.action_counts[first.name] += 1
-            self.metrics.execution_cost += first.cost(self.belief)
-            self.belief.update(first, obs)
-            self.trace.emit("observation", n=self.metrics.actions - 1, action=first.pddl(),
-                            success=obs.success, observation=obs.info or None)
-            if isinstance(self.belief, AfterAction) and self.belief.after_action is not None:
-                self.belief.after_action(self.trace, first, obs)
-            if self.on_action is not None:
-                self.on_action(self, first)
+            obs = self._act(first, self._plan_id - 1)
+            stop = self._watch(progress, obs, list(actions))
+            if stop is not None:
+                outcome, reason = stop
+                break
             # Alg. 1 line 17: the unexecuted tail constrains the next plan (if it went as planned)
             prev = skeleton(actions[1:]) if obs.success else None
         self.metrics.outcome = outcome
         self.metrics.reason = reason
+        judge(self.domain, self.problem.goal, self.belief, self.world, self.metrics, self.trace)
         self.metrics.wall_s = time.perf_counter() - t0
-        log.info("online policy: %s %s", outcome.value, reason)
+        log.info("online policy: %s %s", self.metrics.outcome.value, self.metrics.reason)
         return self.metrics

@@ -9,7 +9,8 @@ against the costs cached when the plan was made.  A fired trigger replans
 the plan's goal at its level from the current belief; if the new plan is
 the same as, or a contiguous part of, the old one, execution goes on;
 otherwise that plan and everything above it are popped and the new plan
-takes its place.
+takes its place.  While the executive is committed after a cycle
+(:mod:`nowplan.acting.progress`) no trigger is followed: hysteresis.
 """
 
 from __future__ import annotations
@@ -60,6 +61,8 @@ class Selective(Mechanism):
         return cost_increase(ex, frame, self.threshold)
 
     def after_action(self, ex: Executive) -> None:
+        if ex.committed:
+            return
         top = ex.stack[-1] if ex.stack else None
         if top is not None and not top.root and not ex.domain.satisfies(ex.belief, top.plan.preimage(top.i)):
             # the step just taken did not have its intended result: the executive handles that

@@ -8,6 +8,15 @@ would now take (the one after its rightmost pre-image holding in the
 belief) is not the one the plan above it is working on, the world has moved
 under us, so every plan above it is popped and execution resumes from that
 step.
+
+A resume goes *forward* only: the belief has reached a pre-image further along the
+plan than the step being worked on, so the steps from there still reach the plan's
+goal.  A plan whose rightmost holding pre-image lies *behind* the step being worked on
+is not lucky: a sub-plan on its way (fetching a key, walking back through a room that
+happens to satisfy an earlier pre-image) passes through such states, and resuming
+there dropped the sub-plan and looped.  That plan stays; if the sub-plan cannot go on
+it is popped by the ordinary rules.  While the executive is committed after a cycle
+(:mod:`nowplan.acting.progress`) no step is resumed.
 """
 
 from __future__ import annotations
@@ -33,10 +42,12 @@ class Serendipity(Mechanism):
                     ex.pop("serendipity")
                 ex.serendipity_events += 1
                 return
+            if ex.committed:
+                continue  # goals that came true are still popped above; no resumes
             i = rightmost(ex, frame)
             if i is None:
                 continue  # not applicable any more: the ordinary pop handles it
-            if frame.plan.preimage(i + 1) != above.plan.goal:
+            if i + 1 > frame.i and frame.plan.preimage(i + 1) != above.plan.goal:
                 ex.trace.emit(
                     "note", plan_id=frame.plan_id,
                     text=f"serendipity: resume plan {frame.plan_id} at step {i + 1}",

@@ -47,18 +47,25 @@ class Strategy:
     max_plans: int = 2_000
     max_depth: int = 64
     max_refinements: int = 5  # refinements of one plan step without an action before it is given up
+    max_cycles: int = 3  # progress guard: cycles (nowplan.acting.progress) before a run ends as a livelock
+    max_stalls: int = 25  # progress guard: failures in a row that leave the situation unchanged
     max_retries: int = 2  # flexible: setbacks a plan may retry before it is replanned (Fig. 4)
     domain_planner: bool = False  # plan with the domain's own planner (Domain.planner) when it has one
     time_limit: float = 600.0
 
     def exhausted(self, metrics: Metrics, elapsed: float) -> tuple[Outcome, str] | None:
-        """The budget that has run out, as ``(LIMIT, reason)``, or None."""
+        """The budget that has run out, as ``(LIMIT, reason)``, or None.
+
+        The reason says what the world did meanwhile (failed actions, exogenous changes, cycles),
+        so a run a budget ended is told apart from a livelock (which ends sooner, as such).
+        """
+        why = f" ({metrics.world_summary()})"
         if metrics.actions >= self.max_actions:
-            return Outcome.LIMIT, f"action budget of {self.max_actions} spent"
+            return Outcome.LIMIT, f"action budget of {self.max_actions} spent" + why
         if metrics.plans_made + metrics.plan_failures >= self.max_plans:
-            return Outcome.LIMIT, f"planning budget of {self.max_plans} calls spent"
+            return Outcome.LIMIT, f"planning budget of {self.max_plans} calls spent" + why
         if elapsed > self.time_limit:
-            return Outcome.LIMIT, f"time limit of {self.time_limit:g} s reached"
+            return Outcome.LIMIT, f"time limit of {self.time_limit:g} s reached" + why
         return None
 
     def mechanisms(self) -> list[Mechanism]:

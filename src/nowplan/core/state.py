@@ -48,6 +48,11 @@ class State:
             self._by_pred = idx
         return self._by_pred.get(predicate, [])
 
+    def differing(self, other: State) -> int:
+        """How many fluents have different values here and in ``other`` (absent = False)."""
+        sym = self._map.items() ^ other._map.items()
+        return len({k for k, _ in sym})
+
     def atoms(self) -> Iterator[Atom]:
         for (p, args), v in sorted(self._map.items(), key=lambda kv: (kv[0][0], repr(kv[0][1]))):
             yield Atom(p, args, v)

@@ -36,7 +36,7 @@ class RunStatus(enum.Enum):
 
 
 # the ``outcome`` column: the engine's outcomes plus "error" for crashed runs
-OUTCOMES = ("reached", "failed", "limit", "error")
+OUTCOMES = ("reached", "failed", "limit", "livelock", "error")
 
 
 @dataclass(frozen=True)

@@ -40,7 +40,7 @@ PLOTTED = (
     ("planning_cpu_s", "planning CPU time (s)"),
     ("replans", "replans"),
 )
-OUTCOME_COLOURS = {"reached": "#4c9a5b", "failed": "#c8553d", "limit": "#e0a458", "error": "#6c6c6c"}
+OUTCOME_COLOURS = {"reached": "#4c9a5b", "failed": "#c8553d", "limit": "#e0a458", "livelock": "#8e6c8a", "error": "#6c6c6c"}
 
 
 @dataclass(frozen=True)

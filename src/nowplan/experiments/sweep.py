@@ -112,13 +112,13 @@ class SweepResult:
         return Counter(r.status.value for r in self.records)
 
     def summary(self) -> str:
-        header = ["scenario", "strategy", "runs", "reached", "failed", "limit", "error",
+        header = ["scenario", "strategy", "runs", "reached", "failed", "limit", "livelock", "error",
                   "actions", "cost", "replans", "plan CPU s", "wall s"]
         rows: list[list[str]] = []
         for g in group_records(self.records):
             rows.append([
                 g.key[1], g.key[2], str(len(g.records)),
-                *(str(g.count(o)) for o in ("reached", "failed", "limit", "error")),
+                *(str(g.count(o)) for o in ("reached", "failed", "limit", "livelock", "error")),
                 _mean(g.metric("actions")), _mean(g.metric("execution_cost")), _mean(g.metric("replans")),
                 _mean(g.metric("planning_cpu_s")), _mean(g.metric("wall_s"), 2),
             ])

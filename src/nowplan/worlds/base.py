@@ -133,6 +133,19 @@ class SimulatedWorld:
 
 
 @runtime_checkable
+class Inspectable(Protocol):
+    """A simulated world that can tell its true state, so that success is judged in the world.
+
+    ``true_state()`` returns something the domain's predicates can test (for symbolic worlds
+    a :class:`~nowplan.core.state.State`).  The executive asks it only at the end of a run: an
+    outcome ``reached`` then means the goal holds in the world, and the run result reports the
+    goal's atoms on which belief and world disagree.  The agent never reads it while acting.
+    """
+
+    def true_state(self) -> Any: ...
+
+
+@runtime_checkable
 class Belief(Protocol):
     """The agent's belief: tested by the domain's predicates, updated by observations."""
 

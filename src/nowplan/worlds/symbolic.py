@@ -51,6 +51,10 @@ class SymbolicWorld(SimulatedWorld):
     def has_exogenous(self) -> bool:
         return self.exogenous is not None
 
+    def true_state(self) -> State:
+        """The world's state (for judging success at the end of a run; never for acting)."""
+        return self.state
+
     def applicable(self, action: Action) -> bool:
         return all(self.domain.holds(p, self.state) for p in action.preconditions(None))
 

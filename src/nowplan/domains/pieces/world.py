@@ -66,6 +66,10 @@ class PiecesWorld:
         if exogenous_prob is not None:
             self.exogenous_prob = exogenous_prob
 
+    def true_state(self) -> State:
+        """The board as it is (success is judged on it at the end of a run)."""
+        return self.state
+
     @property
     def exogenous_prob(self) -> float:
         return self.disturbances.prob

@@ -1,0 +1,154 @@
+"""The progress guarantee: detect cycles across actions and say when a run is a livelock.
+
+The budgets (actions, planner calls, time) bound every run, but a budget alone says
+nothing about *why* a run did not finish.  The mechanisms that reconsider the plan
+stack (aggressive and selective replanning, serendipity, the monitor) can each undo
+the agent's own work: replan toward another item after every action and shuttle
+between two rooms, or resume an earlier step and drop the sub-plan that fetched a key.
+Such a loop keeps taking actions, so the executive's "no progress" guard (refinements
+without an action) never fires.
+
+This module watches the agent's *situation* after every action: a fingerprint of the
+belief (its facts) together with the goals of the plan stack.  A **cycle** is a return
+to a situation seen before such that, since that earlier visit,
+
+* at least one action succeeded (failed actions change nothing, so retrying a sticky
+  door is not a cycle), and
+* the world reported no exogenous change (a package carried back by somebody else
+  is the world's doing, not the strategy's).
+
+Only the agent's own choices can then have brought it back.  A cycle in which an action
+failed is often HPN's failure-driven replanning choosing another order (a re-grasp that
+undoes a placement); a cycle with no failure at all is the strategy undoing its own work.
+The executive answers every cycle by *committing* to its current plans (the reconsidering mechanisms
+hold off until the belief is one never held before — progress — however the plans
+fare meanwhile: hysteresis, as SS-Replan constrains replanning to the previous plan so
+that it makes progress; the online policy executes the rest of its last plan).  The
+situations seen before the commitment are forgotten: retracing them under the committed
+plans is not a new cycle, but a cycle made while committed is, and the run ends with
+:attr:`~nowplan.acting.metrics.Outcome.LIVELOCK` and the cycle's description when cycles
+with no failed action reach ``max_cycles`` (default 3) without progress in between.
+
+A loop can also stand still: an action that fails again and again and leaves the
+situation as it was (a door the belief thinks open, in a world that reports outcomes
+only).  Retrying is right while failures are chance; ``stalled`` counts the failures in a
+row, and the executive gives up with its reason at ``Strategy.max_stalls`` (default 25: a
+chance of 0.5**25, about 3e-8, at a 50 % failure rate).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Iterable
+from dataclasses import dataclass
+from typing import Any, Protocol, runtime_checkable
+
+from nowplan.belief.protocols import HasState
+from nowplan.core.operators import Action
+from nowplan.core.state import State
+from nowplan.worlds.base import Observation
+
+
+@runtime_checkable
+class Fingerprinted(Protocol):
+    """A belief that can say which situation it is in (equal fingerprints = same belief)."""
+
+    def fingerprint(self) -> Hashable: ...
+
+
+def belief_fingerprint(belief: Any) -> Hashable | None:
+    """The belief's fingerprint: its own, or its point state's facts; None when it has neither."""
+    if isinstance(belief, Fingerprinted):
+        return belief.fingerprint()
+    if isinstance(belief, State):
+        return belief
+    if isinstance(belief, HasState) and isinstance(belief.state, State):
+        return belief.state  # a symbolic belief keeps its facts as a State
+    return None
+
+
+@dataclass(frozen=True)
+class Cycle:
+    """A situation reached again by the agent's own actions."""
+
+    length: int  # actions since the earlier visit
+    count: int  # cycles with no failed action since progress (this one included if clean)
+    first_visit: int  # the action count at the earlier visit
+    visit: int  # the action count now
+    clean: bool = True  # no action failed in the cycle
+
+    def describe(self) -> str:
+        return (
+            f"the belief and the plan stack's goals after action {self.visit} are those after action "
+            f"{self.first_visit}, reached again by the agent's own actions ({self.length} action(s), "
+            f"no exogenous change{', no failure' if self.clean else ', some failed'} in between)"
+        )
+
+
+class CycleDetector:
+    """Remembers situations by fingerprint; reports a :class:`Cycle` on a clean return."""
+
+    def __init__(self, max_cycles: int = 3) -> None:
+        if max_cycles < 1:
+            raise ValueError("max_cycles must be >= 1")
+        self.max_cycles = max_cycles
+        self.cycles = 0  # cycles with no failed action (they count toward a livelock)
+        self.seen = 0  # every cycle
+        self._t = 0
+        self._last_visit: dict[Hashable, int] = {}
+        self._last_success = -1  # action count of the last successful action
+        self._last_exogenous = -1  # action count of the last exogenous change
+        self._last_failure = -1  # action count of the last failed action
+        self.stalled = 0  # failed actions in a row that left the situation as it was
+        self._prev: Hashable | None = None
+
+    def start(self, situation: Hashable) -> None:
+        """The situation before the first action."""
+        self._last_visit[situation] = 0
+        self._prev = situation
+
+    def observe(self, situation: Hashable, *, succeeded: bool, exogenous: bool) -> Cycle | None:
+        """The situation after one more action; a :class:`Cycle` if it closes one."""
+        self._t += 1
+        if succeeded:
+            self._last_success = self._t
+        else:
+            self._last_failure = self._t
+        if exogenous:
+            self._last_exogenous = self._t
+        self.stalled = self.stalled + 1 if (not succeeded and situation == self._prev) else 0
+        self._prev = situation
+        prev = self._last_visit.get(situation)
+        self._last_visit[situation] = self._t
+        if prev is None or self._last_exogenous > prev or self._last_success <= prev:
+            return None
+        clean = self._last_failure <= prev
+        self.seen += 1
+        self.cycles += clean
+        return Cycle(self._t - prev, self.cycles, prev, self._t, clean)
+
+    def forget(self, *, keep: Hashable | None = None, cycles: bool = False) -> None:
+        """Forget the situations seen (after committing: only cycles made since count), except
+        ``keep`` (the situation now); ``cycles`` also resets the count (after progress)."""
+        self._last_visit.clear()
+        if keep is not None:
+            self._last_visit[keep] = self._t
+        if cycles:
+            self.cycles = 0
+
+    @property
+    def livelocked(self) -> bool:
+        return self.cycles >= self.max_cycles
+
+
+def stall_reason(times: int, action: Action | None, obs: Observation) -> str:
+    """Why a run that stood still was given up."""
+    what = action.pddl() if action is not None else "the last action"
+    why = obs.info.get("reason")
+    return (f"stalled: {what} failed {times} times in a row and left the belief and the plan stack as "
+            f"they were{f' (last: {why})' if why else ''}; the world refuses it, or the belief is wrong "
+            "and the world reports outcomes only")
+
+
+def situation(belief_fp: Hashable, goals: Iterable[Hashable]) -> Hashable:
+    """The fingerprint the detector compares: the belief's and the plan stack's goals."""
+    return (belief_fp, tuple(goals))
