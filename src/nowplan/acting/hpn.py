@@ -90,6 +90,10 @@ class Executive:
         # refinements of each step of each plan (by content, see refinement_key) since the last
         # action: the bound on re-planning a step that keeps failing while the belief does not change
         self._refinements: Counter[Hashable] = Counter()
+        # refine-flat: steps (by refinement_key) whose abstract plan could not be refined; their
+        # goal is planned concretely from then on (an ordered-monotonic hierarchy, e.g. an automatic
+        # one, need not be downward refinable)
+        self._flat_steps: set[Hashable] = set()
         check_supported(self.domain, strategy)
         if strategy.domain_planner and self.domain.planner is None:
             raise ScenarioError(
@@ -306,9 +310,18 @@ class Executive:
                 levels = f.plan.levels if action is None else f.plan.levels.next_level(action)
                 if f.root:
                     levels = self.base_levels
+                if key in self._flat_steps:
+                    levels = flat_levels()
                 new = self.make_plan(step.goal, levels, f)
                 if new is None:
                     consecutive_failures += 1
+                    if f.root and self.strategy.refine_flat and key not in self._flat_steps:
+                        # not even an abstract plan was found: plan the goal concretely
+                        self._flat_steps.add(key)
+                        self.trace.emit("note", plan_id=f.plan_id,
+                                        text="executive: refine-flat: no abstract plan "
+                                             f"({self._last_failure}); planning the goal concretely")
+                        continue
                     if f.root:
                         timed_out = self._last_status is PlanStatus.TIME_LIMIT
                         outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
@@ -317,6 +330,17 @@ class Executive:
                     if consecutive_failures > 3 * self.strategy.max_depth:
                         outcome, reason = Outcome.FAILED, f"repeated planning failures ({self._last_failure})"
                         break
+                    if self.strategy.refine_flat and len(self.stack) >= 2:
+                        # f's abstract plan has a step no more concrete plan achieves: plan f's
+                        # goal concretely when its parent's step is refined again
+                        parent_key = self.refinement_key(self.stack[-2])
+                        if parent_key not in self._flat_steps:
+                            self._flat_steps.add(parent_key)
+                            self.trace.emit(
+                                "note", plan_id=f.plan_id,
+                                text="executive: refine-flat: abstract plan not refinable "
+                                     f"({self._last_failure}); its goal is planned concretely next",
+                            )
                     self.pop("failed")  # the refined step cannot be achieved from here
                     continue
                 consecutive_failures = 0
