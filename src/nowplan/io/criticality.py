@@ -225,8 +225,9 @@ def hierarchy_text(domain: Domain) -> str:
         f"# automatic criticalities for domain {domain.name} (nowplan criticality; docs/pddl.md)",
         "# Knoblock's ordered-monotonic hierarchy: an operator's effects share one level and its",
         "# preconditions are at that level or below, so refining a step never changes a literal",
-        "# of a more abstract level.  Level k = criticality k+1; static predicates are kept at",
-        f"# every level (criticality {top + 1}).  Edit freely: this file loads with --criticality FILE.",
+        "# of a more abstract level.  A precondition at level k below its action's effects has",
+        f"# criticality k+1; one at the action's own level, or static, {top + 1} (kept at every level).",
+        "# Edit freely: this file loads with --criticality FILE.",
     ]
     for lvl, classes in sorted(h.by_level().items(), reverse=True):
         lines.append(f"# level {lvl} (criticality {lvl + 1}): " + ", ".join(str(c) for c in classes))
