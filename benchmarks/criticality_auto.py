@@ -45,6 +45,7 @@ from nowplan.acting.strategy import parse_strategy  # noqa: E402
 from nowplan.belief.symbolic import SymbolicBelief  # noqa: E402
 from nowplan.domains.registry import Episode  # noqa: E402
 from nowplan.io.pddl_read import load_pddl  # noqa: E402
+from nowplan.planning.abstraction import prepare_problem  # noqa: E402
 from nowplan.worlds.symbolic import SymbolicWorld  # noqa: E402
 
 SHIPPED = ROOT / "src" / "nowplan" / "data" / "pddl"
@@ -66,6 +67,8 @@ LARGER: dict[str, list[tuple[dict[str, int], int]]] = {
 def run_one(domain: Path, problem: Path, criticality: str | None, strategy: str, limit: float,
             engine: str) -> dict[str, Any]:
     prob = load_pddl(domain, problem, criticality)
+    if criticality == "auto":
+        prob = prepare_problem(prob)  # what `nowplan run --criticality auto` does
     strat = parse_strategy(strategy)
     strat = replace(strat, time_limit=limit, planner=replace(strat.planner, engine=engine))
     episode = Episode(prob, SymbolicWorld(prob.domain, prob.init, seed=0), SymbolicBelief(prob.init), str(problem))

@@ -255,3 +255,64 @@ def test_cli_run_rejects_a_missing_criticality_file(capsys: pytest.CaptureFixtur
         main(["run", str(d / "domain.pddl"), str(d / "p01.pddl"), "--criticality", "nope.crit"])
     assert exc.value.code == 2
     assert "nope.crit" in capsys.readouterr().err
+
+
+# --------------------------------------------------------------------------- problems (run --criticality auto)
+
+
+def _classical(domain: str, problem: str) -> Problem:
+    from nowplan.io.pddl_read import load_pddl
+
+    return load_pddl(CLASSICAL / domain / "domain.pddl", CLASSICAL / domain / f"{problem}.pddl", "auto")
+
+
+def test_goal_stages_put_the_abstract_literals_first() -> None:
+    from nowplan.planning.abstraction import goal_stages
+
+    prob = _classical("driverlog", "p04")
+    (stage,) = goal_stages(prob, derive_hierarchy(prob.domain))
+    assert {a.predicate for a in stage.atoms} == {"at"}
+    assert all(str(a.args[0]).startswith("package") for a in stage.atoms)
+    assert stage.atoms < prob.goal.atoms
+
+
+def test_reachability_statics_prune_only_abstract_steps() -> None:
+    from nowplan.planning.reach_statics import add_reachability_statics
+    from nowplan.planning.task import grounding
+
+    prob = _classical("logistics", "p04")
+    aug = add_reachability_statics(prob)
+    load = aug.domain.operator_map["load-truck"]
+    assert any(p.atom.predicate == "reachable-at" and p.criticality == aug.domain.max_criticality
+               for p in load.preconditions)
+
+    def keys(p: Problem, level: int) -> set[tuple[str, tuple[object, ...]]]:
+        return {a.key for a in grounding(p.domain, p.objects, p.init, level).actions}
+
+    assert keys(aug, -1) == keys(prob, -1)  # concrete: the same reachable actions
+    top = prob.domain.top_level
+    assert keys(aug, top) < keys(prob, top)  # abstract: trucks no longer serve other cities
+
+
+def test_the_executive_achieves_the_stages_in_order() -> None:
+    from nowplan.trace import Trace
+
+    dom = Domain("two", {"a": Predicate("a", 0), "b": Predicate("b", 0)},
+                 (Operator("set-a", (), (), (Atom("a"),)), Operator("set-b", (), (), (Atom("b"),))))
+    goal = Goal.of([Atom("a"), Atom("b")], dom.rules)
+    prob = Problem(dom, {}, State([]), goal, "two", stages=(Goal.of([Atom("b")], dom.rules),))
+    ep = Episode(prob, SymbolicWorld(dom, prob.init, seed=0), SymbolicBelief(prob.init), "t")
+    with Trace(None) as tr:
+        m = run_episode(ep, parse_strategy("hpn"), seed=0, trace=tr)
+    assert m.outcome is Outcome.REACHED
+    assert [e["action"] for e in tr.events if e["event"] == "action"] == ["(set-b)", "(set-a)"]
+
+
+@pytest.mark.parametrize(("domain", "problem"), [("logistics", "p05"), ("driverlog", "p04")])
+def test_cli_run_auto_on_classical_problems_flat_planning_solves(
+        capsys: pytest.CaptureFixture[str], domain: str, problem: str) -> None:
+    """IPC logistics needs the reachability statics, driverlog the cycle check (refine-flat)."""
+    d = CLASSICAL / domain
+    code = main(["run", str(d / "domain.pddl"), str(d / f"{problem}.pddl"), "--criticality", "auto",
+                 "--time-limit", "60"])
+    assert code == 0, capsys.readouterr().out

@@ -24,6 +24,7 @@ from typing import Any
 
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.strategy import Strategy, check_supported
+from nowplan.belief.symbolic import SymbolicBelief
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap, flat_levels
@@ -36,6 +37,8 @@ from nowplan.trace import Trace
 from nowplan.worlds.base import World
 
 log = logging.getLogger(__name__)
+
+CYCLE_VISITS = 3  # refine-flat: visits of one symbolic state that count as a cycle
 
 
 @dataclass
@@ -94,6 +97,7 @@ class Executive:
         # goal is planned concretely from then on (an ordered-monotonic hierarchy, e.g. an automatic
         # one, need not be downward refinable)
         self._flat_steps: set[Hashable] = set()
+        self._visits: Counter[frozenset[Any]] = Counter()  # refine-flat: symbolic states seen after actions
         check_supported(self.domain, strategy)
         if strategy.domain_planner and self.domain.planner is None:
             raise ScenarioError(
@@ -120,7 +124,14 @@ class Executive:
 
     def next_step(self, f: Frame) -> PlanStep:
         if f.root:
-            return f.plan.steps[1]
+            # the first stage (Problem.stages) that does not hold yet, else the goal
+            last = len(f.plan.steps) - 1
+            for i in range(1, last):
+                if not self.domain.satisfies(self.belief, f.plan.steps[i].goal):
+                    f.i = i
+                    return f.plan.steps[i]
+            f.i = last
+            return f.plan.steps[-1]
         for m in self.mechanisms:
             chosen = m.next_step(self, f)
             if chosen is not None:
@@ -258,9 +269,28 @@ class Executive:
         refinements of one step of one plan, however often it is remade, until the next action.
         """
         if f.root:
-            return ("root", 1)
+            return ("root", f.i)
         acts = tuple(s.action.key if s.action is not None else None for s in f.plan.steps)
         return (acts, f.plan.goal, f.i)
+
+    def _check_cycle(self) -> None:
+        """refine-flat: a symbolic state reached a third time means the hierarchical plans cycle
+        (refinements that succeed but undo each other); plan the current root goal concretely."""
+        if not isinstance(self.belief, SymbolicBelief) or not self.stack or not self.stack[0].root:
+            return
+        state = frozenset(self.belief.atoms())
+        self._visits[state] += 1
+        root = self.stack[0]
+        key = self.refinement_key(root)
+        if self._visits[state] < CYCLE_VISITS or key in self._flat_steps:
+            return
+        self._flat_steps.add(key)
+        self.trace.emit("note", plan_id=root.plan_id,
+                        text=f"executive: refine-flat: state reached {CYCLE_VISITS} times: the hierarchical "
+                             "plans cycle; planning the goal concretely")
+        while len(self.stack) > 1:
+            self.pop("cycle")
+        self._visits.clear()
 
     # -- the loop ------------------------------------------------------------------
     def run(self) -> Metrics:
@@ -268,7 +298,8 @@ class Executive:
         self._last_failure = ""
         self._last_status = None
         goal = self.problem.goal
-        root_plan = Plan((PlanStep(None, TRUE), PlanStep(None, goal)), self.base_levels)
+        stages = tuple(PlanStep(None, g) for g in self.problem.stages)
+        root_plan = Plan((PlanStep(None, TRUE), *stages, PlanStep(None, goal)), self.base_levels)
         self.push(root_plan, None, root=True)
         outcome, reason = Outcome.REACHED, ""
         consecutive_failures = 0
@@ -348,6 +379,8 @@ class Executive:
             else:
                 self.execute(f, action)
                 self.reconsider()
+                if self.strategy.refine_flat:
+                    self._check_cycle()
         if outcome is Outcome.REACHED and not self.goal_holds():
             outcome, reason = Outcome.FAILED, "plan stack emptied before the goal held"
         self.metrics.outcome = outcome

@@ -63,6 +63,10 @@ def build_episode(args: argparse.Namespace) -> Episode:
         from nowplan.worlds.symbolic import SymbolicWorld
 
         prob = load_pddl(args.pddl[0], args.pddl[1], args.criticality)
+        if args.criticality == "auto":
+            from nowplan.planning.abstraction import prepare_problem
+
+            prob = prepare_problem(prob)  # reachability statics and goal stages (docs/pddl.md)
         world = SymbolicWorld(prob.domain, prob.init, seed=args.seed)
         return Episode(prob, world, SymbolicBelief(prob.init), f"PDDL {args.pddl[1]}")
     if not args.domain:

@@ -65,8 +65,8 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, replace
 
-from nowplan.core.atoms import Atom, Var
-from nowplan.core.domain import Domain
+from nowplan.core.atoms import Atom, Goal, Var
+from nowplan.core.domain import Domain, Problem
 from nowplan.core.operators import Operator, Precondition
 
 TypeName = str | None
@@ -322,3 +322,59 @@ def literal_levels(domain: Domain, hierarchy: Hierarchy) -> dict[tuple[str, int,
         for i, e in enumerate(op.effects):
             out[(op.name, i, "eff")] = hierarchy.level_of(domain, op, e)
     return out
+
+
+# --------------------------------------------------------------------------- problems
+
+
+def ground_level(problem: Problem, hierarchy: Hierarchy, atom: Atom) -> int | None:
+    """The level of a ground atom of ``problem`` (``None``: static, or in no operator's classes)."""
+    domain = problem.domain
+    if atom.predicate in hierarchy.static:
+        return None
+    objs = problem.all_objects
+    types = [objs.get(a) if isinstance(a, str) else None for a in atom.args]
+    for c, rep in hierarchy.members.items():
+        if c.predicate != atom.predicate or rep not in hierarchy.levels:
+            continue
+        if all(not ct or (t is not None and t in domain.subtypes(ct)) for ct, t in zip(c.types, types, strict=True)):
+            return hierarchy.levels[rep]
+    return None
+
+
+def goal_stages(problem: Problem, hierarchy: Hierarchy) -> tuple[Goal, ...]:
+    """The goal's literals of levels ``>= top``, then ``>= top - 1``, ... (each a :class:`Goal`).
+
+    HPN keeps the whole goal at every level, so without stages a top-level
+    plan's pre-images carry the goal's concrete literals (where each truck
+    and driver must end up) into every refinement, which then moves them back
+    and forth.  Achieving the abstract literals first (ALPINE plans each level
+    for that level's literals) leaves the concrete ones to the last plan.
+    The full goal is not included (it is the problem's goal); stages that
+    add nothing are left out.
+    """
+    atoms = list(problem.goal.atoms)
+    levels = {a: ground_level(problem, hierarchy, a) for a in atoms}
+    stages: list[Goal] = []
+    prev: frozenset[Atom] = frozenset()
+    for k in range(hierarchy.top, 0, -1):
+        part = frozenset(a for a in atoms if levels[a] is None or levels[a] >= k)  # type: ignore[operator]
+        if part and part != prev and len(part) < len(atoms):
+            stages.append(Goal.of(sorted(part), problem.domain.rules))
+        prev = part
+    return tuple(stages)
+
+
+def prepare_problem(problem: Problem) -> Problem:
+    """What ``nowplan run --criticality auto`` runs: the automatic criticalities (if the domain
+    has none yet), reachability statics (:mod:`nowplan.planning.reach_statics`) and the goal
+    stages (:func:`goal_stages`)."""
+    from nowplan.planning.reach_statics import add_reachability_statics
+
+    domain = problem.domain
+    hierarchy = derive_hierarchy(domain)
+    if domain.top_level <= 0 and hierarchy.top > 0:
+        problem = replace(problem, domain=apply_hierarchy(domain, hierarchy))
+    stages = goal_stages(problem, hierarchy)
+    problem = add_reachability_statics(problem)
+    return replace(problem, stages=stages)
