@@ -316,3 +316,32 @@ def test_cli_run_auto_on_classical_problems_flat_planning_solves(
     code = main(["run", str(d / "domain.pddl"), str(d / f"{problem}.pddl"), "--criticality", "auto",
                  "--time-limit", "60"])
     assert code == 0, capsys.readouterr().out
+
+
+def test_an_irreversible_concrete_step_makes_auto_plan_flat(caplog: pytest.LogCaptureFixture) -> None:
+    """nomystery: driving spends fuel that nothing restores, so the abstract plan could strand
+    the truck; zenotravel refuels and logistics drives back, so they keep their hierarchy."""
+    from nowplan.planning.abstraction import prepare_problem
+
+    with caplog.at_level("WARNING"):
+        nomystery = prepare_problem(_classical("nomystery", "p01"))
+    assert nomystery.domain.top_level == 0 and nomystery.stages == ()
+    assert "deletes fuel(" in caplog.text
+    for d in ("zenotravel", "logistics", "driverlog", "gripper"):
+        assert prepare_problem(_classical(d, "p03")).domain.top_level == 1, d
+
+
+def test_irreversible_step_is_sound_on_a_tiny_domain() -> None:
+    from nowplan.planning.dead_ends import irreversible_step
+
+    def dom(with_refill: bool) -> Problem:
+        ops = [Operator("burn", (), (Precondition(Atom("full"), 1),), (Atom("full", (), False), Atom("hot")))]
+        if with_refill:
+            ops.append(Operator("refill", (), (Precondition(Atom("hot"), 1),), (Atom("full"),)))
+        d = Domain("fuel", {"full": Predicate("full", 0), "hot": Predicate("hot", 0)}, tuple(ops))
+        return Problem(d, {}, State([Atom("full")]), Goal.of([Atom("hot")], d.rules), "fuel")
+
+    found = irreversible_step(dom(False), lambda a: True)
+    assert found is not None and found.atom == Atom("full") and found.action.name == "burn"
+    assert irreversible_step(dom(True), lambda a: True) is None
+    assert irreversible_step(dom(False), lambda a: False) is None  # only steps below the top count

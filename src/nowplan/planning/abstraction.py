@@ -62,12 +62,15 @@ every predicate is tied to every other) means a flat domain.
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, replace
 
 from nowplan.core.atoms import Atom, Goal, Var
 from nowplan.core.domain import Domain, Problem
-from nowplan.core.operators import Operator, Precondition
+from nowplan.core.operators import Action, Operator, Precondition
+
+log = logging.getLogger(__name__)
 
 TypeName = str | None
 
@@ -369,12 +372,28 @@ def prepare_problem(problem: Problem) -> Problem:
     """What ``nowplan run --criticality auto`` runs: the automatic criticalities (if the domain
     has none yet), reachability statics (:mod:`nowplan.planning.reach_statics`) and the goal
     stages (:func:`goal_stages`)."""
+    from nowplan.planning.dead_ends import irreversible_step
     from nowplan.planning.reach_statics import add_reachability_statics
 
     domain = problem.domain
     hierarchy = derive_hierarchy(domain)
-    if domain.top_level <= 0 and hierarchy.top > 0:
+    if hierarchy.top == 0:
+        return problem
+    if domain.top_level <= 0:
         problem = replace(problem, domain=apply_hierarchy(domain, hierarchy))
+    top = hierarchy.top
+
+    def below_top(act: Action) -> bool:
+        k = hierarchy.effect_level(domain, act.operator)
+        return k is not None and k < top
+
+    dead = irreversible_step(problem, below_top)
+    if dead is not None:
+        log.warning("%s: the automatic hierarchy is not used, planning flat: %s (an abstract plan "
+                    "cannot see it, and executing its first steps could leave no plan)", problem.name, dead)
+        flat = tuple(replace(op, preconditions=tuple(Precondition(p.atom, 1) for p in op.preconditions))
+                     for op in problem.domain.operators)
+        return replace(problem, domain=replace(problem.domain, operators=flat))
     stages = goal_stages(problem, hierarchy)
     problem = add_reachability_statics(problem)
     return replace(problem, stages=stages)
