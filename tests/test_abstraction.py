@@ -334,14 +334,71 @@ def test_an_irreversible_concrete_step_makes_auto_plan_flat(caplog: pytest.LogCa
 def test_irreversible_step_is_sound_on_a_tiny_domain() -> None:
     from nowplan.planning.dead_ends import irreversible_step
 
-    def dom(with_refill: bool) -> Problem:
+    def dom(with_refill: bool, with_cool: bool = True) -> Problem:
         ops = [Operator("burn", (), (Precondition(Atom("full"), 1),), (Atom("full", (), False), Atom("hot")))]
+        if with_cool:  # a second use of 'full': losing it loses 'cold'
+            ops.append(Operator("cool", (), (Precondition(Atom("full"), 1),), (Atom("cold"),)))
         if with_refill:
             ops.append(Operator("refill", (), (Precondition(Atom("hot"), 1),), (Atom("full"),)))
-        d = Domain("fuel", {"full": Predicate("full", 0), "hot": Predicate("hot", 0)}, tuple(ops))
+        d = Domain("fuel", {n: Predicate(n, 0) for n in ("full", "hot", "cold")}, tuple(ops))
         return Problem(d, {}, State([Atom("full")]), Goal.of([Atom("hot")], d.rules), "fuel")
 
     found = irreversible_step(dom(False), lambda a: True)
     assert found is not None and found.atom == Atom("full") and found.action.name == "burn"
     assert irreversible_step(dom(True), lambda a: True) is None
     assert irreversible_step(dom(False), lambda a: False) is None  # only steps below the top count
+    # 'full' only ever served 'burn', whose 'hot' stays true: losing it is harmless
+    assert irreversible_step(dom(False, with_cool=False), lambda a: True) is None
+
+
+ATOMS = ("a", "b", "c", "d")
+
+
+@st.composite
+def fuel_problems(draw: st.DrawFn) -> Problem:
+    lit = st.sampled_from(ATOMS)
+    ops = []
+    for i in range(draw(st.integers(1, 5))):
+        pre = draw(st.lists(lit, max_size=2, unique=True))
+        add = draw(st.lists(lit, max_size=2, unique=True))
+        dele = [x for x in draw(st.lists(lit, min_size=1, max_size=2, unique=True)) if x not in add]
+        eff = [Atom(x, (), False) for x in dele] + [Atom(x) for x in add]
+        ops.append(Operator(f"o{i}", (), tuple(Precondition(Atom(x), 1) for x in pre), tuple(eff)))
+    d = Domain("rnd", {n: Predicate(n, 0) for n in ATOMS}, tuple(ops))
+    init = State([Atom(x) for x in draw(st.lists(lit, max_size=3, unique=True))])
+    return Problem(d, {}, init, Goal.of([Atom(draw(lit))], d.rules), "rnd")
+
+
+def _successors(prob: Problem, s: frozenset[str]) -> list[tuple[str, frozenset[str]]]:
+    out = []
+    for op in prob.domain.operators:
+        if all(p.atom.predicate in s for p in op.preconditions):
+            dels = {e.predicate for e in op.effects if e.value is False}
+            adds = {e.predicate for e in op.effects if e.value is True}
+            out.append((op.name, frozenset((s - dels) | adds)))
+    return out
+
+
+def _reachable(prob: Problem, start: frozenset[str]) -> set[frozenset[str]]:
+    seen, todo = {start}, [start]
+    while todo:  # at most 2^4 states
+        for _, t in _successors(prob, todo.pop()):
+            if t not in seen:
+                seen.add(t)
+                todo.append(t)
+    return seen
+
+
+@settings(max_examples=200, deadline=None)
+@given(fuel_problems())
+def test_an_irreversible_step_really_loses_its_atom_for_ever(prob: Problem) -> None:
+    from nowplan.planning.dead_ends import irreversible_step
+
+    found = irreversible_step(prob, lambda a: True)
+    if found is None:
+        return
+    init = frozenset(a.predicate for a in prob.init.atoms() if a.value is True)
+    for s in _reachable(prob, init):
+        for name, t in _successors(prob, s):
+            if name == found.action.name:
+                assert all(found.atom.predicate not in u for u in _reachable(prob, t))

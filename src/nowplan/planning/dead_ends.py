@@ -9,7 +9,9 @@ finds such a step among the actions whose effects are below the top level.
 The test is sound and incomplete: for a ground action ``a`` reachable in the
 delete relaxation, each atom ``d`` it deletes (and does not add back) is
 checked for relaxed reachability from *every* relaxed-reachable atom except
-``a``'s deletes.  Relaxed reachability is monotone in its start, and every
+``a``'s deletes (a lost atom that is not a goal and whose every consumer
+gives only what ``a`` gave for good is harmless: a key taken for ever).
+Relaxed reachability is monotone in its start, and every
 real state after ``a`` is a subset of that start, so if ``d`` is unreachable
 from it, ``d`` never holds again after ``a``.  Since every other reachable
 atom is in that start, only the deleted atoms can be restored, which takes
@@ -68,6 +70,22 @@ def irreversible_step(problem: Problem, below_top: Callable[[Action], bool],
         for e in a.effects():
             if e.value is True:
                 adders.setdefault(e, []).append(pre)
+    deleted = {e.negate() for a in g.actions for e in a.effects() if e.value is False}
+    consumers: dict[Atom, list[Action]] = {}
+    for a in g.actions:
+        for p in a.preconditions():
+            if p.value is True:
+                consumers.setdefault(p, []).append(a)
+    goal = {a for a in problem.goal.atoms if a.value is True}
+
+    def harmless(lost: Atom, act: Action, adds: set[Atom]) -> bool:
+        # nothing needs it any more: not a goal, and everything its consumers give is already
+        # given by ``act`` and never taken away (a key taken in lights: ``has`` stays true)
+        return lost not in goal and all(
+            e.value is not True or (e in adds and e not in deleted)
+            for c in consumers.get(lost, ()) for e in c.effects()
+        )
+
     checked = 0
     for act in g.actions:
         if checked >= limit:
@@ -79,7 +97,7 @@ def irreversible_step(problem: Problem, below_top: Callable[[Action], bool],
         if not dels:
             continue
         checked += 1
-        lost = sorted(dels - _restorable(dels, adders), key=str)
+        lost = sorted((d for d in dels - _restorable(dels, adders) if not harmless(d, act, adds)), key=str)
         if lost:
             return Irreversible(act, lost[0])
     return None
