@@ -31,7 +31,8 @@ def register(sub: Any) -> None:
     p.add_argument("--scenario", help="a scenario of the domain (default: the domain's default)")
     p.add_argument("--criticality", type=criticality_arg, metavar="FILE|auto",
                    help="criticality side file for PDDL input, or 'auto': derive the hierarchy from the "
-                        "domain (and add the refine-flat switch; see docs/pddl.md)")
+                        "domain, with reachability statics, goal stages and the refine-flat switch "
+                        "(see docs/pddl.md)")
     p.add_argument(
         "--strategy", default="hpn",
         help=f"strategy switches joined by '+' (available: {', '.join(strategy_names())})",
@@ -52,7 +53,7 @@ def register(sub: Any) -> None:
     p.set_defaults(func=main)
 
 
-def build_episode(args: argparse.Namespace) -> Episode:
+def build_episode(args: argparse.Namespace, hierarchical: bool = True) -> Episode:
     if args.pddl:
         if args.domain:
             raise UsageError("give either DOMAIN.pddl PROBLEM.pddl or --domain, not both")
@@ -63,7 +64,7 @@ def build_episode(args: argparse.Namespace) -> Episode:
         from nowplan.worlds.symbolic import SymbolicWorld
 
         prob = load_pddl(args.pddl[0], args.pddl[1], args.criticality)
-        if args.criticality == "auto":
+        if args.criticality == "auto" and hierarchical:
             from nowplan.planning.abstraction import prepare_problem
 
             prob = prepare_problem(prob)  # reachability statics and goal stages (docs/pddl.md)
@@ -88,7 +89,7 @@ def main(args: argparse.Namespace) -> int:
                            name=f"{strategy.name}+refine-flat")
     if args.trace is not None and args.trace.is_dir():
         raise UsageError(f"--trace {args.trace} is a directory; give a file path, e.g. {args.trace / 'trace.jsonl'}")
-    episode = build_episode(args)
+    episode = build_episode(args, strategy.hierarchical)
     for attr in ("failure_prob", "exogenous_prob"):
         val = getattr(args, attr)
         if val is not None:
