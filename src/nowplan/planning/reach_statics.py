@@ -10,9 +10,10 @@ hierarchies are ordered monotonic, not downward refinable); the problem can.
 :func:`add_reachability_statics` computes the atoms reachable from the
 initial state in the delete relaxation of the *concrete* problem (every
 precondition kept) and, for each droppable positive precondition
-``p(args)`` whose predicate has type-correct atoms that are never reachable,
-adds the static precondition ``reachable-p(args)`` (kept at every level),
-with the reachable ``p`` atoms as its facts in the initial state.  Relaxed
+``p(args)`` (criticality below the top), adds the static precondition
+``reachable-p(args)`` (kept at every level), with the reachable ``p`` atoms
+as its facts in the initial state.  Where every ``p`` atom is reachable the
+static prunes nothing and costs the grounder one more join.  Relaxed
 reachability over-approximates the reachable states, so an action instance
 excluded this way is applicable in no reachable state: no concrete plan
 changes, and abstract plans lose only steps that could never be refined.
@@ -47,8 +48,8 @@ def _name(domain: Domain, pred: str) -> str:
 def add_reachability_statics(problem: Problem) -> Problem:
     """``problem`` with ``reachable-p`` statics on droppable preconditions (see the module doc).
 
-    Returns ``problem`` unchanged when the domain is flat, or when nothing is
-    pruned, or when the initial state is not a plain :class:`State`.
+    Returns ``problem`` unchanged when the domain is flat, when no precondition
+    can be dropped, or when the initial state is not a plain :class:`State`.
     """
     domain = problem.domain
     top = domain.max_criticality
@@ -82,8 +83,6 @@ def add_reachability_statics(problem: Problem) -> Problem:
         ops.append(replace(op, preconditions=(*op.preconditions, *extra)) if extra else op)
     if not new_preds:
         return problem
-    # keep only the statics that prune: an operator whose reachable set covers every binding gains nothing,
-    # but deciding that needs the types' extensions; the grounder joins them cheaply, so all are kept
     log.info("reachability statics added for %s", ", ".join(sorted(new_preds)))
     dom = replace(domain, predicates={**dict(domain.predicates), **{p.name: p for p in new_preds.values()}},
                   operators=tuple(ops))
