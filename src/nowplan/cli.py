@@ -20,7 +20,7 @@ from typing import Any
 from nowplan.errors import NowplanError
 
 # subcommand modules under nowplan.commands, in --help order
-COMMANDS = ("plan", "run", "demo", "domains", "sweep", "report", "reproduce", "view")
+COMMANDS = ("plan", "run", "criticality", "demo", "domains", "sweep", "report", "reproduce", "view")
 
 
 class _Parser(argparse.ArgumentParser):

@@ -27,6 +27,7 @@ from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import Cycle, CycleDetector, belief_fingerprint, situation, stall_reason
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import check_belief
+from nowplan.belief.symbolic import SymbolicBelief
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap, flat_levels
@@ -39,6 +40,8 @@ from nowplan.trace import Trace
 from nowplan.worlds.base import Observation, World
 
 log = logging.getLogger(__name__)
+
+CYCLE_VISITS = 3  # refine-flat: visits of one symbolic state that count as a cycle
 
 
 @dataclass
@@ -99,6 +102,11 @@ class Executive:
         self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
         self.last_observation = Observation()
         self.last_action: Action | None = None
+        # refine-flat: steps (by refinement_key) whose abstract plan could not be refined; their
+        # goal is planned concretely from then on (an ordered-monotonic hierarchy, e.g. an automatic
+        # one, need not be downward refinable)
+        self._flat_steps: set[Hashable] = set()
+        self._visits: Counter[frozenset[Any]] = Counter()  # refine-flat: symbolic states seen after actions
         check_supported(self.domain, strategy)
         check_belief(self.domain, belief)
         if strategy.domain_planner and self.domain.planner is None:
@@ -126,7 +134,14 @@ class Executive:
 
     def next_step(self, f: Frame) -> PlanStep:
         if f.root:
-            return f.plan.steps[1]
+            # the first stage (Problem.stages) that does not hold yet, else the goal
+            last = len(f.plan.steps) - 1
+            for i in range(1, last):
+                if not self.domain.satisfies(self.belief, f.plan.steps[i].goal):
+                    f.i = i
+                    return f.plan.steps[i]
+            f.i = last
+            return f.plan.steps[-1]
         for m in self.mechanisms:
             chosen = m.next_step(self, f)
             if chosen is not None:
@@ -314,9 +329,28 @@ class Executive:
         refinements of one step of one plan, however often it is remade, until the next action.
         """
         if f.root:
-            return ("root", 1)
+            return ("root", f.i)
         acts = tuple(s.action.key if s.action is not None else None for s in f.plan.steps)
         return (acts, f.plan.goal, f.i)
+
+    def _check_cycle(self) -> None:
+        """refine-flat: a symbolic state reached a third time means the hierarchical plans cycle
+        (refinements that succeed but undo each other); plan the current root goal concretely."""
+        if not isinstance(self.belief, SymbolicBelief) or not self.stack or not self.stack[0].root:
+            return
+        state = frozenset(self.belief.atoms())
+        self._visits[state] += 1
+        root = self.stack[0]
+        key = self.refinement_key(root)
+        if self._visits[state] < CYCLE_VISITS or key in self._flat_steps:
+            return
+        self._flat_steps.add(key)
+        self.trace.emit("note", plan_id=root.plan_id,
+                        text=f"executive: refine-flat: state reached {CYCLE_VISITS} times: the hierarchical "
+                             "plans cycle; planning the goal concretely")
+        while len(self.stack) > 1:
+            self.pop("cycle")
+        self._visits.clear()
 
     # -- the loop ------------------------------------------------------------------
     def run(self) -> Metrics:
@@ -324,7 +358,8 @@ class Executive:
         self._last_failure = ""
         self._last_status = None
         goal = self.problem.goal
-        root_plan = Plan((PlanStep(None, TRUE), PlanStep(None, goal)), self.base_levels)
+        stages = tuple(PlanStep(None, g) for g in self.problem.stages)
+        root_plan = Plan((PlanStep(None, TRUE), *stages, PlanStep(None, goal)), self.base_levels)
         self.push(root_plan, None, root=True)
         start = self.situation()
         if start is not None:
@@ -369,9 +404,18 @@ class Executive:
                 levels = f.plan.levels if action is None else f.plan.levels.next_level(action)
                 if f.root:
                     levels = self.base_levels
+                if key in self._flat_steps:
+                    levels = flat_levels()
                 new = self.make_plan(step.goal, levels, f)
                 if new is None:
                     consecutive_failures += 1
+                    if f.root and self.strategy.refine_flat and key not in self._flat_steps:
+                        # not even an abstract plan was found: plan the goal concretely
+                        self._flat_steps.add(key)
+                        self.trace.emit("note", plan_id=f.plan_id,
+                                        text="executive: refine-flat: no abstract plan "
+                                             f"({self._last_failure}); planning the goal concretely")
+                        continue
                     if f.root:
                         timed_out = self._last_status is PlanStatus.TIME_LIMIT
                         outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
@@ -380,6 +424,17 @@ class Executive:
                     if consecutive_failures > 3 * self.strategy.max_depth:
                         outcome, reason = Outcome.FAILED, f"repeated planning failures ({self._last_failure})"
                         break
+                    if self.strategy.refine_flat and len(self.stack) >= 2:
+                        # f's abstract plan has a step no more concrete plan achieves: plan f's
+                        # goal concretely when its parent's step is refined again
+                        parent_key = self.refinement_key(self.stack[-2])
+                        if parent_key not in self._flat_steps:
+                            self._flat_steps.add(parent_key)
+                            self.trace.emit(
+                                "note", plan_id=f.plan_id,
+                                text="executive: refine-flat: abstract plan not refinable "
+                                     f"({self._last_failure}); its goal is planned concretely next",
+                            )
                     self.pop("failed")  # the refined step cannot be achieved from here
                     continue
                 consecutive_failures = 0
@@ -387,6 +442,8 @@ class Executive:
             else:
                 self.execute(f, action)
                 self.reconsider()
+                if self.strategy.refine_flat:
+                    self._check_cycle()
                 stop = self.watch(self.last_observation)
                 if stop is not None:
                     outcome, reason = stop

@@ -50,6 +50,7 @@ class Strategy:
     max_cycles: int = 3  # progress guard: cycles (nowplan.acting.progress) before a run ends as a livelock
     max_stalls: int = 25  # progress guard: failures in a row that leave the situation unchanged
     max_retries: int = 2  # flexible: setbacks a plan may retry before it is replanned (Fig. 4)
+    refine_flat: bool = False  # a plan whose step cannot be refined is replaced by a concrete plan
     domain_planner: bool = False  # plan with the domain's own planner (Domain.planner) when it has one
     time_limit: float = 600.0
 
@@ -87,6 +88,7 @@ class Strategy:
             "monotonic": self.planner.monotonic,
             "max_actions": self.max_actions,
             "domain_planner": self.domain_planner,
+            "refine_flat": self.refine_flat,
         }
 
 
@@ -101,6 +103,11 @@ register_switch(
            planner={"serialization": False, "monotonic": False})
 )
 
+register_switch(
+    Switch("refine-flat", "when a step of an abstract plan cannot be refined, plan that plan's goal "
+           "concretely (for hierarchies without the downward refinement property, e.g. --criticality auto)",
+           {"refine_flat": True})
+)
 register_switch(
     Switch("domain-planner", "plan with the domain's own planner (e.g. pieces' means-ends rule)",
            {"domain_planner": True})

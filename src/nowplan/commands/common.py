@@ -17,6 +17,13 @@ def existing_file(value: str) -> Path:
     return p
 
 
+def criticality_arg(value: str) -> str:
+    """``--criticality``: ``auto`` (derive the hierarchy) or an existing criticality file."""
+    if value == "auto":
+        return value
+    return str(existing_file(value))
+
+
 def _number(value: str, cast: Callable[[str], N], what: str, ok: Callable[[N], bool], bound: str) -> N:
     """``cast(value)`` if it parses and passes ``ok``; else an argparse error naming what was expected."""
     try:

@@ -52,7 +52,8 @@ def register(subparsers: Any) -> None:
     )
     p.add_argument("domain", metavar="DOMAIN.pddl", help="PDDL domain file")
     p.add_argument("problem", metavar="PROBLEM.pddl", help="PDDL problem file")
-    p.add_argument("--criticality", metavar="FILE", help="criticality side file (see docs/pddl.md)")
+    p.add_argument("--criticality", metavar="FILE|auto",
+                   help="criticality side file, or 'auto' to derive one from the domain (see docs/pddl.md)")
     p.add_argument("--engine", choices=ENGINES, default="nowplan",
                    help="nowplan (default): the executive's own planner, forward search where it applies "
                         "(PDDL always), else regression; forward | regression: force one; "

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import argparse
 import json
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 from nowplan.acting.run import run_episode
 from nowplan.acting.strategy import parse_strategy, strategy_names
-from nowplan.commands.common import existing_file, nonneg_int, positive_float, probability
+from nowplan.commands.common import criticality_arg, existing_file, nonneg_int, positive_float, probability
 from nowplan.domains.registry import Episode, get_domain
 from nowplan.errors import UsageError
 from nowplan.trace import Trace
@@ -28,7 +29,10 @@ def register(sub: Any) -> None:
     p.add_argument("pddl", nargs="*", type=existing_file, help="DOMAIN.pddl PROBLEM.pddl (optional)")
     p.add_argument("--domain", help="a registered domain, e.g. logistics")
     p.add_argument("--scenario", help="a scenario of the domain (default: the domain's default)")
-    p.add_argument("--criticality", type=existing_file, help="criticality side file for PDDL input")
+    p.add_argument("--criticality", type=criticality_arg, metavar="FILE|auto",
+                   help="criticality side file for PDDL input, or 'auto': derive the hierarchy from the "
+                        "domain, with reachability statics, goal stages and the refine-flat switch "
+                        "(see docs/pddl.md)")
     p.add_argument(
         "--strategy", default="hpn",
         help=f"strategy switches joined by '+' (available: {', '.join(strategy_names())})",
@@ -49,7 +53,7 @@ def register(sub: Any) -> None:
     p.set_defaults(func=main)
 
 
-def build_episode(args: argparse.Namespace) -> Episode:
+def build_episode(args: argparse.Namespace, hierarchical: bool = True) -> Episode:
     if args.pddl:
         if args.domain:
             raise UsageError("give either DOMAIN.pddl PROBLEM.pddl or --domain, not both")
@@ -60,6 +64,10 @@ def build_episode(args: argparse.Namespace) -> Episode:
         from nowplan.worlds.symbolic import SymbolicWorld
 
         prob = load_pddl(args.pddl[0], args.pddl[1], args.criticality)
+        if args.criticality == "auto" and hierarchical:
+            from nowplan.planning.abstraction import prepare_problem
+
+            prob = prepare_problem(prob)  # reachability statics and goal stages (docs/pddl.md)
         world = SymbolicWorld(prob.domain, prob.init, seed=args.seed)
         return Episode(prob, world, SymbolicBelief(prob.init), f"PDDL {args.pddl[1]}")
     if not args.domain:
@@ -75,9 +83,13 @@ def main(args: argparse.Namespace) -> int:
     if args.time_limit is not None:
         overrides["time_limit"] = args.time_limit
     strategy = parse_strategy(args.strategy, **overrides)
+    if args.criticality == "auto" and strategy.hierarchical and not strategy.refine_flat:
+        # an automatic hierarchy is ordered-monotonic, not downward refinable: fall back on failure
+        strategy = replace(strategy, refine_flat=True, switches=(*strategy.switches, "refine-flat"),
+                           name=f"{strategy.name}+refine-flat")
     if args.trace is not None and args.trace.is_dir():
         raise UsageError(f"--trace {args.trace} is a directory; give a file path, e.g. {args.trace / 'trace.jsonl'}")
-    episode = build_episode(args)
+    episode = build_episode(args, strategy.hierarchical)
     if args.failure_prob is not None or args.exogenous_prob is not None:
         from nowplan.worlds.base import FaultInjection
 

@@ -196,6 +196,9 @@ class Problem:
     init: Any = field(hash=False, compare=False)
     goal: Goal
     name: str = "problem"
+    # subgoals the executive achieves in this order before ``goal`` (each kept by the next, e.g. the
+    # goal's literals of the most abstract level first); empty: plan for ``goal`` directly
+    stages: tuple[Goal, ...] = field(default=(), compare=False)
 
     def __post_init__(self) -> None:
         for a in self.goal.atoms:

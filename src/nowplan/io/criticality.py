@@ -174,8 +174,19 @@ def _show(r: CriticalityRule) -> str:
     return _fmt(r.literal) if r.literal is not None else r.predicate
 
 
+AUTO = "auto"
+
+
 def apply_criticality(domain: Domain, path_or_spec: str | Path | CriticalitySpec) -> Domain:
-    """A copy of ``domain`` whose preconditions have the file's criticalities."""
+    """A copy of ``domain`` whose preconditions have the file's criticalities.
+
+    The string ``"auto"`` (:data:`AUTO`, not a path) derives them from the domain
+    (:func:`nowplan.planning.abstraction.auto_criticality`).
+    """
+    if isinstance(path_or_spec, str) and path_or_spec == AUTO:
+        from nowplan.planning.abstraction import auto_criticality
+
+        return auto_criticality(domain)
     spec = path_or_spec if isinstance(path_or_spec, CriticalitySpec) else parse_criticality(path_or_spec)
     _check(spec, domain)
     ops = tuple(
@@ -197,4 +208,57 @@ def criticality_text(domain: Domain) -> str:
         for p in op.preconditions:
             if p.criticality != 1:
                 lines.append(f"{op.name} {_fmt(p.atom)} {p.criticality}")
+    return "\n".join(lines) + "\n"
+
+
+def hierarchy_text(domain: Domain) -> str:
+    """The automatic hierarchy of ``domain`` as a criticality file, with its levels as comments.
+
+    One rule per predicate when all its preconditions share a criticality,
+    else one rule per action and precondition literal (a predicate split by
+    argument types, e.g. ``at`` of packages and of trucks).  Loading the text
+    with :func:`apply_criticality` gives exactly ``auto_criticality(domain)``.
+    """
+    from nowplan.planning.abstraction import derive_hierarchy
+
+    h = derive_hierarchy(domain)
+    top = h.top
+    lines = [
+        f"# automatic criticalities for domain {domain.name} (nowplan criticality; docs/pddl.md)",
+        "# Knoblock's ordered-monotonic hierarchy: an operator's effects share one level and its",
+        "# preconditions are at that level or below, so refining a step never changes a literal",
+        "# of a more abstract level.  A precondition at level k below its action's effects has",
+        f"# criticality k+1; one at the action's own level, or static, {top + 1} (kept at every level).",
+        "# Edit freely: this file loads with --criticality FILE.",
+    ]
+    for lvl, classes in sorted(h.by_level().items(), reverse=True):
+        lines.append(f"# level {lvl} (criticality {lvl + 1}): " + ", ".join(str(c) for c in classes))
+    statics = sorted(h.static) + [str(c) for c in h.static_classes()]
+    if statics:
+        lines.append(f"# static (criticality {top + 1}): " + ", ".join(statics))
+    lines.append(f"default {top + 1}")
+    crit: dict[tuple[str, str], set[int]] = {}  # (action, predicate) -> criticalities
+    for op in domain.operators:
+        for p in op.preconditions:
+            crit.setdefault((op.name, p.atom.predicate), set()).add(h.criticality(domain, op, p.atom))
+    per_pred: dict[str, set[int]] = {}
+    for (_, pred), cs in crit.items():
+        per_pred.setdefault(pred, set()).update(cs)
+    for pred in sorted(per_pred):
+        if per_pred[pred] == {top + 1}:
+            continue  # the default
+        if len(per_pred[pred]) == 1:
+            lines.append(f"* {pred} {next(iter(per_pred[pred]))}")
+            continue
+        for op in domain.operators:
+            cs = crit.get((op.name, pred), set())
+            if len(cs) == 1 and cs != {top + 1}:
+                lines.append(f"{op.name} {pred} {next(iter(cs))}")
+            elif len(cs) > 1:
+                seen: set[Atom] = set()
+                for p in op.preconditions:
+                    c = h.criticality(domain, op, p.atom)
+                    if p.atom.predicate == pred and p.atom not in seen and c != top + 1:
+                        seen.add(p.atom)
+                        lines.append(f"{op.name} {_fmt(p.atom)} {c}")
     return "\n".join(lines) + "\n"

@@ -1,0 +1,183 @@
+"""Automatic criticalities (issue 18): HPN with ``--criticality auto`` vs hand-written vs flat.
+
+Runs the executive (``nowplan run``'s code, in process, deterministic world)
+on every shipped PDDL problem (src/nowplan/data/pddl) and on the classical
+benchmark domains (benchmarks/classical: the checked-in p01-p05 and, with
+``--larger``, a few larger generated instances), under three settings:
+
+* ``flat``: strategy ``flat`` (one concrete plan, then execution);
+* ``auto``: strategy ``hpn+refine-flat`` with ``--criticality auto``;
+  every planner call uses ``--engine`` (default ``forward``: the executive's
+  default regresses at abstract levels, which on barman and depots spends the
+  whole budget on the top-level plan before refine-flat plans concretely);
+* ``hand``: strategy ``hpn`` with the shipped criticality file, where one exists.
+
+Records per run: outcome, total planning CPU time (every planner call of the
+run), wall time, execution cost, plans made, planner failures, and the number
+of levels of the automatic hierarchy.  Writes ``criticality_auto.csv`` and
+``criticality_auto.md`` (per-domain summary computed from the CSV) into --out.
+
+    PYTHONPATH=src .venv/bin/python benchmarks/criticality_auto.py [--larger] [--time-limit 20]
+        [--domains gripper,logistics] [--out benchmarks/results/criticality_auto]
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import datetime
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+for _p in (ROOT, ROOT / "src"):  # this checkout's nowplan and benchmarks package
+    if str(_p) not in sys.path:
+        sys.path.insert(0, str(_p))
+
+from benchmarks.classical.generate import DOMAINS, domain_file, generate, instance_files  # noqa: E402
+from nowplan.acting.run import run_episode  # noqa: E402
+from nowplan.acting.strategy import parse_strategy  # noqa: E402
+from nowplan.belief.symbolic import SymbolicBelief  # noqa: E402
+from nowplan.domains.registry import Episode  # noqa: E402
+from nowplan.io.pddl_read import load_pddl  # noqa: E402
+from nowplan.planning.abstraction import prepare_problem  # noqa: E402
+from nowplan.worlds.symbolic import SymbolicWorld  # noqa: E402
+
+SHIPPED = ROOT / "src" / "nowplan" / "data" / "pddl"
+OUT = ROOT / "benchmarks" / "results" / "criticality_auto"
+FIELDS = ["suite", "domain", "instance", "setting", "levels", "outcome", "planning_cpu_s", "wall_s",
+          "cost", "actions", "plans_made", "plan_failures", "reason"]
+# larger instances (parameters, seed) for --larger: where the hierarchy has levels to exploit
+LARGER: dict[str, list[tuple[dict[str, int], int]]] = {
+    "gripper": [({"balls": 20}, 0), ({"balls": 30}, 0)],
+    "logistics": [({"cities": 4, "places": 3, "airplanes": 2, "packages": 12}, 7)],
+    "miconic": [({"passengers": 10, "floors": 20}, 10)],
+    "zenotravel": [({"aircraft": 3, "persons": 10, "cities": 6}, 7)],
+    "depots": [({"depots": 2, "distributors": 2, "trucks": 2, "crates": 8}, 7)],
+    "driverlog": [({"drivers": 3, "trucks": 3, "packages": 7, "locations": 8}, 7)],
+    "satellite": [({"satellites": 3, "instruments": 2, "modes": 3, "stars": 4, "targets": 8, "images": 8}, 7)],
+}
+
+
+def run_one(domain: Path, problem: Path, criticality: str | None, strategy: str, limit: float,
+            engine: str) -> dict[str, Any]:
+    prob = load_pddl(domain, problem, criticality)
+    if criticality == "auto":
+        prob = prepare_problem(prob)  # what `nowplan run --criticality auto` does
+    strat = parse_strategy(strategy)
+    strat = replace(strat, time_limit=limit, planner=replace(strat.planner, engine=engine))
+    episode = Episode(prob, SymbolicWorld(prob.domain, prob.init, seed=0), SymbolicBelief(prob.init), str(problem))
+    t0 = time.perf_counter()
+    m = run_episode(episode, strat, seed=0)
+    return {
+        "levels": prob.domain.top_level + 1,
+        "outcome": m.outcome.value,
+        "planning_cpu_s": round(m.planning_cpu_s, 4),
+        "wall_s": round(time.perf_counter() - t0, 4),
+        "cost": round(m.execution_cost, 3),
+        "actions": m.actions,
+        "plans_made": m.plans_made,
+        "plan_failures": m.plan_failures,
+        "reason": m.reason,
+    }
+
+
+def cases(domains: list[str], larger: bool, tmp: Path) -> list[tuple[str, str, str, Path, Path, Path | None]]:
+    out: list[tuple[str, str, str, Path, Path, Path | None]] = []
+    for d in sorted(p.name for p in SHIPPED.iterdir() if p.is_dir()):
+        if domains and d not in domains:
+            continue
+        crit = next(iter(sorted((SHIPPED / d).glob("*.crit"))), None)
+        for p in sorted((SHIPPED / d).glob("p[0-9][0-9].pddl")):
+            out.append(("shipped", d, p.stem, SHIPPED / d / "domain.pddl", p, crit))
+    for d in DOMAINS:
+        if domains and d not in domains:
+            continue
+        for p in instance_files(d):
+            out.append(("classical", d, p.stem, domain_file(d), p, None))
+        if larger:
+            for k, (params, seed) in enumerate(LARGER.get(d, []), start=1):
+                path = tmp / f"{d}-large{k}.pddl"
+                path.write_text(generate(d, params, seed))
+                name = "large-" + "-".join(f"{v}" for v in params.values())
+                out.append(("classical", d, name, domain_file(d), path, None))
+    return out
+
+
+def summarize(rows: list[dict[str, Any]]) -> str:
+    lines = ["| suite | domain | levels | setting | solved | planning CPU s (sum) | wall s (sum) | cost (sum) |",
+             "|---|---|---|---|---|---|---|---|"]
+    keys = sorted({(r["suite"], r["domain"]) for r in rows})
+    for suite, dom in keys:
+        mine = [r for r in rows if r["suite"] == suite and r["domain"] == dom]
+        insts = sorted({r["instance"] for r in mine})
+        levels = max(int(r["levels"]) for r in mine if r["setting"] == "auto")
+        for setting in ("flat", "auto", "hand"):
+            rs = [r for r in mine if r["setting"] == setting]
+            if not rs:
+                continue
+            ok = [r for r in rs if r["outcome"] == "reached"]
+            # sums over instances every setting solved, so the columns compare like with like
+            common = [i for i in insts if all(any(r["instance"] == i and r["outcome"] == "reached" for r in mine
+                                                  if r["setting"] == s)
+                                              for s in {x["setting"] for x in mine})]
+            cs = [r for r in rs if r["instance"] in common]
+            cpu = sum(float(r["planning_cpu_s"]) for r in cs)
+            wall = sum(float(r["wall_s"]) for r in cs)
+            cost = sum(float(r["cost"]) for r in cs)
+            lines.append(f"| {suite} | {dom} | {levels} | {setting} | {len(ok)}/{len(rs)} | {cpu:.3f} | "
+                         f"{wall:.3f} | {cost:g} |")
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
+    ap.add_argument("--domains", default="", help="comma-separated domain names (default: all)")
+    ap.add_argument("--larger", action="store_true", help="add the larger generated instances (LARGER)")
+    ap.add_argument("--time-limit", type=float, default=20.0, help="wall-clock limit per run (s)")
+    ap.add_argument("--engine", choices=("auto", "forward", "regression"), default="forward",
+                    help="the planner's engine at every level (default forward; 'auto' is the executive's "
+                         "default: forward for concrete calls, regression for abstract ones)")
+    ap.add_argument("--out", type=Path, default=OUT)
+    args = ap.parse_args(argv)
+    domains = [d for d in args.domains.split(",") if d]
+    args.out.mkdir(parents=True, exist_ok=True)
+    rows: list[dict[str, Any]] = []
+    t_start = time.perf_counter()
+    with tempfile.TemporaryDirectory() as tmp:
+        for suite, d, inst, dom, prob, crit in cases(domains, args.larger, Path(tmp)):
+            settings: list[tuple[str, str | None, str]] = [("flat", None, "flat"),
+                                                           ("auto", "auto", "hpn+refine-flat")]
+            if crit is not None:
+                settings.append(("hand", str(crit), "hpn"))
+            for name, c, strat in settings:
+                row = {"suite": suite, "domain": d, "instance": inst, "setting": name,
+                       **run_one(dom, prob, c, strat, args.time_limit, args.engine)}
+                rows.append(row)
+                print(f"{suite:9} {d:12} {inst:18} {name:5} {row['outcome']:8} cpu {row['planning_cpu_s']:8.3f} "
+                      f"cost {row['cost']:6g} plans {row['plans_made']:4} fails {row['plan_failures']}",
+                      flush=True)
+    with (args.out / "criticality_auto.csv").open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=FIELDS)
+        w.writeheader()
+        w.writerows(rows)
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
+                            text=True).stdout.strip()
+    cmd = "benchmarks/criticality_auto.py " + " ".join(argv if argv is not None else sys.argv[1:])
+    md = [f"# Automatic criticalities: HPN (`--criticality auto`) vs hand-written vs flat", "",
+          f"`{cmd.strip()}` at {commit}, {datetime.date.today()}, "
+          f"{time.perf_counter() - t_start:.0f} s in all (2-core shared VM; compare ratios within this run).",
+          "Sums of planning CPU, wall and cost are over the instances that every setting of the domain solved.",
+          "", summarize(rows), ""]
+    (args.out / "criticality_auto.md").write_text("\n".join(md))
+    print("\n".join(md))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

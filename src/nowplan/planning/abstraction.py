@@ -1,0 +1,399 @@
+"""Automatic criticalities: Knoblock's ordered-monotonic abstraction hierarchies.
+
+ALPINE (Knoblock 1994, "Automatically generating abstractions for planning",
+AIJ 68) orders the *literals* of a domain so that refining an abstract plan
+never changes a literal of a more abstract level.  This module derives such a
+hierarchy from the domain alone (no problem, no goal) and turns it into
+HPN criticalities (seed 002 II-B).
+
+**Literal classes.**  Literals are grouped by predicate *and* argument types:
+in typed logistics ``at(?pkg - package, ?loc)`` and ``at(?truck - truck,
+?loc)`` are different classes, which is what lets packages sit above
+vehicles.  An argument's type is the operator parameter's declared type (or a
+constant's type; ``None`` = ``object``).  Two classes of one predicate whose
+types overlap position by position (one type a subtype of the other) could
+match the same ground atom, so they are merged: every ground atom belongs to
+at most one class.  Without types the classes are the predicates.
+
+**Constraints** (Knoblock's problem-independent restriction).  For every
+operator, every effect class ``e`` (added or deleted) and
+
+* every other effect class ``e'`` of the operator: ``level(e) >= level(e')``
+  (so all effects of an operator share one level), and
+* every precondition class ``p`` (positive or negative) that is not static:
+  ``level(e) >= level(p)``.
+
+Static predicates and static classes (no operator changes them, e.g. ``at``
+of a hoist in depots) are left out: nothing can change them, so they are
+checked at every level (criticality = the top).
+The constraint graph's strongly connected components must share a level;
+the component DAG is layered bottom-up (a component with no constraint
+below it is level 0, else one above the highest component it must dominate),
+which gives as many levels as the longest chain of components.
+
+**What this guarantees** (ordered monotonicity, Knoblock's Theorem): every
+operator that changes a literal of level ``k`` changes only literals of level
+``k`` and has preconditions of level ``<= k`` only.  So when a plan at level
+``i`` is refined by inserting operators to achieve conditions of level
+``< i`` (and, transitively, those operators' preconditions), no inserted
+operator changes a literal of level ``>= i``: the refinement leaves the
+abstract plan's literals as they were.  It does *not* guarantee that an
+abstract plan can be refined (Knoblock's hierarchies lack the downward
+refinement property): in IPC logistics the top level may load a package into
+a truck of another city.  The executive's ``refine-flat`` switch handles that
+(see :mod:`nowplan.acting.hpn`).
+
+**Criticalities.**  HPN keeps every operator at every level and drops
+preconditions (``abs(op, i)`` keeps criticality ``> i``), where ALPINE drops
+the literals of lower levels everywhere.  For an operator ``o`` whose effects
+are at level ``k``, a precondition at level ``j < k`` gets criticality
+``j + 1`` (kept in ``abs(o, i)`` for ``i <= j``), and a precondition at ``o``'s
+own level ``k`` or a static one gets the largest criticality ``top + 1``
+(always kept).  So ``abs(o, i)`` for ``i <= k`` is ALPINE's operator at level
+``i``, and above ``k`` ``o`` still needs its own level's preconditions:
+refining a step only ever reveals conditions strictly below the level of its
+effects, and a plan for them never needs an operator with fewer
+preconditions than ALPINE's (with ``level + 1`` for every precondition, a
+``drive`` at the top level would need its start position refined by another
+abstract ``drive``, without end).  For logistics this gives exactly the
+hand-written ``logistics.crit``.  One level only (e.g. blocksworld, where
+every predicate is tied to every other) means a flat domain.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, replace
+
+from nowplan.core.atoms import Atom, Goal, Var
+from nowplan.core.domain import Domain, Problem
+from nowplan.core.operators import Action, Operator, Precondition
+
+log = logging.getLogger(__name__)
+
+TypeName = str | None
+
+
+@dataclass(frozen=True, order=True)
+class LiteralClass:
+    """A predicate with the types of its arguments (``None``: any object)."""
+
+    predicate: str
+    types: tuple[str, ...]  # "" for object/None, so classes sort
+
+    def __str__(self) -> str:
+        if not self.types:
+            return self.predicate
+        return f"{self.predicate}({', '.join(t or 'object' for t in self.types)})"
+
+
+@dataclass(frozen=True)
+class Hierarchy:
+    """An ordered-monotonic hierarchy: a level per literal class, and the statics."""
+
+    domain: str
+    levels: Mapping[LiteralClass, int]  # representative class -> level (0 = most concrete)
+    members: Mapping[LiteralClass, LiteralClass]  # every class -> its representative
+    static: frozenset[str]  # predicates no operator changes
+    edges: frozenset[tuple[LiteralClass, LiteralClass]]  # (e, p): level(e) >= level(p)
+
+    @property
+    def top(self) -> int:
+        """The number of levels - 1 (0: flat)."""
+        return max(self.levels.values(), default=0)
+
+    def level_of(self, domain: Domain, op: Operator, atom: Atom) -> int | None:
+        """The level of ``atom`` (in ``op``); ``None`` for a static predicate."""
+        if atom.predicate in self.static:
+            return None
+        return self.levels.get(self.members[literal_class(domain, op, atom)])  # None: a static class
+
+    def effect_level(self, domain: Domain, op: Operator) -> int | None:
+        """The one level of ``op``'s effects (``None`` without effects)."""
+        return max((self.level_of(domain, op, e) or 0 for e in op.effects), default=None)
+
+    def criticality(self, domain: Domain, op: Operator, atom: Atom) -> int:
+        """``top + 1`` for a static precondition or one at the level of ``op``'s effects, else level + 1."""
+        lvl = self.level_of(domain, op, atom)
+        if lvl is None or lvl == self.effect_level(domain, op):
+            return self.top + 1
+        return lvl + 1
+
+    def by_level(self) -> dict[int, list[LiteralClass]]:
+        """Level -> the classes at that level (merged classes listed once each)."""
+        out: dict[int, list[LiteralClass]] = {}
+        for c, rep in sorted(self.members.items()):
+            if rep in self.levels:
+                out.setdefault(self.levels[rep], []).append(c)
+        return out
+
+    def static_classes(self) -> list[LiteralClass]:
+        """Classes of changing predicates that no operator changes (e.g. ``at`` of a hoist)."""
+        return sorted(c for c, rep in self.members.items() if rep not in self.levels)
+
+
+# --------------------------------------------------------------------------- classes
+
+
+def _type_name(domain: Domain, op: Operator, term: object) -> TypeName:
+    if isinstance(term, Var):
+        return op.type_of(term) if term in op.params else None
+    if isinstance(term, str):
+        return domain.constants.get(term)
+    return None
+
+
+def literal_class(domain: Domain, op: Operator, atom: Atom) -> LiteralClass:
+    """The (unmerged) class of a precondition or effect of ``op``."""
+    return LiteralClass(atom.predicate, tuple(_type_name(domain, op, a) or "" for a in atom.args))
+
+
+def _overlap(domain: Domain, a: str, b: str) -> bool:
+    """Can one object have both types?  (Single inheritance: one is an ancestor of the other.)"""
+    if not a or not b or a == b:
+        return True
+    return b in domain.subtypes(a) or a in domain.subtypes(b)
+
+
+def _classes_overlap(domain: Domain, x: LiteralClass, y: LiteralClass) -> bool:
+    return x.predicate == y.predicate and all(
+        _overlap(domain, a, b) for a, b in zip(x.types, y.types, strict=True)
+    )
+
+
+class _UnionFind:
+    def __init__(self, items: Iterable[LiteralClass]) -> None:
+        self.parent = {c: c for c in items}
+
+    def find(self, c: LiteralClass) -> LiteralClass:
+        root = c
+        while self.parent[root] != root:
+            root = self.parent[root]
+        while self.parent[c] != root:  # path compression, bounded by the path's length
+            self.parent[c], c = root, self.parent[c]
+        return root
+
+    def union(self, a: LiteralClass, b: LiteralClass) -> None:
+        ra, rb = self.find(a), self.find(b)
+        if ra != rb:
+            lo, hi = sorted((ra, rb))
+            self.parent[hi] = lo  # the smallest class represents the group: deterministic
+
+
+def _operator_literals(domain: Domain, op: Operator) -> Iterator[LiteralClass]:
+    for p in op.preconditions:
+        yield literal_class(domain, op, p.atom)
+    for e in op.effects:
+        yield literal_class(domain, op, e)
+
+
+# --------------------------------------------------------------------------- graph
+
+
+def _sccs(nodes: list[LiteralClass], succ: Mapping[LiteralClass, set[LiteralClass]]) -> list[list[LiteralClass]]:
+    """Tarjan's algorithm, iterative (no recursion limit), in a deterministic order."""
+    index: dict[LiteralClass, int] = {}
+    low: dict[LiteralClass, int] = {}
+    on_stack: set[LiteralClass] = set()
+    stack: list[LiteralClass] = []
+    out: list[list[LiteralClass]] = []
+    counter = 0
+    for root in nodes:
+        if root in index:
+            continue
+        work: list[tuple[LiteralClass, Iterator[LiteralClass]]] = [(root, iter(sorted(succ[root])))]
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            v, it = work[-1]
+            advanced = False
+            for w in it:
+                if w not in index:
+                    index[w] = low[w] = counter
+                    counter += 1
+                    stack.append(w)
+                    on_stack.add(w)
+                    work.append((w, iter(sorted(succ[w]))))
+                    advanced = True
+                    break
+                if w in on_stack:
+                    low[v] = min(low[v], index[w])
+            if advanced:
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[v])
+            if low[v] == index[v]:
+                comp: list[LiteralClass] = []
+                while True:
+                    w = stack.pop()
+                    on_stack.discard(w)
+                    comp.append(w)
+                    if w == v:
+                        break
+                out.append(sorted(comp))
+    return out
+
+
+def derive_hierarchy(domain: Domain) -> Hierarchy:
+    """Knoblock's problem-independent ordered-monotonic hierarchy of ``domain`` (see the module doc)."""
+    static = domain.static_predicates
+    raw = sorted({c for op in domain.operators for c in _operator_literals(domain, op)})
+    uf = _UnionFind(raw)
+    by_pred: dict[str, list[LiteralClass]] = {}
+    for c in raw:
+        by_pred.setdefault(c.predicate, []).append(c)
+    for group in by_pred.values():
+        for i, x in enumerate(group):
+            for y in group[i + 1:]:
+                if _classes_overlap(domain, x, y):
+                    uf.union(x, y)
+    members = {c: uf.find(c) for c in raw if c.predicate not in static}
+    # classes no operator changes are static too (checked at every level), like static predicates
+    reps = sorted({members[literal_class(domain, op, e)] for op in domain.operators for e in op.effects})
+    succ: dict[LiteralClass, set[LiteralClass]] = {r: set() for r in reps}
+    edges: set[tuple[LiteralClass, LiteralClass]] = set()
+    for op in domain.operators:
+        effs = [members[literal_class(domain, op, e)] for e in op.effects]
+        pres = [r for p in op.preconditions if p.atom.predicate not in static
+                for r in [members[literal_class(domain, op, p.atom)]] if r in succ]
+        for e in effs:
+            for other in [*effs, *pres]:
+                if other != e:
+                    succ[e].add(other)
+                    edges.add((e, other))
+    comps = _sccs(reps, succ)
+    comp_of = {c: i for i, comp in enumerate(comps) for c in comp}
+    # Tarjan emits a component after every component it reaches: layering in emission order
+    comp_level: list[int] = []
+    for i, comp in enumerate(comps):
+        below = {comp_of[w] for v in comp for w in succ[v]} - {i}
+        comp_level.append(1 + max((comp_level[j] for j in below), default=-1))
+    levels = {c: comp_level[comp_of[c]] for c in reps}
+    return Hierarchy(domain.name, levels, members, static, frozenset(edges))
+
+
+def apply_hierarchy(domain: Domain, hierarchy: Hierarchy) -> Domain:
+    """A copy of ``domain`` whose preconditions carry the hierarchy's criticalities."""
+    ops = tuple(
+        replace(op, preconditions=tuple(
+            Precondition(p.atom, hierarchy.criticality(domain, op, p.atom)) for p in op.preconditions
+        ))
+        for op in domain.operators
+    )
+    return replace(domain, operators=ops)
+
+
+def auto_criticality(domain: Domain) -> Domain:
+    """``apply_hierarchy(domain, derive_hierarchy(domain))``: what ``--criticality auto`` does."""
+    return apply_hierarchy(domain, derive_hierarchy(domain))
+
+
+def violations(domain: Domain, levels_of: Mapping[tuple[str, int, str], int | None]) -> list[str]:
+    """Where per-literal levels break ordered monotonicity (empty: the property holds).
+
+    ``levels_of[(op name, index, kind)]`` is the level of the operator's
+    ``index``-th precondition (kind ``"pre"``) or effect (``"eff"``), ``None``
+    for a static literal.  Checked: the effects of an operator share one level,
+    and no non-static precondition is above it.
+    """
+    out: list[str] = []
+    for op in domain.operators:
+        eff = {levels_of[(op.name, i, "eff")] for i in range(len(op.effects))}
+        if len(eff) > 1:
+            out.append(f"{op.name}: effects at levels {sorted(x for x in eff if x is not None)}")
+            continue
+        if not eff:
+            continue
+        (k,) = eff
+        for i, p in enumerate(op.preconditions):
+            lv = levels_of[(op.name, i, "pre")]
+            if lv is not None and k is not None and lv > k:
+                out.append(f"{op.name}: precondition {p.atom} at level {lv} above its effects' {k}")
+    return out
+
+
+def literal_levels(domain: Domain, hierarchy: Hierarchy) -> dict[tuple[str, int, str], int | None]:
+    """The hierarchy's level of every precondition and effect, keyed as :func:`violations` reads them."""
+    out: dict[tuple[str, int, str], int | None] = {}
+    for op in domain.operators:
+        for i, p in enumerate(op.preconditions):
+            out[(op.name, i, "pre")] = hierarchy.level_of(domain, op, p.atom)
+        for i, e in enumerate(op.effects):
+            out[(op.name, i, "eff")] = hierarchy.level_of(domain, op, e)
+    return out
+
+
+# --------------------------------------------------------------------------- problems
+
+
+def ground_level(problem: Problem, hierarchy: Hierarchy, atom: Atom) -> int | None:
+    """The level of a ground atom of ``problem`` (``None``: static, or in no operator's classes)."""
+    domain = problem.domain
+    if atom.predicate in hierarchy.static:
+        return None
+    objs = problem.all_objects
+    types = [objs.get(a) if isinstance(a, str) else None for a in atom.args]
+    for c, rep in hierarchy.members.items():
+        if c.predicate != atom.predicate or rep not in hierarchy.levels:
+            continue
+        if all(not ct or (t is not None and t in domain.subtypes(ct)) for ct, t in zip(c.types, types, strict=True)):
+            return hierarchy.levels[rep]
+    return None
+
+
+def goal_stages(problem: Problem, hierarchy: Hierarchy) -> tuple[Goal, ...]:
+    """The goal's literals of levels ``>= top``, then ``>= top - 1``, ... (each a :class:`Goal`).
+
+    HPN keeps the whole goal at every level, so without stages a top-level
+    plan's pre-images carry the goal's concrete literals (where each truck
+    and driver must end up) into every refinement, which then moves them back
+    and forth.  Achieving the abstract literals first (ALPINE plans each level
+    for that level's literals) leaves the concrete ones to the last plan.
+    The full goal is not included (it is the problem's goal); stages that
+    add nothing are left out.
+    """
+    atoms = list(problem.goal.atoms)
+    levels = {a: ground_level(problem, hierarchy, a) for a in atoms}
+    stages: list[Goal] = []
+    prev: frozenset[Atom] = frozenset()
+    for k in range(hierarchy.top, 0, -1):
+        part = frozenset(a for a in atoms if levels[a] is None or levels[a] >= k)  # type: ignore[operator]
+        if part and part != prev and len(part) < len(atoms):
+            stages.append(Goal.of(sorted(part), problem.domain.rules))
+        prev = part
+    return tuple(stages)
+
+
+def prepare_problem(problem: Problem) -> Problem:
+    """What ``nowplan run --criticality auto`` runs: the automatic criticalities (if the domain
+    has none yet), reachability statics (:mod:`nowplan.planning.reach_statics`) and the goal
+    stages (:func:`goal_stages`)."""
+    from nowplan.planning.dead_ends import irreversible_step
+    from nowplan.planning.reach_statics import add_reachability_statics
+
+    domain = problem.domain
+    hierarchy = derive_hierarchy(domain)
+    if hierarchy.top == 0:
+        return problem
+    if domain.top_level <= 0:
+        problem = replace(problem, domain=apply_hierarchy(domain, hierarchy))
+    top = hierarchy.top
+
+    def below_top(act: Action) -> bool:
+        k = hierarchy.effect_level(domain, act.operator)
+        return k is not None and k < top
+
+    dead = irreversible_step(problem, below_top)
+    if dead is not None:
+        log.warning("%s: the automatic hierarchy is not used, planning flat: %s (an abstract plan "
+                    "cannot see it, and executing its first steps could leave no plan)", problem.name, dead)
+        flat = tuple(replace(op, preconditions=tuple(Precondition(p.atom, 1) for p in op.preconditions))
+                     for op in problem.domain.operators)
+        return replace(problem, domain=replace(problem.domain, operators=flat))
+    stages = goal_stages(problem, hierarchy)
+    problem = add_reachability_statics(problem)
+    return replace(problem, stages=stages)
