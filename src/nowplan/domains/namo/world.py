@@ -291,10 +291,11 @@ class NamoWorld:
         c = region.centroid
         return self._look(math.atan2(c.y - self.robot[1], c.x - self.robot[0]))
 
-    def _do_LookObj(self, v: Pt, obj: str, at: Pt, eps: float) -> tuple[bool, dict[str, Any], str]:
+    def _do_LookObj(self, v: Pt, obj: str, at: Pt, eps: float, pre: float = 0.0) -> tuple[bool, dict[str, Any], str]:
         return self._look(math.atan2(at.y - self.robot[1], at.x - self.robot[0]))
 
-    def _do_LookClear(self, v: Pt, obj: str, at: Pt, region: Region, ex: Any, exo: Any) -> tuple[bool, dict[str, Any], str]:
+    def _do_LookClear(self, v: Pt, obj: str, at: Pt, region: Region, ex: Any, exo: Any,
+                     pre: float = 0.0) -> tuple[bool, dict[str, Any], str]:
         return self._look(math.atan2(at.y - self.robot[1], at.x - self.robot[0]))
 
     def _do_LookLandmark(self, v: Pt, lm: str, eps: float) -> tuple[bool, dict[str, Any], str]:
