@@ -22,6 +22,7 @@ from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
 from typing import Any
 
+from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.core.atoms import TRUE, Goal
@@ -90,6 +91,8 @@ class Executive:
         # refinements of each step of each plan (by content, see refinement_key) since the last
         # action: the bound on re-planning a step that keeps failing while the belief does not change
         self._refinements: Counter[Hashable] = Counter()
+        # first steps learnt not to be refinable from the current belief (acting/backtrack.py)
+        self.nogoods = Nogoods()
         check_supported(self.domain, strategy)
         if strategy.domain_planner and self.domain.planner is None:
             raise ScenarioError(
@@ -181,9 +184,14 @@ class Executive:
             from dataclasses import replace
 
             cfg = replace(cfg, time_limit=max(remaining, 0.01))
+        context = self.context()
+        forbidden = self.nogoods.forbidden(goal, levels)
+        if forbidden:
+            from dataclasses import replace
+
+            context = replace(context, extras={**context.extras, "forbidden_first": forbidden})
         res = self._planner(
-            self.domain, self.problem.objects, self.belief, goal, levels, cfg,
-            self.context(), self.rng,
+            self.domain, self.problem.objects, self.belief, goal, levels, cfg, context, self.rng,
         )
         self.metrics.planning_cpu_s += res.cpu_time_s
         if not res.solved or res.plan is None:
@@ -217,6 +225,7 @@ class Executive:
         self.metrics.execution_cost += cost
         self.belief.update(action, obs)
         self._refinements.clear()
+        self.nogoods.clear()
         self.trace.emit(
             "observation", n=self.metrics.actions - 1, action=action.pddl(), success=obs.success,
             observation=obs.info or None,
@@ -230,6 +239,23 @@ class Executive:
                 "failure", plan_id=f.plan_id, index=f.i, action=action.pddl(),
                 reason=str(obs.info.get("reason", "expected result does not hold")),
             )
+
+    def backtrack(self, f: Frame, action: Action | None) -> None:
+        """No plan refines ``f``'s current step: learn it as a nogood and re-refine one level up.
+
+        The step's action may not start a plan for ``f``'s goal at ``f``'s levels
+        until the next action; ``f`` is popped and its parent is set back to
+        the step ``f`` refined, so that step is planned again with the nogood
+        (acting/backtrack.py) instead of being re-issued as it was.
+        """
+        if action is not None:
+            self.nogoods.learn(f.plan.goal, f.plan.levels, action.key)
+            self.trace.emit("note", plan_id=f.plan_id,
+                            text=f"backtrack: {action.pddl()} cannot be refined here; replanning the level above")
+        self.pop("failed")
+        parent = self.stack[-1] if self.stack else None
+        if parent is not None and not parent.root and parent.i > 0:
+            parent.i -= 1
 
     def reconsider(self) -> None:
         """After each action, every mechanism may reconsider the plan stack (seed 000 Fig. 2, line 14)."""
@@ -317,7 +343,7 @@ class Executive:
                     if consecutive_failures > 3 * self.strategy.max_depth:
                         outcome, reason = Outcome.FAILED, f"repeated planning failures ({self._last_failure})"
                         break
-                    self.pop("failed")  # the refined step cannot be achieved from here
+                    self.backtrack(f, action)  # the refined step cannot be achieved from here
                     continue
                 consecutive_failures = 0
                 self.push(new, f)
