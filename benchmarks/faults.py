@@ -72,17 +72,12 @@ def matrix_strategies() -> list[str]:
 
 
 def refused(domain: str, scenario: str, strategy: str) -> str | None:
-    """Why the domain refuses the strategy up front (as a run would), or None."""
-    from nowplan.acting.hpn import Executive
-    from nowplan.acting.online import OnlinePolicy, is_online
+    """Why the domain refuses the strategy up front (as a run would, before its first action), or None."""
+    from nowplan.acting.run import run_episode
 
     ep = get_domain(domain).scenario(scenario)(0)
-    st = parse_strategy(strategy)
     try:
-        if is_online(st):
-            OnlinePolicy(ep.problem, ep.world, ep.belief, st)
-        else:
-            Executive(ep.problem, ep.world, ep.belief, st)
+        run_episode(ep, parse_strategy(strategy, max_actions=0, time_limit=5.0), seed=0)
     except NowplanError as exc:
         return str(exc)
     return None

@@ -125,7 +125,7 @@ LOOSE = 1e3
 # Longest chain of looks from one view point that a plan may ask for to reach a tolerance: a look's
 # pre-image asks for a looser tolerance, which another look can achieve, and so on (seed 000's
 # regression of belief fluents); past this many looks, looking from here is not worth it.
-MAX_LOOKS = 12
+MAX_LOOKS = 30
 
 
 def prior_needed(want: float, meas: float) -> float:
