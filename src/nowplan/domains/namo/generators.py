@@ -21,7 +21,7 @@ from nowplan.domains.namo.paths import INF, PathPlanner
 
 A, B, SW = Var("a"), Var("b"), Var("sw")
 V, R, O, AT, LM, E = Var("v"), Var("r"), Var("o"), Var("at"), Var("lm"), Var("e")
-PRE = Var("pre")
+PRE, N = Var("pre"), Var("n")
 
 Bindings = Mapping[Var, Any]
 Out = Iterator[dict[Var, Any]]
@@ -128,19 +128,20 @@ LOOSE = 1e3
 MAX_LOOKS = 30
 
 
-def prior_needed(want: float, meas: float) -> float:
-    """The largest prior standard deviation from which one look with noise ``meas`` reaches ``want``.
+def prior_needed(want: float, meas: float, n: int = 1) -> float:
+    """The largest prior standard deviation from which ``n`` looks with noise ``meas`` reach ``want``.
 
-    Inverts the Kalman update ``1/post^2 = 1/prior^2 + 1/meas^2``: the
-    regression of ``BVRelPose(o) = want`` through a look is
-    ``BVRelPose(o) = prior_needed(want, meas)`` (``LOOSE`` when one look
-    reaches ``want`` from any prior).
+    Inverts the Kalman update ``1/post^2 = 1/prior^2 + n/meas^2``: the
+    regression of ``BVRelPose(o) = want`` through ``n`` looks is
+    ``BVRelPose(o) = prior_needed(want, meas, n)`` (``LOOSE`` when they
+    reach ``want`` from any prior).
     """
     if want <= 0:
         return 0.0
-    if meas <= want:
+    gap = 1.0 / (want * want) - n / (meas * meas)
+    if gap <= 0:
         return LOOSE
-    return 1.0 / math.sqrt(1.0 / (want * want) - 1.0 / (meas * meas))
+    return 1.0 / math.sqrt(gap)
 
 
 def looks_needed(have: float, want: float, meas: float) -> int:
@@ -158,13 +159,15 @@ def look_noise(belief: NamoBelief, v: Pt, at: Pt) -> float:
 
 
 def gen_look_obj(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:
-    """Look at an object from where the robot will be, to know its position to within ``?e``.
+    """Look ``?n`` times at an object from where the robot will be, to know its position to within ``?e``.
 
-    The look's pre-image asks for the looser tolerance from which one look
-    (at the predicted noise for that distance) reaches ``?e``, so a noisy
-    sensor is answered by a chain of looks (each regressed through the next)
-    rather than by no plan; a chain longer than ``MAX_LOOKS`` from the
-    current estimate is not offered.
+    ``?n`` is the number of looks (at the predicted noise for that distance)
+    that take the current estimate to ``?e``; the action's pre-image asks for
+    the looser tolerance from which those ``n`` looks reach ``?e``, so if the
+    estimate is worse when the look comes (or the robot less well localised)
+    the planner regresses that tolerance through another look.  A noisy
+    sensor is thus answered by looks, not by no plan; more than
+    ``MAX_LOOKS`` looks from here are not offered.
     """
     name = bindings.get(O)
     est = belief.objects.get(name) if isinstance(name, str) else None
@@ -176,9 +179,10 @@ def gen_look_obj(bindings: Bindings, goal: Goal, belief: NamoBelief, context: An
     if d > belief.sensor.range - 0.2 or belief.futile_looks.get((v, str(name))) == belief.percept:
         return
     meas = look_noise(belief, v, est.center)
-    if looks_needed(est.sigma, want, meas) > MAX_LOOKS:
+    n = max(1, looks_needed(est.sigma, want, meas))
+    if n > MAX_LOOKS:
         return
-    yield {V: v, AT: est.center, PRE: prior_needed(want, meas)}
+    yield {V: v, AT: est.center, N: n, PRE: prior_needed(want, meas, n)}
 
 
 def _sigma_to_clear(region: Region, box: Box, k: float) -> float:
@@ -242,6 +246,7 @@ def gen_look_clear(bindings: Bindings, goal: Goal, belief: NamoBelief, context: 
             continue
         need = _sigma_to_clear(r, est.box, k)
         meas = look_noise(belief, v, est.center)
-        if need <= 0 or looks_needed(est.sigma, need, meas) > MAX_LOOKS:
+        n = max(1, looks_needed(est.sigma, need, meas))
+        if need <= 0 or n > MAX_LOOKS:
             continue
-        yield {O: name, V: v, AT: est.center, Var("exo"): ex | {name}, PRE: prior_needed(need, meas)}
+        yield {O: name, V: v, AT: est.center, Var("exo"): ex | {name}, N: n, PRE: prior_needed(need, meas, n)}
