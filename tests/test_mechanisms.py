@@ -166,24 +166,36 @@ def test_foresight_shows_generators_the_plan_stack():
 # the abstract plan is found at the top level, but its refinement fails every time while the
 # belief stays the same
 STUCK = Domain("stuck", PREDS, (op("gety", [("x", 2), ("q", 1)], ["y"]), op("getq", [("blocked", 1)], ["q"])))
+# ... and with many such abstract steps: each is learnt unrefinable in turn (acting/backtrack.py)
+STUCK_MANY = Domain("stuck-many", PREDS, tuple(
+    op(f"gety{i}", [("x", 2), ("q", 1)], ["y"], cost=1.0 + i) for i in range(30)) + (
+    op("getq", [("blocked", 1)], ["q"]),))
 
 
-def _stuck(strategy: str, **overrides):
-    prob = Problem(STUCK, {}, State([atom("x")]), Goal.of([atom("y")]))
-    ep = Episode(prob, SymbolicWorld(STUCK, prob.init), SymbolicBelief(prob.init))
+def _stuck(strategy: str, domain: Domain = STUCK, **overrides):
+    prob = Problem(domain, {}, State([atom("x")]), Goal.of([atom("y")]))
+    ep = Episode(prob, SymbolicWorld(domain, prob.init), SymbolicBelief(prob.init))
     tr = Trace()
     return run_episode(ep, parse_strategy(strategy, **overrides), trace=tr), tr
 
 
 def test_a_refinement_that_keeps_failing_is_given_up_with_a_reason():
     for strategy in ("hpn", "hpn+flexible", "hpn+flexible+serendipity+selective"):
+        # the step is learnt unrefinable and the level above has no other plan: the planner's reason
         m, tr = _stuck(strategy)
         assert m.outcome is Outcome.FAILED, (strategy, m.reason)
+        assert m.reason.startswith("no plan for the goal"), (strategy, m.reason)
+        assert m.plans_made + m.plan_failures <= 4, strategy
+        # thirty unrefinable alternatives: the refinement bound ends the backtracking
+        m, tr = _stuck(strategy, STUCK_MANY)
+        assert m.outcome is Outcome.FAILED, (strategy, m.reason)
         assert "without an action" in m.reason
-        assert m.plans_made + m.plan_failures <= 4 * 6, strategy  # not the 2 000-call budget
+        # (a refinement may pick another top-level gety, so each root attempt plans down a chain of
+        # them: bounded by the refinement bound times the alternatives, not the 2 000-call budget)
+        assert m.plans_made + m.plan_failures <= 6 * 31, strategy
     # the bound is the strategy's: a larger one spends more planner calls before giving up
-    big, _ = _stuck("hpn", max_refinements=20)
-    small, _ = _stuck("hpn", max_refinements=2)
+    big, _ = _stuck("hpn", STUCK_MANY, max_refinements=20)
+    small, _ = _stuck("hpn", STUCK_MANY, max_refinements=2)
     assert big.plans_made + big.plan_failures > small.plans_made + small.plan_failures
 
 

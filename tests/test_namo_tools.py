@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -17,7 +18,7 @@ from nowplan.core.atoms import Var  # noqa: E402
 from nowplan.domains.namo.generators import region  # noqa: E402
 from nowplan.domains.namo.geometry import MapGeometry, Pt  # noqa: E402
 from nowplan.domains.namo.model import build_domain  # noqa: E402
-from nowplan.domains.namo.params import Params  # noqa: E402
+from nowplan.domains.namo.params import DEFAULT_SENSOR, Params  # noqa: E402
 from nowplan.domains.namo.render import write_gif  # noqa: E402
 from nowplan.domains.namo.reproduction import aggregate, targets  # noqa: E402
 from nowplan.domains.namo.runner import run_recorded  # noqa: E402
@@ -192,11 +193,77 @@ def test_a_look_that_did_not_localise_is_not_offered_again_from_there():
     assert list(gen_look_obj(binds, Goal(()), b, None))  # a look from here should localise it
     look_op = build_domain(b.params).operator_map["LookObj"]
     look = look_op.instantiate({Var("v"): here, Var("o"): "box", Var("at"): b.objects["box"].center,
-                                Var("e"): 0.06})
+                                Var("e"): 0.06, Var("pre"): 0.2, Var("n"): 1})
     b.update(look, Observation(success=True, data={}))  # occluded: nothing seen
     assert not list(gen_look_obj(binds, Goal(()), b, None))
     b._bump(percept=True)  # something new was seen: worth another try
     assert list(gen_look_obj(binds, Goal(()), b, None))
+
+
+def test_a_noisy_sensor_plans_enough_looks_and_their_pre_image_asks_for_a_looser_prior():
+    """BHPN's regression of BVRelPose through looks: the pre-image asks for a looser tolerance."""
+    import math
+
+    from nowplan.core.atoms import Goal, atom
+    from nowplan.core.levels import flat_levels
+    from nowplan.domains.namo.generators import LOOSE, gen_look_obj, looks_needed, prior_needed
+    from nowplan.planning.regression import plan
+    from nowplan.worlds.base import Observation
+
+    # one look with noise 0.1 from prior 0.2 gives 1/sqrt(1/0.04 + 1/0.01) = 0.0894
+    post = 1 / math.sqrt(1 / 0.2**2 + 1 / 0.1**2)
+    assert prior_needed(post, 0.1) == pytest.approx(0.2)
+    post3 = 1 / math.sqrt(1 / 0.2**2 + 3 / 0.1**2)
+    assert prior_needed(post3, 0.1, 3) == pytest.approx(0.2)
+    assert prior_needed(0.05, 0.04) == LOOSE  # one look is enough from any prior
+    assert looks_needed(0.3, 0.06, 0.13) == math.ceil((1 / 0.06**2 - 1 / 0.3**2) * 0.13**2)
+    assert looks_needed(0.05, 0.06, 0.13) == 0
+
+    geom = MapGeometry(6.0, 3.0, ())
+    noisy = replace(DEFAULT_SENSOR, sigma_per_m=0.08)
+    b = NamoBelief(geom, np.array([0.5, 1.5]), sensor=noisy)
+    b._detect("box", 1.5, 0.0, 0.3, (0.4, 0.4))
+    binds = {Var("o"): "box", Var("e"): 0.06}
+    opts = list(gen_look_obj(binds, Goal(()), b, None))
+    assert len(opts) == 1  # one look cannot reach 0.06 from 1.5 m (noise 0.13), several can
+    meas = math.hypot(noisy.sigma_at(1.5), b.robot_sigma)
+    n = opts[0][Var("n")]
+    assert n == looks_needed(b.objects["box"].sigma, 0.06, meas) > 1
+    pre = opts[0][Var("pre")]
+    assert b.objects["box"].sigma <= pre  # the pre-image holds now
+    assert 1 / math.sqrt(1 / pre**2 + n / meas**2) <= 0.06 + 1e-9  # (pre may be LOOSE: any prior)
+    dom = build_domain(b.params)
+    res = plan(dom, {}, b, Goal.of([atom("BVRelPose", "box", value=0.06)], dom.rules), flat_levels())
+    assert res.solved and res.plan is not None
+    (look,) = res.plan.actions
+    assert look.name == "LookObj" and look.cost(b) == n  # n looks cost n
+    # a worse estimate takes more looks (the number comes from the estimate the plan starts from)
+    b2 = NamoBelief(geom, np.array([0.5, 1.5]), sensor=noisy)
+    b2._detect("box", 1.5, 0.0, 0.6, (0.4, 0.4))
+    res2 = plan(dom, {}, b2, Goal.of([atom("BVRelPose", "box", value=0.03)], dom.rules), flat_levels())
+    assert res2.solved and res2.plan is not None
+    (look2,) = res2.plan.actions
+    assert look2.cost(b2) == looks_needed(b2.objects["box"].sigma, 0.03, meas) > n
+    # acting on it: the n looks' detections tighten the estimate as predicted
+    det = ("box", 1.5, 0.0, noisy.sigma_at(1.5), 0.4, 0.4)
+    b.update(look, Observation(success=True, data={"detections": [det] * n}))
+    assert b.objects["box"].sigma <= 0.06 + 1e-9
+
+
+def test_a_look_that_saw_nothing_is_futile_but_a_small_tightening_is_not():
+    from nowplan.worlds.base import Observation
+
+    geom = MapGeometry(6.0, 3.0, ())
+    b = NamoBelief(geom, np.array([0.5, 1.5]))
+    b._detect("box", 1.5, 0.0, 0.07, (0.4, 0.4))
+    here = b.nominal()
+    look = build_domain(b.params).operator_map["LookObj"].instantiate(
+        {Var("v"): here, Var("o"): "box", Var("at"): b.objects["box"].center, Var("e"): 0.06, Var("pre"): 0.065,
+         Var("n"): 1})
+    b.update(look, Observation(success=True, data={"detections": [("box", 1.5, 0.0, 0.2, 0.4, 0.4)]}))
+    assert (here, "box") not in b.futile_looks  # seen: tightened by little (noisy sensor), not futile
+    b.update(look, Observation(success=True, data={}))
+    assert b.futile_looks[(here, "box")] == b.percept
 
 
 def test_fastest_of_merges_reproductions_run_by_run_and_refuses_different_behaviour():

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.acting.judge import judge
+from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import Cycle, CycleDetector, belief_fingerprint, situation, stall_reason
 from nowplan.acting.strategy import Strategy, check_supported
@@ -107,6 +108,8 @@ class Executive:
         # one, need not be downward refinable)
         self._flat_steps: set[Hashable] = set()
         self._visits: Counter[frozenset[Any]] = Counter()  # refine-flat: symbolic states seen after actions
+        # first steps learnt not to be refinable from the current belief (acting/backtrack.py)
+        self.nogoods = Nogoods()
         check_supported(self.domain, strategy)
         check_belief(self.domain, belief)
         if strategy.domain_planner and self.domain.planner is None:
@@ -206,9 +209,14 @@ class Executive:
             from dataclasses import replace
 
             cfg = replace(cfg, time_limit=max(remaining, 0.01))
+        context = self.context()
+        forbidden = self.nogoods.forbidden(goal, levels)
+        if forbidden:
+            from dataclasses import replace
+
+            context = replace(context, extras={**context.extras, "forbidden_first": forbidden})
         res = self._planner(
-            self.domain, self.problem.objects, self.belief, goal, levels, cfg,
-            self.context(), self.rng,
+            self.domain, self.problem.objects, self.belief, goal, levels, cfg, context, self.rng,
         )
         self.metrics.planning_cpu_s += res.cpu_time_s
         if not res.solved or res.plan is None:
@@ -244,6 +252,7 @@ class Executive:
         self.metrics.failed_actions += not obs.success
         self.metrics.exogenous_changes += bool(obs.exogenous)
         self._refinements.clear()
+        self.nogoods.clear()
         self.trace.emit(
             "observation", n=self.metrics.actions - 1, action=action.pddl(), success=obs.success,
             observation=obs.info or None,
@@ -259,6 +268,23 @@ class Executive:
             )
         self.last_observation = obs
         self.last_action = action
+
+    def backtrack(self, f: Frame, action: Action | None) -> None:
+        """No plan refines ``f``'s current step: learn it as a nogood and re-refine one level up.
+
+        The step's action may not start a plan for ``f``'s goal at ``f``'s levels
+        until the next action; ``f`` is popped and its parent is set back to
+        the step ``f`` refined, so that step is planned again with the nogood
+        (acting/backtrack.py) instead of being re-issued as it was.
+        """
+        if action is not None:
+            self.nogoods.learn(f.plan.goal, f.plan.levels, action.key)
+            self.trace.emit("note", plan_id=f.plan_id,
+                            text=f"backtrack: {action.pddl()} cannot be refined here; replanning the level above")
+        self.pop("failed")
+        parent = self.stack[-1] if self.stack else None
+        if parent is not None and not parent.root and parent.i > 0:
+            parent.i -= 1
 
     def reconsider(self) -> None:
         """After each action, every mechanism may reconsider the plan stack (seed 000 Fig. 2, line 14)."""
@@ -435,7 +461,9 @@ class Executive:
                                 text="executive: refine-flat: abstract plan not refinable "
                                      f"({self._last_failure}); its goal is planned concretely next",
                             )
-                    self.pop("failed")  # the refined step cannot be achieved from here
+                        self.pop("failed")  # the refined step cannot be achieved from here
+                    else:
+                        self.backtrack(f, action)  # the refined step cannot be achieved from here
                     continue
                 consecutive_failures = 0
                 self.push(new, f)

@@ -22,7 +22,9 @@ def register(sub: Any) -> None:
         ),
     )
     p.add_argument("--domain", required=True, help="a registered domain, e.g. logistics")
-    p.add_argument("--scenario", required=True, help="a scenario of the domain, or several joined by ','")
+    p.add_argument("--scenario", required=True, help=(
+        "a scenario of the domain, or several joined by ','; a fault level rides on the name: "
+        "'small?failure=0.5&exogenous=0.25' (knobs: failure, exogenous, sigma_per_m, miss)"))
     p.add_argument("--strategies", required=True, help="strategies joined by ',', e.g. hpn,flat,hpn+aggressive")
     p.add_argument("--seeds", required=True, help="'0-9', '0,3,5', '7' or a mix such as '0-4,10'")
     p.add_argument("--store", required=True, type=Path, help="SQLite file for the run records")

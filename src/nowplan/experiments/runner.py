@@ -54,9 +54,13 @@ def execute(config: RunConfig) -> RunRecord:
         from nowplan.acting.strategy import parse_strategy
         from nowplan.domains.registry import get_domain
 
-        make = get_domain(config.domain).scenario(config.scenario)
+        from nowplan.experiments.faults import apply_faults, split_scenario
+
+        base, faults = split_scenario(config.scenario)  # "small?failure=0.5": a fault level
+        make = get_domain(config.domain).scenario(base)
         strategy = parse_strategy(config.strategy, time_limit=config.time_limit)
         episode = make(config.seed)
+        apply_faults(episode, faults)
         metrics = run_episode(episode, strategy, config.seed).to_dict()
     except Exception as exc:  # a crashing run is recorded and the sweep goes on
         log.debug("run %s crashed", config.label(), exc_info=True)

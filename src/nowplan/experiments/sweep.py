@@ -77,9 +77,11 @@ class SweepSpec:
 
         if self.time_limit <= 0:
             raise ScenarioError(f"the time limit must be > 0 seconds, got {self.time_limit:g}")
+        from nowplan.experiments.faults import split_scenario
+
         spec = get_domain(self.domain)
         for s in self.scenarios:
-            spec.scenario(s)
+            spec.scenario(split_scenario(s)[0])
         for st in self.strategies:
             parse_strategy(st)
 

@@ -197,6 +197,10 @@ class _Search:
         self.relaxed: LazyRelaxed | None = None
         # a domain's own estimate, fn(goal, belief, holds) -> cost, passed as context.extras["heuristic"]
         self.domain_h = context.extras.get("heuristic") if context is not None else None
+        # first steps learnt not to be refinable from this belief (context.extras["forbidden_first"], a
+        # set of action keys, see nowplan.acting.backtrack): a plan may not start with one of them
+        self.forbidden_first: frozenset[Any] = frozenset(
+            context.extras.get("forbidden_first", ()) if context is not None else ())
         self._no_relax = relax_unsupported(self.grounder, belief)
         self._can_relax = self._no_relax is None
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
@@ -376,6 +380,8 @@ class _Search:
                         pre = None if g is None else T.ids_of(g.atoms)
                     if pre is None:
                         continue
+                    if self.forbidden_first and act.key in self.forbidden_first and self.satisfied(pre):
+                        continue  # it would be the plan's first step: learnt not to be refinable from here
                     child = (pre, focus)
                     ng = gcost + cost
                     if child in closed or ng >= best_g.get(child, math.inf):
@@ -420,8 +426,8 @@ def concrete(domain: Domain, levels: LevelMap) -> bool:
 
 
 def context_allows_forward(context: PlanningContext | None) -> bool:
-    """A domain's own estimate (``context.extras["heuristic"]``) is for the regression search."""
-    return context is None or context.extras.get("heuristic") is None
+    """A domain's own estimate (``context.extras["heuristic"]``) and forbidden first steps are for the regression search."""
+    return context is None or (context.extras.get("heuristic") is None and not context.extras.get("forbidden_first"))
 
 
 class _GoalOf:

@@ -287,8 +287,7 @@ class NamoBelief:
     def update(self, action: Action, obs: Observation) -> None:
         data: dict[str, Any] = obs.data if isinstance(obs.data, dict) else {}
         name = action.name
-        looked = self.objects.get(str(action.args[1])) if name == "LookObj" else None
-        before = looked.sigma if looked is not None else None
+        looked = self.objects.get(str(action.args[1])) if name in ("LookObj", "LookClear") else None
         touched: Pt | None = None  # where a move stopped by a contact could not go on to
         if name == "Move":
             region = action.args[2]
@@ -307,7 +306,10 @@ class NamoBelief:
         self._sense(data)
         if touched is not None:
             self._remember_contacts(data, touched)
-        if before is not None and looked is not None and looked.sigma > 0.9 * before:
+        if looked is not None and looked.name not in {str(d[0]) for d in data.get("detections", ())}:
+            # not detected (occluded, out of view, missed): a look from there is not relied on again
+            # until something new is seen.  (A detected object's estimate always tightens by the
+            # predicted amount, however little: a chain of looks with a noisy sensor is not futile.)
             v = action.args[0]
             if isinstance(v, Pt):
                 self.futile_looks[(v, looked.name)] = self.percept

@@ -16,11 +16,12 @@ from typing import Any
 
 from nowplan.core.atoms import Goal, Var
 from nowplan.domains.namo.belief import NamoBelief
-from nowplan.domains.namo.geometry import Pt, Region, point_back
+from nowplan.domains.namo.geometry import Box, Pt, Region, point_back
 from nowplan.domains.namo.paths import INF, PathPlanner
 
 A, B, SW = Var("a"), Var("b"), Var("sw")
 V, R, O, AT, LM, E = Var("v"), Var("r"), Var("o"), Var("at"), Var("lm"), Var("e")
+PRE, N = Var("pre"), Var("n")
 
 Bindings = Mapping[Var, Any]
 Out = Iterator[dict[Var, Any]]
@@ -118,8 +119,56 @@ def _posterior(prior: float, meas: float) -> float:
     return 1.0 / math.sqrt(1.0 / (prior * prior) + 1.0 / (meas * meas))
 
 
+# The looser tolerance a look's pre-image asks for when one look suffices whatever the prior (any
+# estimate at all: BVRelPose(o) = LOOSE holds as soon as ``o`` is known).
+LOOSE = 1e3
+# Longest chain of looks from one view point that a plan may ask for to reach a tolerance: a look's
+# pre-image asks for a looser tolerance, which another look can achieve, and so on (seed 000's
+# regression of belief fluents); past this many looks, looking from here is not worth it.
+MAX_LOOKS = 30
+
+
+def prior_needed(want: float, meas: float, n: int = 1) -> float:
+    """The largest prior standard deviation from which ``n`` looks with noise ``meas`` reach ``want``.
+
+    Inverts the Kalman update ``1/post^2 = 1/prior^2 + n/meas^2``: the
+    regression of ``BVRelPose(o) = want`` through ``n`` looks is
+    ``BVRelPose(o) = prior_needed(want, meas, n)`` (``LOOSE`` when they
+    reach ``want`` from any prior).
+    """
+    if want <= 0:
+        return 0.0
+    gap = 1.0 / (want * want) - n / (meas * meas)
+    if gap <= 0:
+        return LOOSE
+    return 1.0 / math.sqrt(gap)
+
+
+def looks_needed(have: float, want: float, meas: float) -> int:
+    """How many independent looks with noise ``meas`` take a standard deviation from ``have`` to ``want``."""
+    if have <= want:
+        return 0
+    if want <= 0:
+        return MAX_LOOKS + 1
+    return max(1, math.ceil((1.0 / (want * want) - 1.0 / (have * have)) * meas * meas - 1e-9))
+
+
+def look_noise(belief: NamoBelief, v: Pt, at: Pt) -> float:
+    """The predicted noise of one measurement of an object at ``at`` taken from ``v`` (sensor and robot)."""
+    return math.hypot(belief.sensor.sigma_at(v.dist(at)), belief.robot_sigma)
+
+
 def gen_look_obj(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:
-    """Look at an object from where the robot will be, if the look can localise it well enough."""
+    """Look ``?n`` times at an object from where the robot will be, to know its position to within ``?e``.
+
+    ``?n`` is the number of looks (at the predicted noise for that distance)
+    that take the current estimate to ``?e``; the action's pre-image asks for
+    the looser tolerance from which those ``n`` looks reach ``?e``, so if the
+    estimate is worse when the look comes (or the robot less well localised)
+    the planner regresses that tolerance through another look.  A noisy
+    sensor is thus answered by looks, not by no plan; more than
+    ``MAX_LOOKS`` looks from here are not offered.
+    """
     name = bindings.get(O)
     est = belief.objects.get(name) if isinstance(name, str) else None
     if est is None or name == belief.held:
@@ -129,10 +178,27 @@ def gen_look_obj(bindings: Bindings, goal: Goal, belief: NamoBelief, context: An
     d = v.dist(est.center)
     if d > belief.sensor.range - 0.2 or belief.futile_looks.get((v, str(name))) == belief.percept:
         return
-    meas = math.hypot(belief.sensor.sigma_at(d), belief.robot_sigma)
-    if _posterior(est.sigma, meas) > want:
+    meas = look_noise(belief, v, est.center)
+    n = max(1, looks_needed(est.sigma, want, meas))
+    if n > MAX_LOOKS:
         return
-    yield {V: v, AT: est.center}
+    yield {V: v, AT: est.center, N: n, PRE: prior_needed(want, meas, n)}
+
+
+def _sigma_to_clear(region: Region, box: Box, k: float) -> float:
+    """The largest standard deviation whose k-sigma shadow of ``box`` stays out of ``region`` (0: none)."""
+    if region.hits_box(box, 0.0):
+        return 0.0
+    lo, hi = 0.0, 4.0 / max(k, 1e-6)
+    if not region.hits_box(box, k * hi):
+        return hi
+    for _ in range(24):
+        mid = (lo + hi) / 2
+        if region.hits_box(box, k * mid):
+            hi = mid
+        else:
+            lo = mid
+    return lo
 
 
 def gen_look_landmark(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:
@@ -158,8 +224,11 @@ def gen_look_landmark(bindings: Bindings, goal: Goal, belief: NamoBelief, contex
 def gen_look_clear(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:
     """Look again at an object whose shadow, not its body, meets a region that must be clear.
 
-    The look is expected (most likely observation) to shrink the shadow out
-    of the region; it is offered only when the predicted shadow would clear it.
+    The look is expected (most likely observation: the mean stays) to shrink
+    the shadow out of the region.  Its pre-image asks for the object's
+    position known to the tolerance from which this one look shrinks the
+    shadow enough (``prior_needed``), so a noisy sensor plans more looks
+    (``LookObj``) first; offered only when that takes at most ``MAX_LOOKS``.
     """
     from nowplan.domains.namo.belief import k_of
 
@@ -170,12 +239,14 @@ def gen_look_clear(bindings: Bindings, goal: Goal, belief: NamoBelief, context: 
     k = k_of(belief.params.eps_clear)
     for name in belief.blockers(r, belief.params.eps_clear, ex):
         est = belief.objects[name]
-        if belief.in_the_way(r, name):
+        if belief.in_the_way(r, name) or belief.futile_looks.get((v, name)) == belief.percept:
             continue
         d = v.dist(est.center)
         if d > belief.sensor.range - 0.2:
             continue
-        post = _posterior(est.sigma, math.hypot(belief.sensor.sigma_at(d), belief.robot_sigma))
-        if r.hits_box(est.box, k * post):
+        need = _sigma_to_clear(r, est.box, k)
+        meas = look_noise(belief, v, est.center)
+        n = max(1, looks_needed(est.sigma, need, meas))
+        if need <= 0 or n > MAX_LOOKS:
             continue
-        yield {O: name, V: v, AT: est.center, Var("exo"): ex | {name}}
+        yield {O: name, V: v, AT: est.center, Var("exo"): ex | {name}, N: n, PRE: prior_needed(need, meas, n)}

@@ -42,6 +42,7 @@ A, B, SW = Var("a"), Var("b"), Var("sw")
 V, R, O, AT, LM, E = Var("v"), Var("r"), Var("o"), Var("at"), Var("lm"), Var("e")
 M, HOME, PC, EX, EXO, PLACE = Var("m"), Var("home"), Var("pc"), Var("ex"), Var("exo"), Var("place")
 SPOT, ONLY, SURVEY, HIDDEN, KEEP = Var("spot"), Var("only"), Var("survey"), Var("hidden"), Var("keep")
+PRE, N = Var("pre"), Var("n")
 
 WHERE, SEE, CLEAR = 3, 2, 1
 
@@ -167,6 +168,11 @@ def make_costs(params: Params) -> dict[str, Any]:
     return {"move": move_cost, "pick": pick_cost, "place": place_cost}
 
 
+def _looks_cost(b: Any, belief: Any) -> float:
+    """A look action takes ``?n`` looks, each costing 1."""
+    return float(b.get(N, 1))
+
+
 def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
     costs = make_costs(params)
     P = Precondition
@@ -189,18 +195,19 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
             generators=(Generator("look", (V,), gens.gen_look, (R,)),),
         ),
         Operator(
-            "LookObj", (V, O, AT, E),
-            (P(atom("RobotAt", V), WHERE),),
+            "LookObj", (V, O, AT, E, PRE, N),
+            (P(atom("RobotAt", V), WHERE), P(atom("BVRelPose", O, value=PRE), SEE)),
             (atom("BVRelPose", O, value=E),),
-            cost=1.0,
-            generators=(Generator("look_obj", (V, AT), gens.gen_look_obj, (O, E)),),
+            cost=_looks_cost,
+            generators=(Generator("look_obj", (V, AT, PRE, N), gens.gen_look_obj, (O, E)),),
         ),
         Operator(
-            "LookClear", (V, O, AT, R, EX, EXO),
-            (P(atom("RobotAt", V), WHERE), P(atom("BClear", R, EXO, value=params.eps_clear), WHERE)),
+            "LookClear", (V, O, AT, R, EX, EXO, PRE, N),
+            (P(atom("RobotAt", V), WHERE), P(atom("BClear", R, EXO, value=params.eps_clear), WHERE),
+             P(atom("BVRelPose", O, value=PRE), WHERE)),
             (atom("BClear", R, EX, value=params.eps_clear),),
-            cost=1.0,
-            generators=(Generator("look_clear", (O, V, AT, EXO), gens.gen_look_clear, (R, EX)),),
+            cost=_looks_cost,
+            generators=(Generator("look_clear", (O, V, AT, EXO, PRE, N), gens.gen_look_clear, (R, EX)),),
         ),
         Operator(
             "LookLandmark", (V, LM, E),

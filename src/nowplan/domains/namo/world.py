@@ -291,11 +291,22 @@ class NamoWorld:
         c = region.centroid
         return self._look(math.atan2(c.y - self.robot[1], c.x - self.robot[0]))
 
-    def _do_LookObj(self, v: Pt, obj: str, at: Pt, eps: float) -> tuple[bool, dict[str, Any], str]:
-        return self._look(math.atan2(at.y - self.robot[1], at.x - self.robot[0]))
+    def _looks(self, heading: float, n: int) -> tuple[bool, dict[str, Any], str]:
+        """``n`` looks the same way: every detection and landmark sighting, each with its own noise."""
+        ok, data, why = self._look(heading)
+        for _ in range(max(int(n), 1) - 1):
+            more = self.sense(heading, self.sensor.fov, self.sensor.range)
+            data["detections"] = [*data["detections"], *more["detections"]]
+            data["landmarks"] = [*data["landmarks"], *more["landmarks"]]
+        return ok, data, why
 
-    def _do_LookClear(self, v: Pt, obj: str, at: Pt, region: Region, ex: Any, exo: Any) -> tuple[bool, dict[str, Any], str]:
-        return self._look(math.atan2(at.y - self.robot[1], at.x - self.robot[0]))
+    def _do_LookObj(self, v: Pt, obj: str, at: Pt, eps: float, pre: float = 0.0,
+                    n: int = 1) -> tuple[bool, dict[str, Any], str]:
+        return self._looks(math.atan2(at.y - self.robot[1], at.x - self.robot[0]), n)
+
+    def _do_LookClear(self, v: Pt, obj: str, at: Pt, region: Region, ex: Any, exo: Any,
+                      pre: float = 0.0, n: int = 1) -> tuple[bool, dict[str, Any], str]:
+        return self._looks(math.atan2(at.y - self.robot[1], at.x - self.robot[0]), n)
 
     def _do_LookLandmark(self, v: Pt, lm: str, eps: float) -> tuple[bool, dict[str, Any], str]:
         p = self.geom.landmark(lm)
