@@ -1,11 +1,11 @@
-"""Every strategy in a house (tests/house_domain.py): rooms, doors, a locked door and its key,
+"""Every strategy in a house (tests/locked_house.py): rooms, doors, a locked door and its key,
 sticky doors failing at 0.2, a misplaced mug found by looking; judged in the world."""
 
 from __future__ import annotations
 
 import pytest
 
-from house_domain import episode
+from locked_house import episode
 
 from nowplan.acting.metrics import Outcome
 from nowplan.acting.run import run_episode

@@ -80,8 +80,8 @@ def test_reproduce_prints_the_verdict_table_and_defaults_to_quick(
         return ReproductionResult("003", ReproStatus.DONE, rows=[{"x": 1}], notes="a long note",
                                   comparisons=[judged("extra travel %", -10.0, None, at_most=-25.0)])
 
-    reproductions.registered()
-    monkeypatch.setitem(reproductions._REGISTRY, "003", Reproduction("003", "toy", run))
+    declared = {**reproductions.declared(), "003": Reproduction("003", "toy", run)}
+    monkeypatch.setattr(reproductions, "declared", lambda: declared)
     assert cli_main(["reproduce", "003", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "| extra travel % | -10 | – | – | no paper figure; our target not met |" in out

@@ -71,6 +71,10 @@ class Store:
         if create:
             self.path.parent.mkdir(parents=True, exist_ok=True)
         self._db = sqlite3.connect(str(self.path), timeout=30.0, isolation_level=None)
+        # text that is not UTF-8 (a damaged or hand-edited store) is decoded with replacement
+        # characters: such a row then fails its checks in _from_row with a StoreError, not a
+        # sqlite3 error from deep inside a report
+        self._db.text_factory = lambda b: b.decode("utf-8", errors="replace")
         try:
             self._check_or_init()
             # a damaged page anywhere (not only the schema's) is found now, not in the middle of a sweep
@@ -163,10 +167,13 @@ class Store:
         return list(self.iter_records())
 
     def iter_records(self) -> Iterator[RunRecord]:
-        cur = self._db.execute(
-            f"SELECT {', '.join(_COLUMNS)} FROM runs ORDER BY domain, scenario, strategy, seed, time_limit"
-        )
-        for row in cur:
+        try:
+            rows = self._db.execute(
+                f"SELECT {', '.join(_COLUMNS)} FROM runs ORDER BY domain, scenario, strategy, seed, time_limit"
+            ).fetchall()
+        except sqlite3.DatabaseError as exc:
+            raise StoreError(f"{self.path}: the run store cannot be read ({exc}); restore it from a copy") from exc
+        for row in rows:
             yield self._from_row(row)
 
     def __len__(self) -> int:

@@ -163,7 +163,7 @@ def episode(seed: int, sticky_p: float = 0.2) -> Episode:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python tests/house_domain.py STRATEGY[,STRATEGY…] [FIRST_SEED LAST_SEED [TIME_LIMIT]]``:
+    """``python tests/locked_house.py STRATEGY[,STRATEGY…] [FIRST_SEED LAST_SEED [TIME_LIMIT]]``:
     success per strategy over the seeds (the figures of tests/test_house.py's sweep)."""
     import sys
 
