@@ -74,7 +74,8 @@ def main(args: argparse.Namespace) -> int:
         overrides["max_actions"] = args.max_actions
     if args.time_limit is not None:
         overrides["time_limit"] = args.time_limit
-    strategy = parse_strategy(args.strategy, **overrides)
+    base = None if args.pddl or not args.domain else get_domain(args.domain).planner
+    strategy = parse_strategy(args.strategy, base_planner=base, **overrides)
     if args.trace is not None and args.trace.is_dir():
         raise UsageError(f"--trace {args.trace} is a directory; give a file path, e.g. {args.trace / 'trace.jsonl'}")
     episode = build_episode(args)

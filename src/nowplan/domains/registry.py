@@ -27,6 +27,7 @@ from typing import Any
 
 from nowplan.core.domain import Domain, Problem
 from nowplan.errors import ScenarioError
+from nowplan.planning.regression import PlannerConfig
 
 ENTRY_POINT_GROUP = "nowplan.domains"
 ENV_VAR = "NOWPLAN_DOMAINS"
@@ -60,6 +61,10 @@ class DomainSpec:
     # whether that run is slow (then the matrix marks it @slow)
     matrix_scenario: str = ""
     matrix_slow: bool = False
+    # the domain's planner settings, the base that
+    # `nowplan run`, sweeps and reproductions start from before the strategy's switches apply;
+    # None: the engine's defaults
+    planner: PlannerConfig | None = None
     source: str = ""  # where it was found: an entry point or a module (set by discovery)
 
     def scenario(self, name: str) -> ScenarioFn:

@@ -54,8 +54,9 @@ def execute(config: RunConfig) -> RunRecord:
         from nowplan.acting.strategy import parse_strategy
         from nowplan.domains.registry import get_domain
 
-        make = get_domain(config.domain).scenario(config.scenario)
-        strategy = parse_strategy(config.strategy, time_limit=config.time_limit)
+        spec = get_domain(config.domain)
+        make = spec.scenario(config.scenario)
+        strategy = parse_strategy(config.strategy, base_planner=spec.planner, time_limit=config.time_limit)
         episode = make(config.seed)
         metrics = run_episode(episode, strategy, config.seed).to_dict()
     except Exception as exc:  # a crashing run is recorded and the sweep goes on

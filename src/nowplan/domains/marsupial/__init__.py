@@ -59,6 +59,7 @@ SPEC = register(
         demo=demo,
         extras={"regimes": dict(REGIMES)},
         matrix_scenario="single-2",
+        planner=PLANNER,
     )
 )
 
