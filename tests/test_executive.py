@@ -1,7 +1,6 @@
 from __future__ import annotations
 
 import json
-import time
 
 import pytest
 
@@ -114,33 +113,3 @@ def test_exogenous_changes_move_only_packages():
         after = {a for a in ep.world.state.atoms() if a.args and a.args[0] in vehicles}
         assert before == after
 
-
-def test_a_subgoal_proved_unsolvable_is_not_searched_again_until_the_next_action():
-    from nowplan.acting.hpn import Executive, Frame
-    from nowplan.core.atoms import Atom, Goal
-    from nowplan.planning.plan import PlanResult, PlanStatus
-
-    ep = episode("tiny", 0)
-    ex = Executive(ep.problem, ep.world, ep.belief, parse_strategy("hpn"), seed=0)
-    calls = []
-    statuses = iter([PlanStatus.UNSOLVABLE, PlanStatus.NODE_LIMIT, PlanStatus.NODE_LIMIT,
-                     PlanStatus.UNSOLVABLE, PlanStatus.UNSOLVABLE])
-
-    def planner(*args):
-        calls.append(args[3])
-        return PlanResult(next(statuses), reason="test")
-
-    ex._planner = planner
-    ex._t0 = time.perf_counter()
-    parent = Frame(None, 0, None, None, root=True)  # type: ignore[arg-type]
-    goal = Goal((Atom("at", ("nowhere", "never")),))
-    other = Goal((Atom("at", ("nowhere", "ever")),))
-    assert ex.make_plan(goal, ex.base_levels, parent) is None  # searched: unsolvable
-    assert ex.make_plan(goal, ex.base_levels, parent) is None  # remembered
-    assert len(calls) == 1 and ex.metrics.plan_failures == 2
-    assert ex.make_plan(other, ex.base_levels, parent) is None  # a node limit proves nothing...
-    assert ex.make_plan(other, ex.base_levels, parent) is None  # ...so it is searched again
-    assert len(calls) == 3
-    ex._unsolvable.clear()  # what an action does (Executive.execute)
-    assert ex.make_plan(goal, ex.base_levels, parent) is None
-    assert len(calls) == 4

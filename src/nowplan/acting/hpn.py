@@ -90,11 +90,6 @@ class Executive:
         # refinements of each step of each plan (by content, see refinement_key) since the last
         # action: the bound on re-planning a step that keeps failing while the belief does not change
         self._refinements: Counter[Hashable] = Counter()
-        # subgoals a search proved unsolvable (space exhausted) in the current belief, by
-        # (goal, levels, planner settings): not searched again until the next action, since the
-        # same search from the same belief proves the same (RCHPN on marsupial remade one failing
-        # refinement five times in one belief, 25-46k nodes each)
-        self._unsolvable: dict[Hashable, PlanResult] = {}
         check_supported(self.domain, strategy)
         if strategy.domain_planner and self.domain.planner is None:
             raise ScenarioError(
@@ -184,19 +179,10 @@ class Executive:
             cfg = m.planner_config(self, parent, goal, cfg) or cfg
         if remaining < cfg.time_limit:
             cfg = replace(cfg, time_limit=max(remaining, 0.01))
-        # the search depends on the context only with foresight (the plan stack): no memo then
-        memo_key = None if self.strategy.foresight else (goal, levels, replace(cfg, time_limit=0.0))
-        known = self._unsolvable.get(memo_key) if memo_key is not None else None
-        if known is not None:
-            res = replace(known, cpu_time_s=0.0, expanded=0,
-                          reason=f"{known.reason} (proved earlier in this belief; not searched again)")
-        else:
-            res = self._planner(
-                self.domain, self.problem.objects, self.belief, goal, levels, cfg,
-                self.context(), self.rng,
-            )
-            if memo_key is not None and res.status is PlanStatus.UNSOLVABLE:
-                self._unsolvable[memo_key] = res
+        res = self._planner(
+            self.domain, self.problem.objects, self.belief, goal, levels, cfg,
+            self.context(), self.rng,
+        )
         self.metrics.planning_cpu_s += res.cpu_time_s
         if not res.solved or res.plan is None:
             self.metrics.plan_failures += 1
@@ -229,7 +215,6 @@ class Executive:
         self.metrics.execution_cost += cost
         self.belief.update(action, obs)
         self._refinements.clear()
-        self._unsolvable.clear()
         self.trace.emit(
             "observation", n=self.metrics.actions - 1, action=action.pddl(), success=obs.success,
             observation=obs.info or None,
