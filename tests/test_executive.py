@@ -112,4 +112,3 @@ def test_exogenous_changes_move_only_packages():
             ep.world.state = ep.world.state.apply(ep.world.exogenous(ep.world.state, ep.world.rng))
         after = {a for a in ep.world.state.atoms() if a.args and a.args[0] in vehicles}
         assert before == after
-
