@@ -19,7 +19,7 @@ import random
 import time
 from collections import Counter
 from collections.abc import Callable, Hashable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.acting.metrics import Metrics, Outcome
@@ -178,6 +178,8 @@ class Executive:
         for m in self.mechanisms:
             cfg = m.planner_config(self, parent, goal, cfg) or cfg
         if remaining < cfg.time_limit:
+            from dataclasses import replace
+
             cfg = replace(cfg, time_limit=max(remaining, 0.01))
         res = self._planner(
             self.domain, self.problem.objects, self.belief, goal, levels, cfg,
