@@ -76,3 +76,32 @@ def test_run_pddl_logistics_with_criticalities_and_failures(capsys, tmp_path):
     first = next(e for e in events if e["event"] == "plan")
     assert not any(s["action"] and s["action"].startswith(("(drive", "(fly")) for s in first["steps"])
     assert any(not s["primitive"] for s in first["steps"][1:])
+
+
+def test_run_uses_the_domains_planner_settings(monkeypatch, capsys):
+    """`nowplan run --domain marsupial` plans with marsupial's PLANNER, not the engine defaults."""
+    import nowplan.commands.run as run_cmd
+    from nowplan.acting.metrics import Metrics, Outcome
+    from nowplan.domains.marsupial.model import PLANNER
+
+    seen = []
+
+    def fake_run(episode, strategy, **kw):
+        seen.append(strategy)
+        return Metrics(outcome=Outcome.REACHED)
+
+    monkeypatch.setattr(run_cmd, "run_episode", fake_run)
+    main(["run", "--domain", "marsupial", "--scenario", "single-2", "--strategy", "hpn+peephole"])
+    assert seen and seen[0].planner == PLANNER
+    seen.clear()
+    main(["run", "--domain", "logistics", "--scenario", "tiny"])
+    assert seen and seen[0].planner.heuristic != PLANNER.heuristic
+
+
+def test_a_strategys_planner_switch_applies_over_the_base_planner():
+    from nowplan.acting.strategy import parse_strategy
+    from nowplan.domains.marsupial.model import PLANNER
+
+    s = parse_strategy("hpn+noshortcuts", base_planner=PLANNER)
+    assert s.planner.heuristic == PLANNER.heuristic and s.planner.clock == "cpu"
+    assert not s.planner.serialization and not s.planner.monotonic

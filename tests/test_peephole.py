@@ -317,3 +317,62 @@ def test_a_combination_too_large_to_plan_lowers_the_complexity_limit_until_the_n
     assert m._cap == 1  # one step at a time, as HPN
     ex.metrics.actions = 6  # the belief changed: the paper's limit again
     assert m._failed_now(ex) == [] and m._cap == 4
+
+
+def test_refinements_of_a_combined_step_inherit_it_bound_their_searches_and_report_failures():
+    from types import SimpleNamespace
+
+    from nowplan.acting.peephole import Peephole
+    from nowplan.planning.plan import PlanResult, PlanStatus
+    from nowplan.planning.regression import PlannerConfig
+    from nowplan.trace import Trace
+
+    m = Peephole(PeepholeConfig(joint_nodes=500))
+    ex = SimpleNamespace(metrics=SimpleNamespace(actions=2), trace=Trace(), stack=[])
+    combo = frozenset({("carry", ("x", "yard")), ("carry", ("z", "yard"))})
+    plan = SimpleNamespace(steps=(None, None, None))
+    top = SimpleNamespace(plan_id=1, i=2, info={"joint": 2, "joint_ops": combo}, plan=plan)
+    child = SimpleNamespace(plan_id=2, i=1, info={}, plan=plan)
+    grandchild = SimpleNamespace(plan_id=3, i=1, info={}, plan=plan)
+    for fr in (top, child, grandchild):
+        ex.stack.append(fr)
+        m.after_push(ex, fr)
+    assert "under_joint" not in top.info  # pushed at the root of the stack
+    assert child.info["under_joint"] == combo and grandchild.info["under_joint"] == combo
+    base = PlannerConfig(max_nodes=50_000, shortcut_nodes=20_000)
+    joint = m.planner_config(ex, top, Goal(), base)
+    assert joint is not None and not joint.serialization and joint.max_nodes == 500 and joint.shortcut_nodes == 500
+    below = m.planner_config(ex, grandchild, Goal(), base)
+    assert below is not None and below.serialization and below.max_nodes == 500
+    # a step not under any combination keeps the planner's budgets
+    plain = SimpleNamespace(plan_id=9, i=1, info={"joint": None}, plan=plan)
+    assert m.planner_config(ex, plain, Goal(), base) is None
+    # a refinement below the combined step that fails gives the combination up in this belief
+    m.after_plan_failure(ex, grandchild, Goal(), PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
+    assert m._failed == [combo] and m._cap == 1
+
+
+def test_without_a_node_budget_below_combined_steps_the_planners_budgets_apply():
+    from types import SimpleNamespace
+
+    from nowplan.acting.peephole import Peephole
+    from nowplan.planning.regression import PlannerConfig
+
+    m = Peephole(PeepholeConfig(joint_nodes=0))
+    combo = frozenset({("carry", ("x", "yard"))})
+    parent = SimpleNamespace(plan_id=1, i=2, info={"under_joint": combo})
+    assert m.planner_config(SimpleNamespace(), parent, Goal(), PlannerConfig()) is None
+
+
+def test_estimates_can_use_the_executives_planner_settings():
+    from nowplan.acting.peephole import estimate_config
+    from nowplan.planning.regression import PlannerConfig
+
+    cfg = estimate_config(PlannerConfig(heuristic="lmcut", lazy_relaxation=True, max_nodes=9, improve=2.0), 300)
+    assert cfg.heuristic == "lmcut" and cfg.lazy_relaxation and cfg.max_nodes == cfg.shortcut_nodes == 300
+    assert cfg.serialization and not cfg.monotonic and cfg.improve == 0.0
+    s = state(robot="yard", x="yard", y="hall", z="yard", w="yard")
+    r = Reorderer(TOY, OBJECTS, s, LevelMap(TOY.top_level), ResourceModel(),
+                  PeepholeConfig(estimate_search=None), planner=PlannerConfig(heuristic="hmax"))
+    assert r.estimator.search.heuristic == "hmax" and r.estimator.search.max_nodes == 300
+    assert Reorderer(TOY, OBJECTS, s, LevelMap(TOY.top_level)).estimator.search.heuristic == "hadd"

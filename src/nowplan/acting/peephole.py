@@ -46,6 +46,12 @@ if TYPE_CHECKING:
 log = logging.getLogger(__name__)
 
 
+def estimate_config(planner: PlannerConfig | None, nodes: int = 300) -> PlannerConfig:
+    """The estimator's small searches: ``planner``'s heuristic and engine, ``nodes`` expansions."""
+    return replace(planner or PlannerConfig(), max_nodes=nodes, shortcut_nodes=nodes, time_limit=30.0,
+                   serialization=True, monotonic=False, weight=1.0, improve=0.0)
+
+
 @dataclass(frozen=True)
 class PeepholeConfig:
     max_combined: int = 4  # complexity limit: operators in one combined subgoal
@@ -55,12 +61,17 @@ class PeepholeConfig:
     joint_search: bool = True  # plan combined subgoals without the random-serialization shortcut
     joint_weight: float = 1.0  # A* weight for those joint plans
     max_moves: int = 0  # moves per SelectGap call (0: the square of the plan length)
-    # small searches bounded by nodes (a wall-clock bound would make runs depend on the machine)
-    estimate_search: PlannerConfig = field(
-        default_factory=lambda: PlannerConfig(
-            max_nodes=300, time_limit=30.0, serialization=True, monotonic=False, shortcut_nodes=300
-        )
-    )
+    # the small searches of the resource and effort estimates, bounded by nodes (a wall-clock
+    # bound would make runs depend on the machine).  None: the executive's planner settings (its
+    # heuristic, so the estimates are cost-aware where the domain's planner is, e.g. marsupial's
+    # LM-cut) with ``estimate_nodes``; on marsupial that made the same decisions at 1.2-2x the
+    # estimator's CPU (docs/peephole.md), so the default stays the engine's default heuristic
+    estimate_search: PlannerConfig | None = field(default_factory=lambda: estimate_config(None))
+    estimate_nodes: int = 300
+    # node budget of every search below a combined step (its joint subgoal and their refinements,
+    # each shortcut and the full search); 0: the planner's own budgets.  A combination whose
+    # refinement needs more is given up in this belief, as HPN would not have made it
+    joint_nodes: int = 2_000
 
 
 class Reorderer:
@@ -75,6 +86,7 @@ class Reorderer:
         model: ResourceModel | None = None,
         config: PeepholeConfig | None = None,
         failed: Sequence[frozenset[Any]] = (),
+        planner: PlannerConfig | None = None,
     ) -> None:
         self.domain = domain
         self.failed = failed  # combinations (sets of action keys) found unplannable in this belief
@@ -83,7 +95,8 @@ class Reorderer:
         self.model = model or resource_model(domain)
         self.config = config or PeepholeConfig()
         self.drop = static_drop(domain, belief)
-        self.estimator = Estimator(domain, objects, belief, self.model, self.config.estimate_search)
+        search = self.config.estimate_search or estimate_config(planner, self.config.estimate_nodes)
+        self.estimator = Estimator(domain, objects, belief, self.model, search)
         self.moves: list[str] = []
         self.validity_checks = 0
 
@@ -257,6 +270,10 @@ class Peephole(Mechanism):
 
     def after_push(self, ex: Executive, frame: Frame) -> None:
         frame.info["orig"] = list(range(len(frame.plan.steps)))
+        if len(ex.stack) >= 2 and ex.stack[-1] is frame:
+            under = _combination(ex.stack[-2])
+            if under is not None:
+                frame.info["under_joint"] = under  # a refinement of a combined step, at any depth
 
     def applicable(self, ex: Executive, frame: Frame) -> bool | None:
         if frame.root:
@@ -285,7 +302,8 @@ class Peephole(Mechanism):
         config = self.config
         if self._cap < config.max_combined:
             config = replace(config, max_combined=self._cap)
-        r = Reorderer(ex.domain, ex.problem.objects, ex.belief, plan.levels, config=config, failed=failed)
+        r = Reorderer(ex.domain, ex.problem.objects, ex.belief, plan.levels, config=config, failed=failed,
+                      planner=ex.strategy.planner)
         last = 0
         if r.arrangeable(ops[0]):
             ops, goals = r.select_gap(ops, goals)
@@ -314,9 +332,8 @@ class Peephole(Mechanism):
 
     def after_plan_failure(self, ex: Executive, parent: Frame, goal: Goal, result: PlanResult) -> None:
         """A combined subgoal with no plan: remember the combination until the next action."""
-        joint = parent.info.get("joint")
-        ops = parent.info.get("joint_ops")
-        if joint is None or joint != parent.i or ops is None:
+        ops = _combination(parent)
+        if ops is None:
             return
         self._failed_now(ex).append(ops)
         too_big = result.status in (PlanStatus.TIME_LIMIT, PlanStatus.NODE_LIMIT)
@@ -330,11 +347,30 @@ class Peephole(Mechanism):
     def planner_config(
         self, ex: Executive, parent: Frame, goal: Goal, config: PlannerConfig
     ) -> PlannerConfig | None:
-        """Combined subgoals are planned jointly: no random serialization of their conjuncts."""
+        """Combined subgoals are planned jointly: no random serialization of their conjuncts.
+
+        Every search below a combined step (the joint subgoal and its refinements) is bounded
+        by ``joint_nodes``: a combination whose refinement is not found within it is given up
+        in this belief (``after_plan_failure``) and the steps are refined one at a time.
+        """
         joint = parent.info.get("joint")
+        out = None
         if self.config.joint_search and joint is not None and joint == parent.i:
-            return replace(config, serialization=False, weight=self.config.joint_weight)
-        return None
+            out = replace(config, serialization=False, weight=self.config.joint_weight)
+        cap = self.config.joint_nodes
+        if cap > 0 and _combination(parent) is not None:
+            base = out or config
+            out = replace(base, max_nodes=min(base.max_nodes, cap), shortcut_nodes=min(base.shortcut_nodes, cap))
+        return out
+
+
+def _combination(frame: Frame) -> frozenset[Any] | None:
+    """The combined step ``frame`` is refining now, or the one it was pushed under (action keys)."""
+    joint = frame.info.get("joint")
+    if joint is not None and joint == frame.i and frame.info.get("joint_ops") is not None:
+        return frozenset(frame.info["joint_ops"])
+    under = frame.info.get("under_joint")
+    return frozenset(under) if under is not None else None
 
 
 def _dropped_positions(before: Sequence[Action], after: Sequence[Action]) -> list[int]:

@@ -164,13 +164,19 @@ def _check_compatible(parts: list[str]) -> None:
             )
 
 
-def parse_strategy(spec: str, **overrides: Any) -> Strategy:
-    """``"hpn+aggressive"`` -> a :class:`Strategy`; unknown names list the valid ones."""
+def parse_strategy(spec: str, *, base_planner: PlannerConfig | None = None, **overrides: Any) -> Strategy:
+    """``"hpn+aggressive"`` -> a :class:`Strategy`; unknown names list the valid ones.
+
+    ``base_planner`` (e.g. a domain's own settings, ``DomainSpec.planner``) is the planner
+    configuration the switches then modify; without it the engine's defaults.
+    """
     _load()
     parts = [p.strip() for p in spec.split("+") if p.strip()]
     if not parts:
         raise ScenarioError(f"empty strategy; valid strategies: {', '.join(strategy_names())}")
     s = Strategy(name=spec, switches=tuple(parts))
+    if base_planner is not None:
+        s = replace(s, planner=base_planner)
     for part in parts:
         sw = SWITCHES.get(part)
         if sw is None and part in PLANNED:

@@ -82,7 +82,8 @@ def main(args: argparse.Namespace) -> int:
         overrides["max_actions"] = args.max_actions
     if args.time_limit is not None:
         overrides["time_limit"] = args.time_limit
-    strategy = parse_strategy(args.strategy, **overrides)
+    base = None if args.pddl or not args.domain else get_domain(args.domain).planner
+    strategy = parse_strategy(args.strategy, base_planner=base, **overrides)
     if args.criticality == "auto" and strategy.hierarchical and not strategy.refine_flat:
         # an automatic hierarchy is ordered-monotonic, not downward refinable: fall back on failure
         strategy = replace(strategy, refine_flat=True, switches=(*strategy.switches, "refine-flat"),

@@ -30,6 +30,7 @@ from nowplan.errors import ScenarioError
 
 if TYPE_CHECKING:
     from nowplan.experiments.reproductions import Reproduction
+    from nowplan.planning.regression import PlannerConfig
 
 ENTRY_POINT_GROUP = "nowplan.domains"
 ENV_VAR = "NOWPLAN_DOMAINS"
@@ -78,6 +79,10 @@ class DomainSpec:
     # the model, when one Domain serves every scenario (a domain built per map, like marsupial's,
     # leaves it None: each Episode's problem carries its own)
     model: Domain | None = None
+    # the domain's planner settings, the base that
+    # `nowplan run`, sweeps and reproductions start from before the strategy's switches apply;
+    # None: the engine's defaults
+    planner: PlannerConfig | None = None
     source: str = ""  # where it was found: an entry point or a module (set by discovery)
 
     def scenario(self, name: str) -> ScenarioFn:

@@ -57,8 +57,9 @@ def execute(config: RunConfig) -> RunRecord:
         from nowplan.experiments.faults import apply_faults, split_scenario
 
         base, faults = split_scenario(config.scenario)  # "small?failure=0.5": a fault level
-        make = get_domain(config.domain).scenario(base)
-        strategy = parse_strategy(config.strategy, time_limit=config.time_limit)
+        spec = get_domain(config.domain)
+        make = spec.scenario(base)
+        strategy = parse_strategy(config.strategy, base_planner=spec.planner, time_limit=config.time_limit)
         episode = make(config.seed)
         apply_faults(episode, faults)
         metrics = run_episode(episode, strategy, config.seed).to_dict()

@@ -78,6 +78,7 @@ SPEC = register(
         extras={"regimes": dict(REGIMES)},
         matrix_scenario="single-2",
         reproductions=(Reproduction("002", "RCHPN vs HPN on marsupial logistics (Figs. 3 and 4)", _reproduce),),
+        planner=PLANNER,
     )
 )
 
