@@ -11,7 +11,7 @@ setup(
         Extension(
             "nowplan.planning._kernel",
             sources=["src/nowplan/planning/_kernel.c"],
-            depends=["src/nowplan/planning/_kernel_gbfs.h", "src/nowplan/planning/_kernel_lama.h",
+            depends=["src/nowplan/planning/_kernel_heap.h", "src/nowplan/planning/_kernel_gbfs.h", "src/nowplan/planning/_kernel_lama.h",
                      "src/nowplan/planning/_kernel_wastar.h"],
             optional=True,
         )

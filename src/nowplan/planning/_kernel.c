@@ -465,6 +465,7 @@ static PyObject *Kernel_applicable(Kernel *k, PyObject *state) {
     return lst;
 }
 
+#include "_kernel_heap.h"
 #include "_kernel_gbfs.h"
 #include "_kernel_lama.h"
 #include "_kernel_wastar.h"

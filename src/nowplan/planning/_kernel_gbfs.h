@@ -8,46 +8,12 @@
  */
 
 typedef struct { double h; uint64_t tick; uint32_t sid; int32_t a; } QEnt;
-typedef struct { QEnt *v; size_t n, cap; } Queue;
-
 static inline int qless(const QEnt *a, const QEnt *b) {
     if (a->h != b->h) return a->h < b->h;
     return a->tick < b->tick;
 }
 
-static int qpush(Queue *q, QEnt e) {
-    if (q->n == q->cap) {
-        size_t cap = q->cap ? 2 * q->cap : 1024;
-        QEnt *v = PyMem_Realloc(q->v, cap * sizeof(QEnt));
-        if (v == NULL) { PyErr_NoMemory(); return -1; }
-        q->v = v;
-        q->cap = cap;
-    }
-    size_t i = q->n++;
-    while (i > 0) {
-        size_t p = (i - 1) / 2;
-        if (!qless(&e, &q->v[p])) break;
-        q->v[i] = q->v[p];
-        i = p;
-    }
-    q->v[i] = e;
-    return 0;
-}
-
-static QEnt qpop(Queue *q) {
-    QEnt *h = q->v, top = h[0], last = h[--q->n];
-    size_t i = 0, m = q->n;
-    for (;;) {
-        size_t c = 2 * i + 1;
-        if (c >= m) break;
-        if (c + 1 < m && qless(&h[c + 1], &h[c])) c++;
-        if (!qless(&h[c], &last)) break;
-        h[i] = h[c];
-        i = c;
-    }
-    if (m) h[i] = last;
-    return top;
-}
+NP_HEAP(Queue, QEnt, qless, qpush, qpop)
 
 typedef struct {
     int32_t words;
@@ -209,14 +175,9 @@ static PyObject *Kernel_gbfs(Kernel *k, PyObject *args, PyObject *kwds) {
         if (!added) continue;
         if (++expanded > max_nodes) { status = ST_NODE_LIMIT; break; }
         if (PyErr_CheckSignals() < 0) goto error;
-        if (out_of_time != Py_None) {
-            PyObject *r = PyObject_CallNoArgs(out_of_time);
-            if (r == NULL) goto error;
-            int t = PyObject_IsTrue(r);
-            Py_DECREF(r);
-            if (t < 0) goto error;
-            if (t) { status = ST_TIME_LIMIT; break; }
-        }
+        int stop = asked_to_stop(out_of_time);
+        if (stop < 0) goto error;
+        if (stop) { status = ST_TIME_LIMIT; break; }
         if (goal_holds(k, cur)) {
             status = ST_SOLVED;
             if (!(plan = plan_of(&st, (uint32_t)sid))) goto error;

@@ -189,14 +189,9 @@ static PyObject *Kernel_lama(Kernel *k, PyObject *args, PyObject *kwds) {
         lm_accept(&L, L.acc + (size_t)e.sid * (size_t)(L.lwords ? L.lwords : 1), sf, ns, acc);
         if (++expanded > max_nodes) { status = ST_NODE_LIMIT; break; }
         if (PyErr_CheckSignals() < 0) goto error;
-        if (out_of_time != Py_None) {
-            PyObject *r = PyObject_CallNoArgs(out_of_time);
-            if (r == NULL) goto error;
-            int t = PyObject_IsTrue(r);
-            Py_DECREF(r);
-            if (t < 0) goto error;
-            if (t) { status = ST_TIME_LIMIT; break; }
-        }
+        int stop = asked_to_stop(out_of_time);
+        if (stop < 0) goto error;
+        if (stop) { status = ST_TIME_LIMIT; break; }
         if (goal_holds(k, cur)) {
             status = ST_SOLVED;
             if (!(plan = plan_of(&st, (uint32_t)sid))) goto error;

@@ -7,47 +7,13 @@
  */
 
 typedef struct { double f, h; uint64_t tick; uint32_t sid; } WEnt;
-typedef struct { WEnt *v; size_t n, cap; } WHeap;
-
 static inline int wless(const WEnt *a, const WEnt *b) {
     if (a->f != b->f) return a->f < b->f;
     if (a->h != b->h) return a->h < b->h;
     return a->tick < b->tick;
 }
 
-static int wpush(WHeap *q, WEnt e) {
-    if (q->n == q->cap) {
-        size_t cap = q->cap ? 2 * q->cap : 1024;
-        WEnt *v = PyMem_Realloc(q->v, cap * sizeof(WEnt));
-        if (v == NULL) { PyErr_NoMemory(); return -1; }
-        q->v = v;
-        q->cap = cap;
-    }
-    size_t i = q->n++;
-    while (i > 0) {
-        size_t p = (i - 1) / 2;
-        if (!wless(&e, &q->v[p])) break;
-        q->v[i] = q->v[p];
-        i = p;
-    }
-    q->v[i] = e;
-    return 0;
-}
-
-static WEnt wpop(WHeap *q) {
-    WEnt *h = q->v, top = h[0], last = h[--q->n];
-    size_t i = 0, m = q->n;
-    for (;;) {
-        size_t c = 2 * i + 1;
-        if (c >= m) break;
-        if (c + 1 < m && wless(&h[c + 1], &h[c])) c++;
-        if (!wless(&h[c], &last)) break;
-        h[i] = h[c];
-        i = c;
-    }
-    if (m) h[i] = last;
-    return top;
-}
+NP_HEAP(WHeap, WEnt, wless, wpush, wpop)
 
 static PyObject *Kernel_bounded_wastar(Kernel *k, PyObject *args, PyObject *kwds) {
     static char *kwlist[] = {"init", "cost", "weight", "bound", "stop", NULL};
@@ -104,14 +70,9 @@ static PyObject *Kernel_bounded_wastar(Kernel *k, PyObject *args, PyObject *kwds
             goto error;
         }
         if (PyErr_CheckSignals() < 0) goto error;
-        if (stop != Py_None) {
-            PyObject *r = PyObject_CallNoArgs(stop);
-            if (r == NULL) goto error;
-            int t = PyObject_IsTrue(r);
-            Py_DECREF(r);
-            if (t < 0) goto error;
-            if (t) break;
-        }
+        int halt = asked_to_stop(stop);
+        if (halt < 0) goto error;
+        if (halt) break;
         ns = facts_of(cur, words, sf);
         int32_t n = applicable_core(k, cur, sf, ns, succ);
         for (int32_t i = 0; i < n; i++) {
