@@ -46,7 +46,7 @@ test-all: $(STAMP) test-deps
 	$(BIN)/python -m pytest -m ''
 
 bench: $(STAMP)
-	$(BIN)/python benchmarks/classical.py --time-limit 30 --out benchmarks/results/classical
+	$(BIN)/python benchmarks/classical.py --time-limit 10 --out benchmarks/results/classical_current
 	$(BIN)/python benchmarks/logistics_hpn_fd.py --packages 8,14,20 --seeds 0,1
 	$(BIN)/python benchmarks/flat_logistics.py --time-limit 30 --seeds 0,1
 	$(BIN)/python benchmarks/summarize.py
