@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import heapq
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass
 from typing import Any
 
@@ -103,6 +103,17 @@ class GroundTask:
             c = ga.action.operator.cost
             self.fixed_cost.append(None if callable(c) else float(c))
         self._kept: dict[int, tuple[list[tuple[tuple[int, int], ...]], dict[int, list[int]]]] = {}
+        self._adders: dict[int, list[int]] | None = None
+        self.memo: dict[Hashable, object] = {}  # what explorations keep between calls (hadd_relevant)
+
+    def adders(self) -> dict[int, list[int]]:
+        """Per fact id the actions (indices into ``acts``) that add it."""
+        if self._adders is None:
+            self._adders = {}
+            for k, effs in enumerate(self.effects):
+                for e in effs:
+                    self._adders.setdefault(e, []).append(k)
+        return self._adders
 
     def kept(self, level: int) -> tuple[list[tuple[tuple[int, int], ...]], dict[int, list[int]]]:
         """Per action the (fact, twin) preconditions kept at ``level``; per fact the actions waiting for it."""
