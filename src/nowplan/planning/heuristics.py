@@ -11,6 +11,10 @@ The ground actions are cached per (domain, objects, static facts), since
 the planner is called many times on the same problem by the executive.  The
 exploration needs the belief to list its true facts and the operators to be
 groundable without generators; otherwise the planner counts unmet atoms.
+The regression search asks for its values through
+:mod:`nowplan.planning.hadd_relevant`, which explores only the facts a call
+needs and keeps them across calls; :func:`hadd_ids` is the reference it is
+tested against.
 """
 
 from __future__ import annotations
