@@ -66,6 +66,25 @@ def test_relevant_hadd_equals_the_full_exploration_along_a_walk(domain, problem,
     assert kept > 0 and dropped > 0  # the memo both carried values over and dropped stale ones
 
 
+def test_two_calls_alive_at_once_each_get_their_own_values():
+    """A call made while another is alive must not leave the shared memo wrong for the first."""
+    d = DATA / "logistics"
+    prob = load_pddl(d / "domain.pddl", d / "p03.pddl", d / "logistics.crit")
+    s1, s2 = _walk(prob, 6, random.Random(3))[::5][:2]
+    levels = LevelMap(prob.domain.top_level)
+    calls = [_Search(prob.domain, prob.objects, s, levels, PlannerConfig(), None) for s in (s1, s2)]
+    rels = [RelevantHadd(c.grounder, levels, c.drop, c.cost) for c in calls]
+    fulls = [hadd_ids(c.grounder, levels, c.drop, c.cost) for c in calls]
+    compared = 0
+    for _ in range(2):
+        for c, rel, full in zip(calls, rels, fulls):  # alternate between the two calls
+            for f in range(len(c.table.atoms)):
+                if c.table.atoms[f].predicate not in c.drop and not c.fholds(f):
+                    assert rel.get(f) == full.get(f, math.inf)
+                    compared += 1
+    assert compared > 0 and s1 != s2
+
+
 def test_regression_plans_with_the_relevant_hadd():
     """The regression search's h_add is the relevant one, and it solves a logistics problem."""
     d = DATA / "logistics"

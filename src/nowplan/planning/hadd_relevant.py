@@ -59,6 +59,7 @@ class HaddMemo:
     by_act: dict[int, set[int]] = field(default_factory=dict)
     users: dict[int, set[int]] = field(default_factory=dict)
     next_id: int = 0
+    current: object = None  # the RelevantHadd the memo was last synced for
     kept_batches: int = 0  # batches a sync kept (for tests and profiles)
     dropped_batches: int = 0
 
@@ -133,8 +134,14 @@ class RelevantHadd:
         self.true_now = frozenset(grounder.domain.facts.ids_of(grounder.belief.atoms()))
         self.cost = cost
         self.memo = _memo(task, top)
-        self.memo.sync(self.true_now, self.over)
         self.values = self.memo.values
+        self._sync()
+
+    def _sync(self) -> None:
+        """Make the memo hold for this call's belief and levels (another call may have used it since)."""
+        if self.memo.current is not self:
+            self.memo.sync(self.true_now, self.over)
+            self.memo.current = self
 
     def _pre(self, k: int) -> _Pre:
         p = self.over.get(k)
@@ -148,6 +155,7 @@ class RelevantHadd:
         """h_add of fact ``f`` (``inf`` when the relaxation does not reach it)."""
         if f in self.true_now:
             return 0.0
+        self._sync()
         v = self.values.get(f)
         if v is None:
             self._explore(f)
@@ -156,6 +164,7 @@ class RelevantHadd:
 
     def extend(self, facts: Iterable[int]) -> None:
         """Give ``facts`` their values (one batch per fact not valued yet)."""
+        self._sync()
         for f in facts:
             if f not in self.values and f not in self.true_now:
                 self._explore(f)
