@@ -91,3 +91,20 @@ def test_regression_plans_with_the_relevant_hadd():
     prob = load_pddl(d / "domain.pddl", d / "p02.pddl")
     srch = _Search(prob.domain, prob.objects, prob.init, flat_levels(), PlannerConfig(heuristic="hadd"), None)
     assert isinstance(srch.hadd, RelevantHadd)
+
+
+def test_lmcut_cuts_kept_across_new_explorations_equal_fresh_ones():
+    """The lazy relaxation keeps its LM-cut cache while only new facts are explored: same values as fresh."""
+    d = DATA / "logistics"
+    prob = load_pddl(d / "domain.pddl", d / "p03.pddl")
+    cfg = PlannerConfig(heuristic="lmcut", lazy_relaxation=True)
+    shared = _Search(prob.domain, prob.objects, prob.init, flat_levels(), cfg, None)
+    acts = [ga.action for ga in ground_task(shared.grounder, shared.drop).acts]
+    pool = sorted({e for a in acts for e in a.effects() if e.value is not False}, key=str)
+    rng = random.Random(5)
+    for _ in range(60):
+        goal = frozenset(shared.table.id(a) for a in rng.sample(pool, rng.randint(1, 4)))
+        fresh = _Search(prob.domain, prob.objects, prob.init, flat_levels(), cfg, None)
+        assert shared.relaxed is not None and fresh.relaxed is not None
+        assert shared.relaxed.estimate(goal) == fresh.relaxed.estimate(goal)
+    assert shared.relaxed.cut_hits > 0
