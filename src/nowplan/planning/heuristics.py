@@ -11,13 +11,17 @@ The ground actions are cached per (domain, objects, static facts), since
 the planner is called many times on the same problem by the executive.  The
 exploration needs the belief to list its true facts and the operators to be
 groundable without generators; otherwise the planner counts unmet atoms.
+The regression search asks for its values through
+:mod:`nowplan.planning.hadd_relevant`, which explores only the facts a call
+needs and keeps them across calls; :func:`hadd_ids` is the reference it is
+tested against.
 """
 
 from __future__ import annotations
 
 import heapq
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass
 from typing import Any
 
@@ -103,6 +107,17 @@ class GroundTask:
             c = ga.action.operator.cost
             self.fixed_cost.append(None if callable(c) else float(c))
         self._kept: dict[int, tuple[list[tuple[tuple[int, int], ...]], dict[int, list[int]]]] = {}
+        self._adders: dict[int, list[int]] | None = None
+        self.memo: dict[Hashable, object] = {}  # what explorations keep between calls (hadd_relevant)
+
+    def adders(self) -> dict[int, list[int]]:
+        """Per fact id the actions (indices into ``acts``) that add it."""
+        if self._adders is None:
+            self._adders = {}
+            for k, effs in enumerate(self.effects):
+                for e in effs:
+                    self._adders.setdefault(e, []).append(k)
+        return self._adders
 
     def kept(self, level: int) -> tuple[list[tuple[tuple[int, int], ...]], dict[int, list[int]]]:
         """Per action the (fact, twin) preconditions kept at ``level``; per fact the actions waiting for it."""

@@ -29,7 +29,8 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding import Grounder
-from nowplan.planning.heuristics import hadd_ids, relax_unsupported
+from nowplan.planning.hadd_relevant import RelevantHadd
+from nowplan.planning.heuristics import relax_unsupported
 from nowplan.planning.relaxed import LazyRelaxed, Supporter
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.subgoals import ActionFacts, NodeIndex, action_facts, regress
@@ -193,7 +194,7 @@ class _Search:
             (float(o.cost) for o in domain.operators if not callable(o.cost)), default=1.0
         )
         self.min_cost = max(self.min_cost, 0.0)
-        self.hadd: dict[int, float] | None = None  # the ground h_add table by fact id
+        self.hadd: RelevantHadd | None = None  # ground h_add by fact id, explored from the facts asked for
         self.relaxed: LazyRelaxed | None = None
         # a domain's own estimate, fn(goal, belief, holds) -> cost, passed as context.extras["heuristic"]
         self.domain_h = context.extras.get("heuristic") if context is not None else None
@@ -204,7 +205,7 @@ class _Search:
         self._no_relax = relax_unsupported(self.grounder, belief)
         self._can_relax = self._no_relax is None
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
-        self._ground_hadd: dict[int, float] | None = None
+        self._ground_hadd: RelevantHadd | None = None
         self._ctx: tuple[frozenset[int], Goal] | None = None
         self._templates: dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] = {}
         for name in (config.heuristic, config.shortcut_heuristic or config.heuristic):
@@ -229,7 +230,7 @@ class _Search:
             self.relaxed = r
         elif self._can_relax:
             if self._ground_hadd is None:
-                self._ground_hadd = hadd_ids(self.grounder, self.levels, self.drop, self.cost)
+                self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost)
             self.hadd = self._ground_hadd
         else:
             _log_fallback(self.grounder.domain.name, name, str(self._no_relax))
@@ -278,11 +279,14 @@ class _Search:
             return self.relaxed.estimate(fs)
         if self.hadd is not None:
             hv = self._hv
+            ask = [f for f in fs if f not in hv and not self.fholds(f)]
+            if ask:
+                self.hadd.extend(ask)  # one exploration for the facts new to the closure
             total = 0.0
             for f in fs:
                 x = hv.get(f)
                 if x is None:
-                    x = hv[f] = 0.0 if self.fholds(f) else self.hadd.get(f, math.inf)
+                    x = hv[f] = 0.0 if self.fholds(f) else self.hadd.get(f)
                 total += x
             return total
         unmet = sum(1 for f in fs if not self.fholds(f))

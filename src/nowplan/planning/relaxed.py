@@ -396,6 +396,7 @@ class LazyRelaxed:
     def _explore(self, f0: int, context: frozenset[int]) -> None:
         fresh: list[int] = []  # actions with a new target
         reached: list[int] = []  # facts that hold, newly seen
+        old = False  # achievers added to a fact seen before (a new context of a dependent one)
         stack = [(f0, context)]
         while stack:
             f, ctx = stack.pop()
@@ -416,6 +417,7 @@ class LazyRelaxed:
                 self._dependent.add(f)
             elif not first:
                 continue
+            old = old or not first
             for sup in self.achievers(f, ctx):
                 a = self._register(sup, f, fresh)
                 pre = self._pre[a]
@@ -425,9 +427,9 @@ class LazyRelaxed:
                         if pctx is None:
                             pctx = frozenset(pre)
                         stack.append((p, pctx))
-        self._propagate(reached, fresh)
+        self._propagate(reached, fresh, old)
 
-    def _propagate(self, reached: list[int], fresh: list[int]) -> None:
+    def _propagate(self, reached: list[int], fresh: list[int], old: bool = True) -> None:
         val = self.val
         heap: list[tuple[float, int, int, int]] = []
         tick = 0
@@ -443,7 +445,10 @@ class LazyRelaxed:
                     if v < val.get(t, math.inf):
                         heap.append((v, tick, t, a))
                         tick += 1
-        if fresh or reached:  # new achievers or facts: cached plans, cuts and closures may change
+        # Achievers of facts seen for the first time change nothing behind the facts seen
+        # before (their achievers' preconditions were all explored with them): their costs,
+        # cuts, plans and closures stand.  Achievers added to an old fact change them.
+        if old and (fresh or reached):
             self._plans.clear()
             self._cuts.clear()
             self._closures.clear()
