@@ -108,8 +108,9 @@ def run_fd(driver: Path, dom: Path, prob: Path, limit: float) -> Outcome:
         text = plan_file.read_text() if plan_file.exists() else ""
     wall = time.monotonic() - t0
     if "translate exit code: 0" not in proc.stdout:
-        lines = [ln for ln in (proc.stdout + proc.stderr).splitlines() if ln.strip()]
-        return Outcome(False, False, None, [], "FD translator failed: " + (lines[-1] if lines else "")[:120], wall)
+        out_lines = proc.stdout.split("translate exit code")[0].splitlines()
+        lines = [ln.strip() for ln in out_lines if ln.strip() and not ln.startswith(("INFO", "["))]
+        return Outcome(False, False, None, [], "FD translator failed: " + " ".join(lines[-2:])[:120], wall)
     if not text:
         return Outcome(True, False, None, [], f"FD: no plan (exit {proc.returncode})", wall)
     m = re.search(r"; cost = ([0-9.]+)", text)

@@ -188,3 +188,29 @@ def test_per_binding_compilation_is_kept_when_smaller(tmp_path: Path, capsys: py
     assert 0 < len(ops) <= 3 * 4  # per binding: at most a few variants per linked pair, not 2**8
     solve(tmp_path, RUNWAY, small, capsys)
     solve(tmp_path, RUNWAY, prob, capsys)
+
+
+def test_ipc_check_script_reports_accepted_refused_and_validated(tmp_path: Path) -> None:
+    import os
+    import subprocess
+    import sys
+
+    root = Path(__file__).resolve().parent.parent
+    good, bad = tmp_path / "pairs" / "store", tmp_path / "pairs" / "broken"
+    good.mkdir(parents=True)
+    bad.mkdir()
+    (good / "domain.pddl").write_text(STORE)
+    (good / "p01.pddl").write_text(STORE_P)
+    (bad / "domain.pddl").write_text(STORE.replace("(:action put", "(:action put :vars (?x)", 1))
+    (bad / "p01.pddl").write_text(STORE_P)
+    out = tmp_path / "table.md"
+    env = {**os.environ, "PYTHONPATH": str(root / "src")}
+    proc = subprocess.run([sys.executable, str(root / "benchmarks" / "ipc_check.py"), str(tmp_path / "pairs"),
+                           "--time-limit", "10", "--out", str(out)], capture_output=True, text=True, env=env,
+                          timeout=200)
+    assert proc.returncode == 0, proc.stderr
+    rows = {ln.split("|")[1].strip(): [c.strip() for c in ln.split("|")[1:-1]]
+            for ln in out.read_text().splitlines() if ln.startswith("| ") and not ln.startswith("| domain")}
+    assert rows["store"][2:5] == ["yes", "yes", "1"] and rows["store"][8].startswith("valid")
+    assert rows["broken"][2:4] == ["no", "no"] and "refused" in rows["broken"][-1]
+    assert out.read_text().startswith("2 pairs: accepted 1, solved 1")
