@@ -70,6 +70,9 @@ def static_value(static: frozenset[str], world: World | None) -> Callable[[adl.L
     return value
 
 
+LIFTED_ENOUGH = 16  # lifted variants of one action kept without trying the per-binding compilation
+
+
 def atom_of(lit: adl.Lit) -> Atom:
     pred, args, v = lit
     terms: tuple[Term, ...] = tuple(Var(a[1:]) if a.startswith("?") else a for a in args)
@@ -99,6 +102,15 @@ def compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: froze
             raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=d.path, line=act.line) from None
         variants = _per_binding(act, d, objs, value, derived, str(exc))
         pinned = True
+    if not pinned and world is not None and act.params and flat.conditional and len(variants) > LIFTED_ENOUGH:
+        # Many lifted variants (IPC airport-ADL: 2**k over its forall-when effects) are mostly
+        # contradicted by static facts once the parameters are bound: per binding is often far smaller.
+        try:
+            per = _per_binding(act, d, objs, value, derived, f"{where} has {len(variants)} lifted variants")
+        except UnsupportedPDDLError:
+            per = None
+        if per is not None and len(per) < len(variants):
+            variants, pinned = per, True
     type_choices: list[list[str | None]] = []
     for p in act.params:
         if pinned:  # the equalities pin the values; an (either ...) type needs no split

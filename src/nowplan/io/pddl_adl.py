@@ -271,7 +271,33 @@ def flatten_effects(e: Effect | None, objects_of: ObjectsOf, static: StaticValue
 
     if e is not None:
         walk(e, dict(sub or {}), True)
+    _unconditional_when_trivial(base, groups)
     return FlatEffects(tuple(base), tuple((c, tuple(ls)) for c, ls in groups.items()), tuple(costs))
+
+
+def _unconditional_when_trivial(base: list[Lit], groups: dict[NNF, list[Lit]]) -> None:
+    """Make unconditional the conditional effects whose condition does not matter.
+
+    ``(when p (not p))`` is the delete ``(not p)``: deleting a false atom changes
+    nothing, and an add of ``p`` by the same action still wins (deletes apply
+    first).  ``(when (not p) p)`` is the add ``p`` provided the action deletes
+    no atom of ``p``'s predicate (else the add would now win over that delete).
+    IPC domains use these idioms in every ``forall`` that clears an old value
+    (schedule's ``do-roll`` has 11 such conditions: 2**11 variants otherwise).
+    """
+    deleted = {lit[0] for lit in base if not lit[2]}
+    deleted |= {lit[0] for lits in groups.values() for lit in lits if not lit[2]}
+    for cond in list(groups):
+        if not isinstance(cond, LitNode):
+            continue
+        pred, args, value = cond.lit
+        lits = groups[cond]
+        flipped = (pred, args, not value)
+        if flipped in lits and (value or pred not in deleted):
+            lits.remove(flipped)
+            base.append(flipped)
+            if not lits:
+                del groups[cond]
 
 
 def _sub_expr(x: NExpr, sub: dict[str, str]) -> NExpr:

@@ -11,10 +11,13 @@ with a line naming them; unknown sections are errors with their line.
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass, field
 
 from nowplan.io.pddl_ast import TOTAL_COST, Effect, Formula, NExpr, Reader, TypedName
 from nowplan.io.sexpr import Item, SList, Token, parse_sexprs
+
+log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -119,7 +122,14 @@ def parse_domain(text: str, path: str) -> DomainDef:
                 if tn.name == "object":
                     continue  # object re-declared (tidybot): it is the root anyway
                 if tn.name in d.types:
-                    raise r.error(f"the type '{tn.name}' is declared twice", tn.line)
+                    # Declared again (IPC-2006 storage: `area - object` then `area - surface`): as
+                    # Fast Downward, the later parent wins unless it is only `object`.
+                    if tn.types in ((), ("object",)) or tn.types == d.types[tn.name]:
+                        continue
+                    if d.types[tn.name] not in ((), ("object",)):
+                        log.warning("%s:%d: the type '%s' is declared again with the parent %s "
+                                    "(the later parent is used)", r.path, tn.line, tn.name,
+                                    " ".join(tn.types))
                 d.types[tn.name] = tn.types
                 d.type_lines[tn.name] = tn.line
         elif head == ":constants":
@@ -225,6 +235,10 @@ def parse_problem(text: str, path: str) -> ProblemDef:
             p.metric_line = sec.line
         elif head == ":constraints":
             raise r.refuse("state-trajectory constraints (:constraints) are not supported", sec.line)
+        elif head == ":length":
+            # PDDL 1.2's hint of the plan length, (:length (:serial N) (:parallel N)), in some IPC-1998
+            # problems: it constrains nothing, so it is skipped
+            log.warning("%s:%d: (:length ...) is a hint of PDDL 1.2 and is ignored", r.path, sec.line)
         else:
             raise r.error(f"unknown section {head or sec} in the problem; expected :domain, :objects, :init, "
                           ":goal or :metric", sec.line)

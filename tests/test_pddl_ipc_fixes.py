@@ -1,0 +1,216 @@
+"""Constructs of real IPC files that the front end first refused (found by benchmarks/ipc_check.py).
+
+Each test is a small file written here that reproduces the construct of an
+IPC domain; every plan replays on the original semantics (tests/pddl_sim.py).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from nowplan.cli import main
+from nowplan.io import pddl_adl
+from nowplan.io.pddl_ast import EAnd, EForall, ELit, EWhen, FAtom, FNot, TypedName
+from nowplan.io.pddl_read import load_pddl, read_domain
+
+from pddl_sim import check_plan
+
+
+def solve(tmp_path: Path, domain: str, problem: str, capsys: pytest.CaptureFixture[str]) -> list[str]:
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    d.write_text(domain)
+    p.write_text(problem)
+    code = main(["plan", str(d), str(p), "--time-limit", "20"])
+    out = capsys.readouterr()
+    assert code == 0, out.out + out.err
+    steps = out.out.splitlines()
+    check_plan(domain, problem, steps)
+    return steps
+
+
+# IPC-2006 storage declares `area - object` and then `area crate - surface` in one (:types ...).
+STORE = """\
+(define (domain store)
+  (:requirements :typing)
+  (:types hoist surface area - object
+          spot - area
+          area crate - surface)
+  (:predicates (on ?c - crate ?s - surface) (at ?h - hoist ?a - area) (clear ?s - surface))
+  (:action put
+    :parameters (?h - hoist ?c - crate ?from - surface ?to - area)
+    :precondition (and (at ?h ?to) (on ?c ?from) (clear ?to))
+    :effect (and (on ?c ?to) (not (on ?c ?from)) (not (clear ?to)) (clear ?from))))
+"""
+
+STORE_P = """\
+(define (problem store-1) (:domain store)
+  (:objects h - hoist c - crate s1 s2 - spot)
+  (:init (at h s2) (on c s1) (clear s2))
+  (:goal (on c s2)))
+"""
+
+
+def test_type_declared_again_takes_the_later_parent(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                    caplog: pytest.LogCaptureFixture) -> None:
+    (tmp_path / "d.pddl").write_text(STORE)
+    (tmp_path / "p.pddl").write_text(STORE_P)
+    prob = load_pddl(tmp_path / "d.pddl", tmp_path / "p.pddl")
+    assert prob.domain.types["area"] == "surface" and prob.domain.types["spot"] == "area"
+    assert not any("declared again" in r.getMessage() for r in caplog.records)  # object -> surface: a refinement
+    # a spot is a surface: `put` may take a crate from one
+    assert solve(tmp_path, STORE, STORE_P, capsys) == ["(put h c s1 s2)"]
+
+
+def test_type_declared_again_with_another_parent_warns(tmp_path: Path, caplog: pytest.LogCaptureFixture) -> None:
+    dom = STORE.replace("area crate - surface)", "area crate - surface area - surface spot - hoist)")
+    (tmp_path / "d.pddl").write_text(dom)
+    types = read_domain(tmp_path / "d.pddl").types
+    assert types["area"] == "surface" and types["spot"] == "hoist"  # the later parent, as Fast Downward
+    assert any("'spot' is declared again" in r.getMessage() for r in caplog.records)
+
+
+# IPC-2000 schedule: each action clears old values with (forall (?v) (when (p ?x ?v) (not (p ?x ?v))))
+# and sets a flag with (when (not (flag)) (flag)): 11 effect conditions in do-roll.
+def schedule_like(values: int) -> tuple[str, str]:
+    dom = """\
+(define (domain paint)
+  (:requirements :typing :conditional-effects)
+  (:types part colour)
+  (:predicates (painted ?x - part ?c - colour) (busy) (done ?x - part))
+  (:action paint
+    :parameters (?x - part ?c - colour)
+    :precondition (not (busy))
+    :effect (and (busy) (done ?x)
+                 (when (not (busy)) (busy))
+                 (forall (?old - colour) (when (painted ?x ?old) (not (painted ?x ?old))))
+                 (painted ?x ?c)))
+  (:action rest
+    :parameters ()
+    :precondition (busy)
+    :effect (forall (?x - part) (when (done ?x) (not (done ?x)))))
+  (:action toggle-busy
+    :parameters ()
+    :effect (and (not (busy)) (when (not (busy)) (busy)))))
+"""
+    colours = " ".join(f"c{i}" for i in range(values))
+    prob = f"""\
+(define (problem paint-1) (:domain paint)
+  (:objects a b - part {colours} - colour)
+  (:init (painted a c0) (painted a c1) (busy))
+  (:goal (and (painted a c2) (not (painted a c0)) (not (painted a c1)) (painted b c0))))
+"""
+    return dom, prob
+
+
+def test_self_cancelling_conditions_do_not_count_against_the_bound(tmp_path: Path,
+                                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    dom, prob = schedule_like(pddl_adl.MAX_CONDITIONS + 4)  # 14 colours: 2**15 variants without the rule
+    plan = solve(tmp_path, dom, prob, capsys)
+    assert "(paint a c2)" in plan and "(paint b c0)" in plan
+    paint = [o for o in load_pddl(tmp_path / "d.pddl", tmp_path / "p.pddl").domain.operators
+             if (o.pddl_name or o.name) == "paint"]
+    assert len(paint) == 1  # one unconditional operator
+
+
+def test_toggle_keeps_its_conditional_add(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """(and (not (busy)) (when (not (busy)) (busy))) flips busy: the add must stay conditional."""
+    dom, _ = schedule_like(2)
+    prob = """\
+(define (problem paint-2) (:domain paint)
+  (:objects a - part c0 - colour)
+  (:init (busy))
+  (:goal (painted a c0)))
+"""
+    # from busy: toggle-busy makes it free (the delete), then paint; the rule must not turn the
+    # conditional add into an unconditional one (that would keep busy forever: unsolvable)
+    assert solve(tmp_path, dom, prob, capsys) == ["(toggle-busy)", "(paint a c0)"]
+
+
+def test_flatten_moves_only_self_cancelling_effects() -> None:
+    p = FAtom("p", ("?x",), 1)
+    q = FAtom("q", ("?x",), 1)
+    eff = EAnd((
+        EForall((TypedName("?y", (), 1),), EWhen(FAtom("p", ("?y",), 1), ELit(FAtom("p", ("?y",), 1), False), 1), 1),
+        EWhen(FNot(q), ELit(q, True), 1),
+        EWhen(p, ELit(q, False), 1),
+    ))
+    flat = pddl_adl.flatten_effects(eff, lambda types: ["a", "b"], lambda lit: None, "test")
+    assert ("p", ("a",), False) in flat.base and ("p", ("b",), False) in flat.base
+    # q is deleted under another condition: its conditional add stays conditional
+    assert ("q", ("?x",), True) not in flat.base
+    assert len(flat.conditional) == 2
+
+
+def test_pddl12_length_section_is_ignored(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                          caplog: pytest.LogCaptureFixture) -> None:
+    prob = STORE_P.replace("(:goal", "(:length (:serial 1) (:parallel 1))\n  (:goal")
+    assert solve(tmp_path, STORE, prob, capsys) == ["(put h c s1 s2)"]
+    assert any(":length" in r.getMessage() for r in caplog.records)
+
+
+# IPC-2004 airport-ADL: forall-when effects over all segments; lifted, 2**k variants; bound, a handful.
+RUNWAY = """\
+(define (domain runway)
+  (:requirements :typing :conditional-effects :negative-preconditions :equality)
+  (:types plane seg)
+  (:predicates (at ?a - plane ?s - seg) (link ?s1 ?s2 - seg) (shadow ?s - seg ?s2 - seg)
+               (blocked ?s - seg ?a - plane))
+  (:action move
+    :parameters (?a - plane ?s1 ?s2 - seg)
+    :precondition (and (at ?a ?s1) (link ?s1 ?s2) (not (= ?s1 ?s2)))
+    :effect (and (at ?a ?s2) (not (at ?a ?s1))
+                 (forall (?s - seg) (when (shadow ?s ?s2) (blocked ?s ?a)))
+                 (forall (?s - seg) (when (and (shadow ?s ?s1) (not (shadow ?s ?s2))) (not (blocked ?s ?a)))))))
+"""
+
+
+def runway_problem(n: int) -> str:
+    segs = " ".join(f"s{i}" for i in range(n))
+    links = " ".join(f"(link s{i} s{i + 1})" for i in range(n - 1))
+    shadows = " ".join(f"(shadow s{i} s{i + 1})" for i in range(n - 1))
+    return f"""\
+(define (problem runway-{n}) (:domain runway)
+  (:objects a - plane {segs} - seg)
+  (:init (at a s0) {links} {shadows})
+  (:goal (and (at a s{n - 1}) (blocked s{n - 2} a) (not (blocked s0 a)))))
+"""
+
+
+def test_per_binding_compilation_is_kept_when_smaller(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    prob = runway_problem(6)  # 12 lifted effect conditions: past the bound, compiled per binding anyway
+    small = runway_problem(4)  # 8 lifted conditions (81 lifted operators here); 3 linked bindings
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    d.write_text(RUNWAY)
+    p.write_text(small)
+    ops = [o for o in load_pddl(d, p).domain.operators if (o.pddl_name or o.name) == "move"]
+    assert 0 < len(ops) <= 3 * 4  # per binding: at most a few variants per linked pair, not 2**8
+    solve(tmp_path, RUNWAY, small, capsys)
+    solve(tmp_path, RUNWAY, prob, capsys)
+
+
+def test_ipc_check_script_reports_accepted_refused_and_validated(tmp_path: Path) -> None:
+    import os
+    import subprocess
+    import sys
+
+    root = Path(__file__).resolve().parent.parent
+    good, bad = tmp_path / "pairs" / "store", tmp_path / "pairs" / "broken"
+    good.mkdir(parents=True)
+    bad.mkdir()
+    (good / "domain.pddl").write_text(STORE)
+    (good / "p01.pddl").write_text(STORE_P)
+    (bad / "domain.pddl").write_text(STORE.replace("(:action put", "(:action put :vars (?x)", 1))
+    (bad / "p01.pddl").write_text(STORE_P)
+    out = tmp_path / "table.md"
+    env = {**os.environ, "PYTHONPATH": str(root / "src")}
+    proc = subprocess.run([sys.executable, str(root / "benchmarks" / "ipc_check.py"), str(tmp_path / "pairs"),
+                           "--time-limit", "10", "--out", str(out)], capture_output=True, text=True, env=env,
+                          timeout=200)
+    assert proc.returncode == 0, proc.stderr
+    rows = {ln.split("|")[1].strip(): [c.strip() for c in ln.split("|")[1:-1]]
+            for ln in out.read_text().splitlines() if ln.startswith("| ") and not ln.startswith("| domain")}
+    assert rows["store"][2:5] == ["yes", "yes", "1"] and rows["store"][8].startswith("valid")
+    assert rows["broken"][2:4] == ["no", "no"] and "refused" in rows["broken"][-1]
+    assert out.read_text().startswith("2 pairs: accepted 1, solved 1")
