@@ -354,6 +354,35 @@ def test_reproduction_summaries_pair_runs_and_average():
     assert repro_pearson([(1.0, 3.0), (2.0, 2.0), (3.0, 1.0)]) == pytest.approx(-1.0)
 
 
+def test_reproduction_verdicts_follow_issue_17_aims():
+    from nowplan.domains.marsupial.repro import _pearson_p, comparisons
+    from nowplan.experiments.verdicts import Verdict
+
+    def row(regime, dec, t):
+        return {"regime": regime, "cost_decrease_pct": dec, "se": 1.0, "paper_cost_decrease_pct": 5.0,
+                "time_increase_pct": t, "time_increase_se": 2.0, "problems": 10}
+
+    def fig4(pairs):
+        return [{"time_increase_pct": t, "cost_decrease_pct": d} for t, d in pairs]
+
+    both = "multiple origins, multiple destinations"
+    rising = fig4([(float(i), float(i) + (3.0 if i % 2 else -3.0)) for i in range(40)])
+    cs = {c.quantity.split(" (")[0]: c for c in comparisons([row(both, 8.5, 20.0)], [], rising)}
+    assert cs[f"cost decrease %, {both}"].verdict is Verdict.MET  # 8.5 >= 8
+    assert cs[f"CPU-time increase % RCHPN over HPN, {both}"].verdict is Verdict.MET  # 20 <= 25
+    assert cs["Fig. 4: Pearson r, CPU-time increase vs cost decrease"].verdict is Verdict.MET
+    falling = fig4([(float(i), -float(i)) for i in range(40)])
+    cs = {c.quantity.split(" (")[0]: c for c in comparisons([row(both, 7.9, 26.0)], [], falling)}
+    assert cs[f"cost decrease %, {both}"].verdict is Verdict.NOT_MET
+    assert cs[f"CPU-time increase % RCHPN over HPN, {both}"].verdict is Verdict.NOT_MET
+    assert cs["Fig. 4: Pearson r, CPU-time increase vs cost decrease"].verdict is Verdict.NOT_MET
+    # a positive r on too few problems to tell is not shown
+    few = fig4([(0.0, 0.0), (1.0, 2.0), (2.0, 1.0), (3.0, 3.0), (4.0, 2.0)])
+    cs = {c.quantity.split(" (")[0]: c for c in comparisons([], [], few)}
+    assert cs["Fig. 4: Pearson r, CPU-time increase vs cost decrease"].verdict is Verdict.NOT_MET
+    assert _pearson_p(0.3, 300) < 1e-6 and 0.4 < _pearson_p(0.0, 300) < 0.6 and _pearson_p(0.9, 3) != _pearson_p(0.9, 3)
+
+
 def repro_pearson(pts):
     from nowplan.domains.marsupial.repro import _pearson
 
