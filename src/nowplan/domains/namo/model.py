@@ -11,6 +11,10 @@ Fluents (all tested on the belief):
   object other than those in ``ex`` meets ``R``;
 * ``BVRelPose(o) = ε`` — object ``o``'s position is known to within ``ε``;
 * ``Localized() = ε`` — the robot's own position is known to within ``ε``;
+* ``OutOfWay(R, o)`` — as far as the robot knows, ``o``'s body (not just its
+  shadow) stays out of ``R``: a look can then shrink the shadow out of ``R``
+  (``LookClear``); once looks show the body in ``R``, no look can, and the plan
+  that relied on one is no longer applicable (replanning moves the object);
 * ``Placed(o, box)`` — an effect only: ``o`` rests as ``box`` (used by the
   conflict rule that keeps placements out of regions a plan needs clear).
 
@@ -87,6 +91,10 @@ def _t_localized(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     return b.robot_sigma <= float(value)
 
 
+def _t_out_of_way(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
+    return (not b.in_the_way(args[0], args[1])) == bool(value)
+
+
 def _t_keep(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     """A reservation, not a belief condition: it only carries its regions through regression."""
     return bool(value)
@@ -108,6 +116,7 @@ PREDICATES = {
     "Localized": Predicate("Localized", 0, rule=TOL, test=_t_localized, boolean=False),
     "Placed": Predicate("Placed", 2, test=_t_placed),
     "Keep": Predicate("Keep", 2, test=_t_keep),
+    "OutOfWay": Predicate("OutOfWay", 2, test=_t_out_of_way),
 }
 
 
@@ -204,7 +213,7 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
         Operator(
             "LookClear", (V, O, AT, R, EX, EXO, PRE, N),
             (P(atom("RobotAt", V), WHERE), P(atom("BClear", R, EXO, value=params.eps_clear), WHERE),
-             P(atom("BVRelPose", O, value=PRE), WHERE)),
+             P(atom("BVRelPose", O, value=PRE), WHERE), P(atom("OutOfWay", R, O), WHERE)),
             (atom("BClear", R, EX, value=params.eps_clear),),
             cost=_looks_cost,
             generators=(Generator("look_clear", (O, V, AT, EXO, PRE, N), gens.gen_look_clear, (R, EX)),),
