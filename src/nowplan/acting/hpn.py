@@ -25,7 +25,9 @@ from typing import Any
 from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
-from nowplan.acting.progress import Cycle, CycleDetector, belief_fingerprint, situation, stall_reason
+from nowplan.acting.progress import (
+    Cycle, CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason,
+)
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import check_belief
 from nowplan.belief.symbolic import SymbolicBelief
@@ -326,6 +328,8 @@ class Executive:
         if cyc is None:
             return None
         self.metrics.cycles = self.progress.seen
+        if self.progress.failed_cycles >= self.strategy.max_stalls:
+            return Outcome.FAILED, failed_cycles_reason(cyc, self.progress.failed_cycles, self.last_action, obs)
         return self.on_cycle(cyc, now)
 
     def on_cycle(self, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:

@@ -32,7 +32,7 @@ from nowplan.acting.deferred import resolve
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
-from nowplan.acting.progress import CycleDetector, belief_fingerprint, situation, stall_reason
+from nowplan.acting.progress import CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import check_belief
@@ -184,6 +184,8 @@ class OnlinePolicy:
         if cyc is None:
             return None
         self.metrics.cycles = progress.seen
+        if progress.failed_cycles >= self.strategy.max_stalls:
+            return Outcome.FAILED, failed_cycles_reason(cyc, progress.failed_cycles, plan[0], obs)
         self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
                         text=cyc.describe())
         if cyc.clean and progress.livelocked:

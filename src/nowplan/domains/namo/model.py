@@ -15,6 +15,10 @@ Fluents (all tested on the belief):
   shadow) stays out of ``R``: a look can then shrink the shadow out of ``R``
   (``LookClear``); once looks show the body in ``R``, no look can, and the plan
   that relied on one is no longer applicable (replanning moves the object);
+* ``Fits(o, m)`` — the manipulation ``m`` was planned for ``o`` where the robot
+  still believes it is (its estimate within ``eps_pick`` of ``m.obj_at``): a look
+  that moves the estimate further makes a plan that picks with ``m`` inapplicable,
+  so the drag is planned again for where the object is, not where it was thought;
 * ``Placed(o, box)`` — an effect only: ``o`` rests as ``box`` (used by the
   conflict rule that keeps placements out of regions a plan needs clear).
 
@@ -95,6 +99,12 @@ def _t_out_of_way(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     return (not b.in_the_way(args[0], args[1])) == bool(value)
 
 
+def _t_fits(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
+    o, m = b.objects.get(args[0]), args[1]
+    fits = o is not None and isinstance(m, Manip) and o.center.dist(m.obj_at) <= b.params.eps_pick
+    return fits == bool(value)
+
+
 def _t_keep(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     """A reservation, not a belief condition: it only carries its regions through regression."""
     return bool(value)
@@ -117,6 +127,7 @@ PREDICATES = {
     "Placed": Predicate("Placed", 2, test=_t_placed),
     "Keep": Predicate("Keep", 2, test=_t_keep),
     "OutOfWay": Predicate("OutOfWay", 2, test=_t_out_of_way),
+    "Fits": Predicate("Fits", 2, test=_t_fits),
 }
 
 
@@ -228,7 +239,7 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
         Operator(
             "Pick", (O, M, HOME, PC, HIDDEN),
             (P(atom("HandEmpty"), WHERE), P(atom("RobotAt", HOME), WHERE),
-             P(atom("BVRelPose", O, value=params.eps_pick), SEE)),
+             P(atom("BVRelPose", O, value=params.eps_pick), SEE), P(atom("Fits", O, M), WHERE)),
             (atom("Holding", O, M), atom("HandEmpty", value=False), atom("RobotAt", HOME, value=False),
              atom("RobotAt", PC), atom("Observed", HIDDEN, value=False)),
             cost=costs["pick"],
