@@ -16,7 +16,7 @@ Fluents (all tested on the belief):
   (``LookClear``); once looks show the body in ``R``, no look can, and the plan
   that relied on one is no longer applicable (replanning moves the object);
 * ``Fits(o, m)`` — the manipulation ``m`` was planned for ``o`` where the robot
-  still believes it is (its estimate within ``eps_pick`` of ``m.obj_at``): a look
+  still believes it is (its estimate within ``refit`` of ``m.obj_at``, 0.15 m): a look
   that moves the estimate further makes a plan that picks with ``m`` inapplicable,
   so the drag is planned again for where the object is, not where it was thought;
 * ``Placed(o, box)`` — an effect only: ``o`` rests as ``box`` (used by the
@@ -101,7 +101,7 @@ def _t_out_of_way(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
 
 def _t_fits(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     o, m = b.objects.get(args[0]), args[1]
-    fits = o is not None and isinstance(m, Manip) and o.center.dist(m.obj_at) <= b.params.eps_pick
+    fits = o is not None and isinstance(m, Manip) and o.center.dist(m.obj_at) <= b.params.refit
     return fits == bool(value)
 
 
