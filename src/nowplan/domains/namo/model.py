@@ -15,6 +15,9 @@ Fluents (all tested on the belief):
   shadow) stays out of ``R``: a look can then shrink the shadow out of ``R``
   (``LookClear``); once looks show the body in ``R``, no look can, and the plan
   that relied on one is no longer applicable (replanning moves the object);
+* ``Promising(v, o)`` — a look at ``o`` from ``v`` has not been found futile (the
+  object went undetected from there) since the last perceptual event: a plan
+  that looks again from there is no longer applicable once one look missed;
 * ``Fits(o, m)`` — the manipulation ``m`` was planned for ``o`` where the robot
   still believes it is (its estimate within ``refit`` of ``m.obj_at``, 0.15 m): a look
   that moves the estimate further makes a plan that picks with ``m`` inapplicable,
@@ -99,6 +102,11 @@ def _t_out_of_way(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     return (not b.in_the_way(args[0], args[1])) == bool(value)
 
 
+def _t_promising(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
+    v, o = args
+    return (b.futile_looks.get((v, o)) != b.percept) == bool(value)
+
+
 def _t_fits(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     o, m = b.objects.get(args[0]), args[1]
     fits = o is not None and isinstance(m, Manip) and o.center.dist(m.obj_at) <= b.params.refit
@@ -128,6 +136,7 @@ PREDICATES = {
     "Keep": Predicate("Keep", 2, test=_t_keep),
     "OutOfWay": Predicate("OutOfWay", 2, test=_t_out_of_way),
     "Fits": Predicate("Fits", 2, test=_t_fits),
+    "Promising": Predicate("Promising", 2, test=_t_promising),
 }
 
 
@@ -216,7 +225,8 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
         ),
         Operator(
             "LookObj", (V, O, AT, E, PRE, N),
-            (P(atom("RobotAt", V), WHERE), P(atom("BVRelPose", O, value=PRE), SEE)),
+            (P(atom("RobotAt", V), WHERE), P(atom("BVRelPose", O, value=PRE), SEE),
+             P(atom("Promising", V, O), WHERE)),
             (atom("BVRelPose", O, value=E),),
             cost=_looks_cost,
             generators=(Generator("look_obj", (V, AT, PRE, N), gens.gen_look_obj, (O, E)),),
@@ -224,7 +234,8 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
         Operator(
             "LookClear", (V, O, AT, R, EX, EXO, PRE, N),
             (P(atom("RobotAt", V), WHERE), P(atom("BClear", R, EXO, value=params.eps_clear), WHERE),
-             P(atom("BVRelPose", O, value=PRE), WHERE), P(atom("OutOfWay", R, O), WHERE)),
+             P(atom("BVRelPose", O, value=PRE), WHERE), P(atom("OutOfWay", R, O), WHERE),
+             P(atom("Promising", V, O), WHERE)),
             (atom("BClear", R, EX, value=params.eps_clear),),
             cost=_looks_cost,
             generators=(Generator("look_clear", (O, V, AT, EXO, PRE, N), gens.gen_look_clear, (R, EX)),),
