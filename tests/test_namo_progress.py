@@ -187,3 +187,51 @@ def test_loops_at_high_sensor_noise_end_at_the_goal(scenario: str, strategy: str
     m = run_episode(ep, parse_strategy(strategy, time_limit=120), seed)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.actions < 100
+
+
+# -- the executive: a loop whose every round fails ends with its reason ----------------------------
+class _DropsItBack:
+    """step1 succeeds; step2 always fails and undoes step1 (a drag stopped by a wall drops the object)."""
+
+    def __init__(self) -> None:
+        from nowplan.core.state import State
+
+        self.state = State([atom("s0")])
+
+    def execute(self, action: Action):  # type: ignore[no-untyped-def]
+        from nowplan.core.state import State
+        from nowplan.worlds.base import Observation
+
+        if action.name == "step1":
+            self.state = State([atom("s0"), atom("s1")])
+            return Observation(True, self.state)
+        self.state = State([atom("s0")])
+        return Observation(False, self.state, (), {"reason": "dropped"})
+
+
+@pytest.mark.parametrize("strategy", ["hpn", "hpn+flexible", "online"])
+def test_cycles_that_each_fail_end_failed_with_the_reason_not_by_the_budget(strategy: str) -> None:
+    from nowplan.belief.symbolic import SymbolicBelief
+    from nowplan.core.domain import Problem
+    from nowplan.core.state import State
+    from nowplan.domains.registry import Episode
+
+    from test_mechanisms import CHAIN
+
+    init = State([atom("s0")])
+    prob = Problem(CHAIN, {}, init, Goal.of([atom("s3")]))
+    m = run_episode(Episode(prob, _DropsItBack(), SymbolicBelief(init)), parse_strategy(strategy, max_stalls=10))
+    assert m.outcome is Outcome.FAILED and m.reason.startswith("no progress: 10 cycles"), m.reason
+    assert "dropped" in m.reason and m.actions <= 2 * 10 + 2
+
+
+def test_failed_cycles_are_counted_until_progress() -> None:
+    d = CycleDetector()
+    d.start("a")
+    for _ in range(3):
+        d.observe("b", succeeded=True, exogenous=False)
+        d.observe("a", succeeded=False, exogenous=False)
+    # every return after the first step closes a cycle, and each has the failure in it
+    assert d.failed_cycles == 5 and d.cycles == 0 and not d.livelocked
+    d.forget(cycles=True)
+    assert d.failed_cycles == 0

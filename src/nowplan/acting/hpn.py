@@ -105,6 +105,7 @@ class Executive:
         self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
         self.last_observation = Observation()
         self.last_action: Action | None = None
+        self.last_failed: tuple[Action, Observation] | None = None  # the last action that failed
         # refine-flat: steps (by refinement_key) whose abstract plan could not be refined; their
         # goal is planned concretely from then on (an ordered-monotonic hierarchy, e.g. an automatic
         # one, need not be downward refinable)
@@ -270,6 +271,8 @@ class Executive:
             )
         self.last_observation = obs
         self.last_action = action
+        if not obs.success:
+            self.last_failed = (action, obs)
 
     def backtrack(self, f: Frame, action: Action | None) -> None:
         """No plan refines ``f``'s current step: learn it as a nogood and re-refine one level up.
@@ -329,7 +332,7 @@ class Executive:
             return None
         self.metrics.cycles = self.progress.seen
         if self.progress.failed_cycles >= self.strategy.max_stalls:
-            return Outcome.FAILED, failed_cycles_reason(cyc, self.progress.failed_cycles, self.last_action, obs)
+            return Outcome.FAILED, failed_cycles_reason(cyc, self.progress.failed_cycles, self.last_failed)
         return self.on_cycle(cyc, now)
 
     def on_cycle(self, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:

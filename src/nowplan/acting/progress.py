@@ -157,10 +157,11 @@ def stall_reason(times: int, action: Action | None, obs: Observation) -> str:
             "and the world reports outcomes only")
 
 
-def failed_cycles_reason(cyc: Cycle, times: int, action: Action | None, obs: Observation) -> str:
-    """Why a run whose failures kept bringing it back to situations seen before was given up."""
-    what = action.pddl() if action is not None else "the last action"
-    why = obs.info.get("reason")
+def failed_cycles_reason(cyc: Cycle, times: int, failed: tuple[Action, Observation] | None) -> str:
+    """Why a run whose failures kept bringing it back to situations seen before was given up
+    (``failed``: the last action that failed, and what the world said)."""
+    what = failed[0].pddl() if failed is not None else "unknown"
+    why = failed[1].info.get("reason") if failed is not None else None
     return (f"no progress: {times} cycles since the last progress each had a failed action (the last: "
             f"{cyc.describe()}; last failure: {what}{f', {why}' if why else ''}); the failures recur in the "
             "same situations, so they are not chance: the plans made here do not account for what makes them fail")
