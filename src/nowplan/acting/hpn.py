@@ -25,7 +25,9 @@ from typing import Any
 from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
-from nowplan.acting.progress import Cycle, CycleDetector, belief_fingerprint, situation, stall_reason
+from nowplan.acting.progress import (
+    Cycle, CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason,
+)
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import check_belief
 from nowplan.belief.symbolic import SymbolicBelief
@@ -103,6 +105,7 @@ class Executive:
         self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
         self.last_observation = Observation()
         self.last_action: Action | None = None
+        self.last_failed: tuple[Action, Observation] | None = None  # the last action that failed
         # refine-flat: steps (by refinement_key) whose abstract plan could not be refined; their
         # goal is planned concretely from then on (an ordered-monotonic hierarchy, e.g. an automatic
         # one, need not be downward refinable)
@@ -268,6 +271,8 @@ class Executive:
             )
         self.last_observation = obs
         self.last_action = action
+        if not obs.success:
+            self.last_failed = (action, obs)
 
     def backtrack(self, f: Frame, action: Action | None) -> None:
         """No plan refines ``f``'s current step: learn it as a nogood and re-refine one level up.
@@ -326,6 +331,8 @@ class Executive:
         if cyc is None:
             return None
         self.metrics.cycles = self.progress.seen
+        if self.progress.failed_cycles >= self.strategy.max_stalls:
+            return Outcome.FAILED, failed_cycles_reason(cyc, self.progress.failed_cycles, self.last_failed)
         return self.on_cycle(cyc, now)
 
     def on_cycle(self, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:

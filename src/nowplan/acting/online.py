@@ -32,7 +32,7 @@ from nowplan.acting.deferred import resolve
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
-from nowplan.acting.progress import CycleDetector, belief_fingerprint, situation, stall_reason
+from nowplan.acting.progress import CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import check_belief
@@ -113,6 +113,7 @@ class OnlinePolicy:
         self.streams = belief.streams if isinstance(belief, HasStreams) else None
         self.levels = flat_levels()
         self._tail: list[Action] = []  # after a cycle: the rest of the plan committed to
+        self._last_failed: tuple[Action, Observation] | None = None  # the last action that failed
         self.planning_s = 0.0  # wall time spent planning and binding streams
         self.constrained_ok = 0
         self.constrained_tried = 0
@@ -158,6 +159,8 @@ class OnlinePolicy:
                         cost=first.cost(self.belief), n=self.metrics.actions)
         obs: Observation = self.world.execute(first)
         self.metrics.actions += 1
+        if not obs.success:
+            self._last_failed = (first, obs)
         self.metrics.action_counts[first.name] += 1
         self.metrics.execution_cost += first.cost(self.belief)
         self.belief.update(first, obs)
@@ -184,6 +187,8 @@ class OnlinePolicy:
         if cyc is None:
             return None
         self.metrics.cycles = progress.seen
+        if progress.failed_cycles >= self.strategy.max_stalls:
+            return Outcome.FAILED, failed_cycles_reason(cyc, progress.failed_cycles, self._last_failed)
         self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
                         text=cyc.describe())
         if cyc.clean and progress.livelocked:

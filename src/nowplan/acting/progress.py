@@ -33,7 +33,12 @@ A loop can also stand still: an action that fails again and again and leaves the
 situation as it was (a door the belief thinks open, in a world that reports outcomes
 only).  Retrying is right while failures are chance; ``stalled`` counts the failures in a
 row, and the executive gives up with its reason at ``Strategy.max_stalls`` (default 25: a
-chance of 0.5**25, about 3e-8, at a 50 % failure rate).
+chance of 0.5**25, about 3e-8, at a 50 % failure rate).  Likewise a loop whose every
+round has a failed action (re-grasp an object, drag it, the drag stopped by a wall, the
+same plan again) never makes a clean cycle: ``failed_cycles`` counts the cycles with a
+failure since the last progress, and the executive gives up at ``Strategy.max_stalls`` of
+them with its reason (:func:`failed_cycles_reason`) — the failures recur in the same
+situations, so they are not chance — instead of running into a budget.
 """
 
 from __future__ import annotations
@@ -92,6 +97,7 @@ class CycleDetector:
             raise ValueError("max_cycles must be >= 1")
         self.max_cycles = max_cycles
         self.cycles = 0  # cycles with no failed action (they count toward a livelock)
+        self.failed_cycles = 0  # cycles with a failed action since progress
         self.seen = 0  # every cycle
         self._t = 0
         self._last_visit: dict[Hashable, int] = {}
@@ -124,6 +130,7 @@ class CycleDetector:
         clean = self._last_failure <= prev
         self.seen += 1
         self.cycles += clean
+        self.failed_cycles += not clean
         return Cycle(self._t - prev, self.cycles, prev, self._t, clean)
 
     def forget(self, *, keep: Hashable | None = None, cycles: bool = False) -> None:
@@ -134,6 +141,7 @@ class CycleDetector:
             self._last_visit[keep] = self._t
         if cycles:
             self.cycles = 0
+            self.failed_cycles = 0
 
     @property
     def livelocked(self) -> bool:
@@ -147,6 +155,16 @@ def stall_reason(times: int, action: Action | None, obs: Observation) -> str:
     return (f"stalled: {what} failed {times} times in a row and left the belief and the plan stack as "
             f"they were{f' (last: {why})' if why else ''}; the world refuses it, or the belief is wrong "
             "and the world reports outcomes only")
+
+
+def failed_cycles_reason(cyc: Cycle, times: int, failed: tuple[Action, Observation] | None) -> str:
+    """Why a run whose failures kept bringing it back to situations seen before was given up
+    (``failed``: the last action that failed, and what the world said)."""
+    what = failed[0].pddl() if failed is not None else "unknown"
+    why = failed[1].info.get("reason") if failed is not None else None
+    return (f"no progress: {times} cycles since the last progress each had a failed action (the last: "
+            f"{cyc.describe()}; last failure: {what}{f', {why}' if why else ''}); the failures recur in the "
+            "same situations, so they are not chance: the plans made here do not account for what makes them fail")
 
 
 def situation(belief_fp: Hashable, goals: Iterable[Hashable]) -> Hashable:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import logging
 import random
+from collections.abc import Hashable
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -253,6 +254,26 @@ class KitchenBelief:
                 continue
             p = self.mode_pose(o)
             S.set_object(self.scene, o, origins[p.frame] + p.rel())
+
+    # -- the progress guard's view ------------------------------------------------------------
+    def fingerprint(self) -> Hashable:
+        """Which situation the agent is in, for the progress guard (:mod:`nowplan.acting.progress`).
+
+        Per object: the mass in each frame (to 0.05) and the most supported pose (to ``DELTA``)
+        with the mass near it (to 0.05), so that a detection that localises an object or finds it
+        absent from where it was looked for changes it, while resampling's jitter does not; the
+        robot's configuration (to 1 cm / 0.01 rad), the drawers (to 1 cm), what is held, the stove
+        and what is cooked.
+        """
+        objs = []
+        for o in self.objects:
+            pb = self.particles[o]
+            p = self.mode_pose(o)
+            objs.append((o, tuple((f, round(m / 0.05)) for f, m in pb.frame_masses().items()),
+                         p.frame, round(p.x / DELTA), round(p.y / DELTA),
+                         round(pb.mass_near(p.frame, p.rel(), DELTA / 2) / 0.05)))
+        return (tuple(round(v, 2) for v in self.conf.q), tuple(sorted((d, round(q, 2)) for d, q in self.drawers.items())),
+                self.held, self.stove_on, frozenset(self.cooked), tuple(objs))
 
     # -- updates --------------------------------------------------------------------------
     def update(self, action: Action, obs: Observation) -> None:

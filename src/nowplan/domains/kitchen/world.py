@@ -11,7 +11,7 @@ fails when the object is not within 3 cm of where the agent expected it.
 from __future__ import annotations
 
 import logging
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -19,6 +19,9 @@ from nowplan.belief.particles import SensorModel
 from nowplan.core.operators import Action
 from nowplan.domains.kitchen import scene as S
 from nowplan.worlds.base import Observation
+
+if TYPE_CHECKING:
+    from nowplan.domains.kitchen.belief import KitchenBelief
 
 log = logging.getLogger(__name__)
 
@@ -39,7 +42,34 @@ class KitchenWorld:
         self.held: str | None = None
         self.stove_on = False
         self.cooked: set[str] = set()
+        self.failure_prob = 0.0  # an action does nothing and reports failure (nowplan run --failure-prob)
+        self.failures = 0
         self.sync()
+
+    def set_faults(self, *, failure_prob: float | None = None, exogenous_prob: float | None = None) -> None:
+        """``nowplan run --failure-prob``: with this probability an action does nothing and reports
+        failure (the robot's configuration and the drawers are still reported)."""
+        if exogenous_prob:
+            raise ValueError("the kitchen world makes no exogenous changes; drop the exogenous probability")
+        if failure_prob is not None:
+            if not 0.0 <= failure_prob <= 1.0:
+                raise ValueError(f"failure_prob must be in [0, 1], got {failure_prob}")
+            self.failure_prob = failure_prob
+
+    def true_state(self) -> KitchenBelief:
+        """The kitchen as a belief with perfect knowledge, for judging the goal at the end of a run:
+        one particle per object at its true pose, the true configuration, drawers, hand and stove.
+        It shares the world's scene (the goal's fluents never move it; ``sync`` restores it)."""
+        from nowplan.belief.particles import PoseParticles
+        from nowplan.domains.kitchen.belief import Conf, KitchenBelief
+
+        b = KitchenBelief({}, seed=0, sensor=self.sensor, scene=self.scene)
+        b.objects = tuple(self.frames)
+        b.particles = {o: PoseParticles.point(self.frames[o], tuple(float(v) for v in self.rel[o]))  # type: ignore[arg-type]
+                       for o in self.frames}
+        b.conf, b.drawers, b.held = Conf(tuple(self.conf)), dict(self.drawers), self.held
+        b.stove_on, b.cooked = self.stove_on, set(self.cooked)
+        return b
 
     def world_pos(self, o: str) -> np.ndarray:
         if self.frames[o] == "hand":
@@ -101,6 +131,9 @@ class KitchenWorld:
         name = action.name
         ok, reason = True, ""
         info: dict[str, Any] = {}
+        if self.failure_prob and self.rng.random() < self.failure_prob:
+            ok, reason, name = False, "injected failure", ""  # the action does nothing
+            self.failures += 1
         if name == "move":
             self.conf = tuple(a[0].q)
         elif name in ("pull", "push"):

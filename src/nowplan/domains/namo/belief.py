@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Hashable
 from dataclasses import dataclass, field
 from functools import lru_cache
 from statistics import NormalDist
@@ -119,6 +120,14 @@ class NamoBelief:
             self._cache = {}
             self._cache_version = self.version
         return self._cache
+
+    # -- the progress guard's view ---------------------------------------------------------
+    def fingerprint(self) -> Hashable:
+        """Which situation the agent is in (the progress guard's cycle detection; see
+        :func:`nowplan.domains.namo.fingerprint.fingerprint`)."""
+        from nowplan.domains.namo.fingerprint import fingerprint
+
+        return fingerprint(self)
 
     def planning_loop(self) -> bool:
         """Has the planner asked for moves far more often than any plan needs, with nothing done since?

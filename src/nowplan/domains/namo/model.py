@@ -11,6 +11,17 @@ Fluents (all tested on the belief):
   object other than those in ``ex`` meets ``R``;
 * ``BVRelPose(o) = ε`` — object ``o``'s position is known to within ``ε``;
 * ``Localized() = ε`` — the robot's own position is known to within ``ε``;
+* ``OutOfWay(R, o)`` — as far as the robot knows, ``o``'s body (not just its
+  shadow) stays out of ``R``: a look can then shrink the shadow out of ``R``
+  (``LookClear``); once looks show the body in ``R``, no look can, and the plan
+  that relied on one is no longer applicable (replanning moves the object);
+* ``Promising(v, o)`` — a look at ``o`` from ``v`` has not been found futile (the
+  object went undetected from there) since the last perceptual event: a plan
+  that looks again from there is no longer applicable once one look missed;
+* ``Fits(o, m)`` — the manipulation ``m`` was planned for ``o`` where the robot
+  still believes it is (its estimate within ``refit`` of ``m.obj_at``, 0.15 m): a look
+  that moves the estimate further makes a plan that picks with ``m`` inapplicable,
+  so the drag is planned again for where the object is, not where it was thought;
 * ``Placed(o, box)`` — an effect only: ``o`` rests as ``box`` (used by the
   conflict rule that keeps placements out of regions a plan needs clear).
 
@@ -87,6 +98,21 @@ def _t_localized(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     return b.robot_sigma <= float(value)
 
 
+def _t_out_of_way(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
+    return (not b.in_the_way(args[0], args[1])) == bool(value)
+
+
+def _t_promising(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
+    v, o = args
+    return (b.futile_looks.get((v, o)) != b.percept) == bool(value)
+
+
+def _t_fits(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
+    o, m = b.objects.get(args[0]), args[1]
+    fits = o is not None and isinstance(m, Manip) and o.center.dist(m.obj_at) <= b.params.refit
+    return fits == bool(value)
+
+
 def _t_keep(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     """A reservation, not a belief condition: it only carries its regions through regression."""
     return bool(value)
@@ -108,6 +134,9 @@ PREDICATES = {
     "Localized": Predicate("Localized", 0, rule=TOL, test=_t_localized, boolean=False),
     "Placed": Predicate("Placed", 2, test=_t_placed),
     "Keep": Predicate("Keep", 2, test=_t_keep),
+    "OutOfWay": Predicate("OutOfWay", 2, test=_t_out_of_way),
+    "Fits": Predicate("Fits", 2, test=_t_fits),
+    "Promising": Predicate("Promising", 2, test=_t_promising),
 }
 
 
@@ -196,7 +225,8 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
         ),
         Operator(
             "LookObj", (V, O, AT, E, PRE, N),
-            (P(atom("RobotAt", V), WHERE), P(atom("BVRelPose", O, value=PRE), SEE)),
+            (P(atom("RobotAt", V), WHERE), P(atom("BVRelPose", O, value=PRE), SEE),
+             P(atom("Promising", V, O), WHERE)),
             (atom("BVRelPose", O, value=E),),
             cost=_looks_cost,
             generators=(Generator("look_obj", (V, AT, PRE, N), gens.gen_look_obj, (O, E)),),
@@ -204,7 +234,8 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
         Operator(
             "LookClear", (V, O, AT, R, EX, EXO, PRE, N),
             (P(atom("RobotAt", V), WHERE), P(atom("BClear", R, EXO, value=params.eps_clear), WHERE),
-             P(atom("BVRelPose", O, value=PRE), WHERE)),
+             P(atom("BVRelPose", O, value=PRE), WHERE), P(atom("OutOfWay", R, O), WHERE),
+             P(atom("Promising", V, O), WHERE)),
             (atom("BClear", R, EX, value=params.eps_clear),),
             cost=_looks_cost,
             generators=(Generator("look_clear", (O, V, AT, EXO, PRE, N), gens.gen_look_clear, (R, EX)),),
@@ -219,7 +250,7 @@ def build_domain(params: Params = DEFAULT_PARAMS) -> Domain:
         Operator(
             "Pick", (O, M, HOME, PC, HIDDEN),
             (P(atom("HandEmpty"), WHERE), P(atom("RobotAt", HOME), WHERE),
-             P(atom("BVRelPose", O, value=params.eps_pick), SEE)),
+             P(atom("BVRelPose", O, value=params.eps_pick), SEE), P(atom("Fits", O, M), WHERE)),
             (atom("Holding", O, M), atom("HandEmpty", value=False), atom("RobotAt", HOME, value=False),
              atom("RobotAt", PC), atom("Observed", HIDDEN, value=False)),
             cost=costs["pick"],

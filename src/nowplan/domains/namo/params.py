@@ -45,6 +45,7 @@ class Params:
     eps_pick: float = 0.06  # BVRelPose needed before picking (m)
     eps_loc: float = 0.2  # robot localisation needed before a base move (m)
     at_tol: float = 0.15  # RobotAt tolerance (m)
+    refit: float = 0.15  # Fits: a manipulation is planned again once the object's estimate moved this far (m)
     fog_observed_slack: int = 3  # Observed: this many visible fog cells are tolerated
     connectivity: bool = True  # placements keep the robot connected to where it started (Fig. 8)
     taboo_cost: float = 50.0

@@ -119,7 +119,8 @@ def episode(spec: ScenarioSpec, seed: int) -> Episode:
     for name, p in geom.landmarks:
         if geom.wall_mask[geom.grid.cell(p)]:
             raise ScenarioError(f"scenario '{spec.name}': landmarks.{name}: {p} lies inside a wall")
-    world = NamoWorld(geom, start, objects, sensor=spec.sensor, noise=spec.noise, seed=rng.randrange(2**31))
+    world = NamoWorld(geom, start, objects, sensor=spec.sensor, noise=spec.noise, seed=rng.randrange(2**31),
+                      params=spec.params)
     belief = initial_belief(spec, geom, objects)
 
     def estimate(name: str) -> Pt | None:

@@ -17,18 +17,22 @@ import logging
 import math
 import random
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from nowplan.core.operators import Action
 from nowplan.domains.namo.geometry import Box, Manip, MapGeometry, Pt, Region, shapely
-from nowplan.domains.namo.params import DEFAULT_NOISE, DEFAULT_SENSOR, Noise, Sensor
+from nowplan.domains.namo.params import DEFAULT_NOISE, DEFAULT_PARAMS, DEFAULT_SENSOR, Noise, Params, Sensor
 from nowplan.worlds.base import Observation
+
+if TYPE_CHECKING:
+    from nowplan.domains.namo.belief import NamoBelief
 
 log = logging.getLogger(__name__)
 
+NUDGE = 0.25  # an exogenous change moves an object by up to this much (m)
 STEP = 0.05  # collision checking resolution along paths (m)
 GRAZE = 0.03  # contacts shallower than this are tolerated (m)
 
@@ -50,8 +54,12 @@ class NamoWorld:
         sensor: Sensor = DEFAULT_SENSOR,
         noise: Noise = DEFAULT_NOISE,
         seed: int = 0,
+        params: Params = DEFAULT_PARAMS,
+        exogenous_prob: float = 0.0,
     ) -> None:
         self.geom = geom
+        self.params = params  # the tolerances the goal is judged with in the world (true_state)
+        self.exogenous_prob = exogenous_prob  # after an action, somebody nudges an object
         self.sensor = sensor
         self.noise = noise
         self.rng = random.Random(seed)
@@ -77,6 +85,56 @@ class NamoWorld:
     @property
     def pose(self) -> Pt:
         return Pt.of(self.robot[0], self.robot[1])
+
+    def true_state(self) -> NamoBelief:
+        """The world as a belief with perfect knowledge (for judging the goal at the end of a run).
+
+        The robot's pose and every object's box exactly (no variance), what is held, and every
+        cell observed; the domain's predicates test it with the agent's tolerances (``params``).
+        A held object's grasp (the ``Manip``) is not the world's to know: ``Holding`` is false on it.
+        """
+        from nowplan.domains.namo.belief import NamoBelief, ObjectEstimate
+
+        b = NamoBelief(self.geom, self.robot.copy(), robot_var=0.0, params=self.params, sensor=self.sensor,
+                       observed=np.ones(self.geom.grid.n, dtype=bool))
+        for name, box in sorted(self.objects.items()):
+            b.objects[name] = ObjectEstimate(name, np.array([box.cx, box.cy]), np.zeros((2, 2)), (box.w, box.h), 0)
+        b.held = self.held
+        return b
+
+    # -- faults ----------------------------------------------------------------------
+    def set_faults(self, *, failure_prob: float | None = None, exogenous_prob: float | None = None) -> None:
+        """``nowplan run --failure-prob/--exogenous-prob``.
+
+        A failure is the domain's own: a motion (a move, the drive of a pick or a drag) that stops
+        short, at 30-80 % of its length, or a grasp that misses (``noise.move_fail`` and
+        ``noise.grasp_fail``, both set to ``failure_prob``).  An exogenous change: after an action,
+        with probability ``exogenous_prob``, an object lying in the world (not held, not touching
+        the robot) is pushed by up to ``NUDGE`` metres to where it fits.
+        """
+        for name, p in (("failure_prob", failure_prob), ("exogenous_prob", exogenous_prob)):
+            if p is not None and not 0.0 <= p <= 1.0:
+                raise ValueError(f"{name} must be in [0, 1], got {p}")
+        if failure_prob is not None:
+            self.noise = replace(self.noise, move_fail=failure_prob, grasp_fail=failure_prob)
+        if exogenous_prob is not None:
+            self.exogenous_prob = exogenous_prob
+
+    def _nudge(self) -> list[str]:
+        """An exogenous change: somebody pushes an object (if one can move without touching anything)."""
+        names = [n for n in sorted(self.objects) if n != self.held]
+        if not names:
+            return []
+        name = self.rng.choice(names)
+        box = self.objects[name]
+        a, r = self.rng.uniform(0.0, 2 * math.pi), self.rng.uniform(0.5 * NUDGE, NUDGE)
+        moved = box.moved(Pt.of(box.cx + r * math.cos(a), box.cy + r * math.sin(a)))
+        near = self.geom.robot_radius + 0.1
+        if (self.box_hits(moved, name) is not None or moved.distance_to_segment(self.pose, self.pose) < near
+                or box.distance_to_segment(self.pose, self.pose) < near):
+            return []
+        self.objects[name] = moved
+        return [f"{name} pushed from {box.center} to {moved.center}"]
 
     def _obstacles(self, ignore: str | None) -> list[tuple[str, Any]]:
         sh = shapely()
@@ -256,6 +314,8 @@ class NamoWorld:
             raise ExecutionError(f"the NAMO world cannot execute {action}")
         self._hit_at = None
         ok, data, reason = handler(*action.args)
+        if self.exogenous_prob and self.rng.random() < self.exogenous_prob:
+            exo.extend(self._nudge())
         if self._hit_at is not None and reason.endswith("by wall"):  # the bumper felt where
             data["bump"] = (self._hit_at[0] - self.robot[0], self._hit_at[1] - self.robot[1])
         near = self.sense(None, 2 * math.pi, self.sensor.near_range)
