@@ -25,6 +25,14 @@ typedef struct {
     size_t mask;
 } Store;
 
+static void store_free(Store *st) {
+    PyMem_Free(st->bits);
+    PyMem_Free(st->hash);
+    PyMem_Free(st->parent);
+    PyMem_Free(st->action);
+    PyMem_Free(st->slot);
+}
+
 static uint64_t hash_bits(const uint64_t *b, int32_t words) {
     uint64_t h = 0x9E3779B97F4A7C15ull;
     for (int32_t w = 0; w < words; w++) {
@@ -204,10 +212,6 @@ error:
     PyMem_Free(x.prefmark);
     PyMem_Free(x.reg.v);
     PyMem_Free(x.prf.v);
-    PyMem_Free(st.bits);
-    PyMem_Free(st.hash);
-    PyMem_Free(st.parent);
-    PyMem_Free(st.action);
-    PyMem_Free(st.slot);
+    store_free(&st);
     return result;
 }

@@ -218,10 +218,6 @@ error:
     PyMem_Free(x.succ);
     PyMem_Free(x.prefmark);
     for (int i = 0; i < 4; i++) PyMem_Free(x.q[i].v);
-    PyMem_Free(st.bits);
-    PyMem_Free(st.hash);
-    PyMem_Free(st.parent);
-    PyMem_Free(st.action);
-    PyMem_Free(st.slot);
+    store_free(&st);
     return result;
 }

@@ -113,10 +113,6 @@ error:
     PyMem_Free(cost);
     PyMem_Free(bestg);
     PyMem_Free(open.v);
-    PyMem_Free(st.bits);
-    PyMem_Free(st.hash);
-    PyMem_Free(st.parent);
-    PyMem_Free(st.action);
-    PyMem_Free(st.slot);
+    store_free(&st);
     return result;
 }
