@@ -404,3 +404,16 @@ def test_an_irreversible_step_really_loses_its_atom_for_ever(prob: Problem) -> N
         for name, t in _successors(prob, s):
             if name == found.action.name:
                 assert all(found.atom.predicate not in u for u in _reachable(prob, t))
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_refine_flat_survives_failing_actions(seed: int, capsys: pytest.CaptureFixture[str]) -> None:
+    """A failed action is news, not a cycle: refine-flat used to count the unchanged state after
+    each failure as a revisit and to plan marsupial flat after a failed refinement (no flat plan
+    within the node limit: 0 of 9 in the fault benchmark); it now backtracks like hpn."""
+    import json
+
+    assert main(["run", "--domain", "marsupial", "--scenario", "single-3", "--strategy", "hpn+refine-flat",
+                 "--seed", str(seed), "--failure-prob", "0.25", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["outcome"] == "reached", doc.get("reason")

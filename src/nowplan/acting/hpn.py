@@ -371,6 +371,12 @@ class Executive:
         (refinements that succeed but undo each other); plan the current root goal concretely."""
         if not isinstance(self.belief, SymbolicBelief) or not self.stack or not self.stack[0].root:
             return
+        obs = self.last_observation
+        if not obs.success or obs.exogenous:
+            # a failed action or the world's own change is news: states seen before it were
+            # left for a reason the plans did not know, so revisiting them is no cycle
+            self._visits.clear()
+            return
         state = frozenset(self.belief.atoms())
         self._visits[state] += 1
         root = self.stack[0]
@@ -457,20 +463,10 @@ class Executive:
                     if consecutive_failures > 3 * self.strategy.max_depth:
                         outcome, reason = Outcome.FAILED, f"repeated planning failures ({self._last_failure})"
                         break
-                    if self.strategy.refine_flat and len(self.stack) >= 2:
-                        # f's abstract plan has a step no more concrete plan achieves: plan f's
-                        # goal concretely when its parent's step is refined again
-                        parent_key = self.refinement_key(self.stack[-2])
-                        if parent_key not in self._flat_steps:
-                            self._flat_steps.add(parent_key)
-                            self.trace.emit(
-                                "note", plan_id=f.plan_id,
-                                text="executive: refine-flat: abstract plan not refinable "
-                                     f"({self._last_failure}); its goal is planned concretely next",
-                            )
-                        self.pop("failed")  # the refined step cannot be achieved from here
-                    else:
-                        self.backtrack(f, action)  # the refined step cannot be achieved from here
+                    # the refined step cannot be achieved from here: learn it and re-refine one
+                    # level up; with refine-flat, a root left with no abstract plan, or plans that
+                    # cycle (_check_cycle), plan the goal concretely
+                    self.backtrack(f, action)
                     continue
                 consecutive_failures = 0
                 self.push(new, f)
