@@ -105,3 +105,15 @@ def test_a_strategys_planner_switch_applies_over_the_base_planner():
     s = parse_strategy("hpn+noshortcuts", base_planner=PLANNER)
     assert s.planner.heuristic == PLANNER.heuristic and s.planner.clock == "cpu"
     assert not s.planner.serialization and not s.planner.monotonic
+
+
+def test_run_max_nodes_reaches_every_planner_call(capsys):
+    """--max-nodes is each planner call's expansion budget: too small a budget fails with a hint."""
+    argv = ["run", "--domain", "logistics", "--scenario", "tiny", "--strategy", "flat", "--json"]
+    assert main([*argv, "--max-nodes", "1"]) == 1
+    out = json.loads(capsys.readouterr().out)
+    assert "node_limit" in out["reason"]
+    assert main([*argv, "--max-nodes", "100000"]) == 0
+    capsys.readouterr()
+    assert main(argv[:-1] + ["--max-nodes", "1"]) == 1
+    assert "raise them with --max-nodes N" in capsys.readouterr().out

@@ -10,7 +10,9 @@ from typing import Any
 
 from nowplan.acting.run import run_episode
 from nowplan.acting.strategy import parse_strategy, strategy_names
-from nowplan.commands.common import criticality_arg, existing_file, nonneg_int, positive_float, probability
+from nowplan.commands.common import (
+    criticality_arg, existing_file, nonneg_int, positive_float, positive_int, probability,
+)
 from nowplan.domains.registry import Episode, get_domain
 from nowplan.errors import UsageError
 from nowplan.trace import Trace
@@ -42,6 +44,9 @@ def register(sub: Any) -> None:
     p.add_argument("--exogenous-prob", type=probability, help="probability of an exogenous change after an action")
     p.add_argument("--max-actions", type=nonneg_int, help="action budget")
     p.add_argument("--time-limit", type=positive_float, help="wall-clock budget for the whole run (s)")
+    p.add_argument("--max-nodes", type=positive_int, metavar="N",
+                   help="node expansions allowed to each planner call (default: the domain's planner, "
+                        "else 50000); raise it when a run fails with 'expanded N nodes without a plan'")
     p.add_argument("--trace", type=Path, help="write the JSONL trace here")
     p.add_argument(
         "--frames", type=nonneg_int, nargs="?", const=1, default=0, metavar="EVERY",
@@ -84,6 +89,8 @@ def main(args: argparse.Namespace) -> int:
         overrides["time_limit"] = args.time_limit
     base = None if args.pddl or not args.domain else get_domain(args.domain).planner
     strategy = parse_strategy(args.strategy, base_planner=base, **overrides)
+    if args.max_nodes is not None:
+        strategy = replace(strategy, planner=replace(strategy.planner, max_nodes=args.max_nodes))
     if args.criticality == "auto" and strategy.hierarchical and not strategy.refine_flat:
         # an automatic hierarchy is ordered-monotonic, not downward refinable: fall back on failure
         strategy = replace(strategy, refine_flat=True, switches=(*strategy.switches, "refine-flat"),
@@ -124,6 +131,8 @@ def main(args: argparse.Namespace) -> int:
             print(render_text(trace.events))
             print()
         print(metrics.summary())
+        if "node_limit" in metrics.reason:
+            print("hint: a planner call ran out of node expansions; raise them with --max-nodes N")
         if args.trace:
             print(f"trace: {args.trace}")
     return 0 if metrics.outcome.value == "reached" else 1
