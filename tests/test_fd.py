@@ -67,6 +67,14 @@ def test_fd_reports_unsolvable(tmp_path: Path) -> None:
     assert result.status.value == "unsolvable"
 
 
+def test_fd_counts_the_readers_time_against_the_limit() -> None:
+    """A limit smaller than unified-planning's reading time ends the call as a time limit, not a hang."""
+    log = DATA / "logistics"
+    prob = load_pddl(log / "domain.pddl", log / "p03.pddl")
+    result = solve_fd(prob, time_limit=1e-6)
+    assert result.status.value == "time_limit" and "read the problem" in result.reason
+
+
 def test_plan_from_actions_rejects_non_plans() -> None:
     bw = DATA / "blocksworld"
     prob = load_pddl(bw / "domain.pddl", bw / "p01.pddl")

@@ -111,8 +111,14 @@ def solve_fd(
         out = Path(keep_dir) if keep_dir is not None else Path(tmp)
         dom_path, prob_path = write_pddl(problem, out, level)
         up_problem = PDDLReader().parse_problem(str(dom_path), str(prob_path))
+        # the reader cannot be interrupted: its time counts against the limit, and the planner gets the rest
+        left = time_limit - (time.perf_counter() - t0)
+        if left <= 0:
+            return PlanResult(PlanStatus.TIME_LIMIT, None,
+                              f"time limit of {time_limit:g} s reached while unified-planning read the problem",
+                              cpu_time_s=time.process_time() - t_cpu, method="fast-downward")
         with shortcuts.OneshotPlanner(name="fast-downward") as planner:
-            res = planner.solve(up_problem, timeout=time_limit)
+            res = planner.solve(up_problem, timeout=left)
     wall = time.perf_counter() - t0
     status = _status(res.status)
     common: dict[str, Any] = {"cpu_time_s": time.process_time() - t_cpu, "method": "fast-downward"}
