@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 pytest.importorskip("shapely")
 
@@ -166,3 +168,41 @@ def test_params_from_a_scenario_file_turn_pricing_off():
     with pytest.raises(NowplanError, match="fog_prior_area"):
         parse({"name": "x", "size": [4, 3], "start": [0.5, 1.5], "goal": [3.5, 1.5],
                "params": {"fog_prior_area": "lots"}})
+
+
+@pytest.mark.timeout(120, method="thread")
+@settings(max_examples=40, deadline=None, suppress_health_check=list(HealthCheck))
+@given(
+    seen_x=st.floats(0.5, 7.5),
+    objects=st.integers(0, 4),
+    ax=st.floats(0.4, 7.6), ay=st.floats(0.4, 3.6), bx=st.floats(0.4, 7.6), by=st.floats(0.4, 3.6),
+)
+def test_fog_price_bounds_every_move_and_every_tree(seen_x, objects, ax, ay, bx, by):
+    """A move costs its length, plus at most the fog price per metre, never less; trees likewise."""
+    b = _belief()
+    _observe_left(b, seen_x)
+    for i in range(objects):  # objects seen in the observed part (out of the way: at the map's bottom edge)
+        b._detect(f"o{i}", min(seen_x, 0.6 + 0.5 * i) - b.pose.x, 0.3 - b.pose.y, 0.01, (0.2, 0.2))
+    rho = fog_price(b).per_metre
+    assert rho == pytest.approx(fog_price(b).density * fog_price(b).width * b.params.clear_cost)
+    a, c = Pt(ax, ay), Pt(bx, by)
+    pp = PathPlanner.of(b, False)
+    free = PathPlanner.of(_with_free_fog(b), False)
+    cost, length = pp.segment_cost(a, c), a.dist(c)
+    if free.segment_cost(a, c) == pytest.approx(length):  # (no object in the way)
+        assert length - 1e-9 <= cost <= length * (1 + rho) + 1e-9
+    g = b.geom.grid
+    priced, _ = pp.tree(a)
+    unpriced, _ = free.tree(a)
+    k = g.cell(c)
+    if math.isfinite(unpriced[k]):
+        assert unpriced[k] - 1e-9 <= priced[k] <= unpriced[k] * (1 + rho) + 1e-9
+
+
+def _with_free_fog(b: NamoBelief) -> NamoBelief:
+    import copy
+
+    free = copy.deepcopy(b)
+    free.params = Params(fog_pricing=False)
+    free._bump()
+    return free
