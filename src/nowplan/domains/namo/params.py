@@ -48,10 +48,16 @@ class Params:
     refit: float = 0.15  # Fits: a manipulation is planned again once the object's estimate moved this far (m)
     fog_observed_slack: int = 3  # Observed: this many visible fog cells are tolerated
     connectivity: bool = True  # placements keep the robot connected to where it started (Fig. 8)
-    taboo_cost: float = 50.0
-    fog_place_cost: float = 4.0  # placement penalty for putting an object down partly in fog  # foresight: placement penalty for meeting a region a plan needs clear
+    taboo_cost: float = 50.0  # foresight: placement penalty for meeting a region a plan needs clear
+    fog_place_cost: float = 4.0  # placement penalty for putting an object down partly in fog
     motion_model: float = 0.01  # the agent's model of its odometry noise per metre
     reconsider_gain: float = 1.0  # selective: replan when a path this much shorter exists (m)
+    # fog is priced by its expected clearance cost (fogcost.py): a Gamma prior on the density of
+    # objects in free space (this many objects in this many m^2), updated by what the robot observed
+    fog_pricing: bool = True
+    fog_prior_objects: float = 1.0
+    fog_prior_area: float = 10.0  # m^2
+    fog_prior_width: float = 0.5  # m: the mean object width assumed before any object is seen
 
     @property
     def k_clear(self) -> float:

@@ -2,8 +2,8 @@
 
 The robot is a disc; walls (grown by its radius) are impassable.  Known
 movable objects are passable at a cost (``clear_cost``, paid once on
-entering the object's grown footprint: moving it out of the way); fog is
-assumed free.  Around each object lies its *epsilon-shadow* (the footprint
+entering the object's grown footprint: moving it out of the way); fog
+costs its expected clearance cost per metre (below).  Around each object lies its *epsilon-shadow* (the footprint
 grown by ``k·σ``, where ``BClear`` fails): without foresight entering it
 costs a look (``look_cost``: one more look will probably show the way is
 clear); with foresight it costs the expected price of finding the object
@@ -12,6 +12,13 @@ width (seed 000, footnote 2), so paths keep away from uncertain objects.
 
 Penalties are paid per region *entered*, so each cell carries a bit mask
 of the regions covering it and an edge pays for the bits it gains.
+
+Fog is not free: every metre run through it costs its expected clearance
+cost under the belief (:mod:`.fogcost`: the posterior density of objects
+times the width a path sweeps times ``clear_cost``), on top of its length,
+in the Dijkstra trees and in the exact costs of straight moves alike, so a
+route past a known obstacle and a route through unseen space are compared
+in the same currency.
 """
 
 from __future__ import annotations
@@ -24,6 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from nowplan.domains.namo.belief import NamoBelief, k_of
+from nowplan.domains.namo.fogcost import fog_fraction, fog_price
 from nowplan.domains.namo.geometry import Box, Grid, Pt, Region
 
 SQRT2 = math.sqrt(2.0)
@@ -37,10 +45,19 @@ def dijkstra(
     masks: Sequence[int] | None = None,
     penalties: Sequence[float] | None = None,
     target: int | None = None,
+    per_metre: Sequence[float] | np.ndarray | None = None,
 ) -> tuple[list[float], list[int]]:
-    """Single-source shortest paths over 8-connected free cells (no corner cutting)."""
+    """Single-source shortest paths over 8-connected free cells (no corner cutting).
+
+    An edge costs its length, times ``1 + per_metre[u]/2 + per_metre[v]/2``
+    when per-metre cell costs are given (half of the edge lies in each
+    cell), plus the penalties of the regions it enters.
+    """
     nx, ny, res = grid.nx, grid.ny, grid.res
     free = passable.tolist() if isinstance(passable, np.ndarray) else list(passable)
+    extra = None
+    if per_metre is not None:
+        extra = (per_metre / 2.0).tolist() if isinstance(per_metre, np.ndarray) else [x / 2.0 for x in per_metre]
     n = nx * ny
     dist = [INF] * n
     parent = [-1] * n
@@ -84,7 +101,7 @@ def dijkstra(
                 step = diag
             else:
                 step = res
-            nd = d + step
+            nd = d + (step if extra is None else step * (1.0 + extra[u] + extra[v]))
             if masks is not None:
                 mv = masks[v]
                 gain = mv & ~mu
@@ -131,6 +148,8 @@ class CostMap:
     labels: list[str]  # what each bit stands for, e.g. "box1" or "box1~shadow"
     radius: float = 0.25
     objects: list[tuple[Box, float, int, int]] = field(default_factory=list)
+    fog_cost: float = 0.0  # expected clearance cost per metre of fog (fogcost.fog_price)
+    per_metre: np.ndarray | None = None  # per cell: fog_cost in fog, 0 in observed space (None: all 0)
 
 
 def build_costmap(belief: NamoBelief, foresight: bool, stuck_impassable: bool = True) -> CostMap:
@@ -169,7 +188,9 @@ def build_costmap(belief: NamoBelief, foresight: bool, stuck_impassable: bool = 
             labels.append(o.name + "~shadow")
             for c in np.nonzero(ring)[0].tolist():
                 masks[c] |= bit
-    return CostMap(g, passable, masks, penalties, labels, r, objects)
+    fog_cost = fog_price(belief).per_metre
+    per_metre = np.where(belief.observed, 0.0, fog_cost) if fog_cost > 0 else None
+    return CostMap(g, passable, masks, penalties, labels, r, objects, fog_cost, per_metre)
 
 
 class PathPlanner:
@@ -235,7 +256,7 @@ class PathPlanner:
                         escape &= np.hypot(dx, dy) > here + 0.05
                 escape[s] = True
                 passable = passable | escape
-            t = dijkstra(self.cm.grid, passable, s, self.cm.masks, self.cm.penalties)
+            t = dijkstra(self.cm.grid, passable, s, self.cm.masks, self.cm.penalties, per_metre=self.cm.per_metre)
             self._trees[s] = t
         return t
 
@@ -325,11 +346,14 @@ class PathPlanner:
         grid cells the segment crosses: a cell-sized over-approximation would
         charge a move that passes an object 0.3 m away for clearing it (and
         make the shorter-path trigger re-route around objects just placed
-        beside the path).
+        beside the path).  The part of the move that runs through fog (the
+        fraction of the cells it crosses that are fog) costs the fog's
+        expected clearance cost per metre as well.
         """
         ks = self.cm.grid.line_cells(a, b)
         if not self.cm.passable[ks].all():
             return INF
+        fog = self.cm.fog_cost * a.dist(b) * fog_fraction(self.belief, ks) if self.cm.fog_cost > 0 else 0.0
         r = self.cm.radius
         swept = Region(a, b, r)  # the volume BClear tests: swept after leaving a
         pen = 0.0
@@ -341,7 +365,7 @@ class PathPlanner:
                 pen += self.cm.penalties[core.bit_length() - 1]
             if shadow and not inside and box.distance_to_segment(a, a) >= r + width:
                 pen += self.cm.penalties[shadow.bit_length() - 1]
-        return a.dist(b) + pen
+        return a.dist(b) + fog + pen
 
     def polyline_cost(self, pts: Sequence[Pt]) -> float:
         return sum(self.segment_cost(pts[i], pts[i + 1]) for i in range(len(pts) - 1))

@@ -9,7 +9,8 @@ perceptual event (the belief's ``percept`` counter):
    objects were detected that overlap any paths");
 2. *shorter path*: plan a path from the start of the moves still ahead to
    the plan's destination in the current belief (known obstacles at their
-   clearing cost, known free space, shadows); if it is cheaper than the
+   clearing cost, known free space, shadows, and fog at its expected
+   clearance cost: :mod:`.fogcost`); if it is cheaper than the
    moves still ahead, re-costed in the same belief, by more than
    ``reconsider_gain`` metres (the paper's "one meter"), or the old path has
    become impossible, replan symbolically.  Stage 2 also runs after any other
