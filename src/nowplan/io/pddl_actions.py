@@ -41,15 +41,15 @@ class World:
     path: str = ""  # the problem file (function values come from its :init)
 
 
-class _NeedsObjects(Exception):
+class NeedsObjects(Exception):
     pass
 
 
 def objects_of(checker: Checker, world: World | None) -> Callable[[tuple[str, ...]], list[str]]:
-    """The objects (and constants) fitting some types; raises _NeedsObjects without a problem."""
+    """The objects (and constants) fitting some types; raises NeedsObjects without a problem."""
     def objects_of(types: tuple[str, ...]) -> list[str]:
         if world is None:
-            raise _NeedsObjects()
+            raise NeedsObjects()
         return sorted(o for o, t in world.objects.items() if checker.is_a(t, types))
 
     return objects_of
@@ -88,7 +88,7 @@ def compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: froze
     try:
         pre = adl.to_nnf(act.precondition or TRUE, {}, objs, value, derived=derived)
         flat = adl.flatten_effects(act.effect, objs, value, where, derived)
-    except _NeedsObjects:
+    except NeedsObjects:
         raise UnsupportedPDDLError(f"{where} quantifies over objects; quantifiers are compiled over a problem's "
                                    "objects: read the domain together with a problem (load_pddl)",
                                    path=d.path, line=act.line) from None

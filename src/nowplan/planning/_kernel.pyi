@@ -23,6 +23,10 @@ class Kernel:
         by_pre: Sequence[Sequence[int]],
         no_pre: Sequence[int],
         kind: str,
+        nactions: int = -1,
+        axioms: tuple[
+            Sequence[Sequence[int]], Sequence[int], Sequence[tuple[int, int]], Sequence[Sequence[int]], Sequence[int]
+        ] | None = None,
     ) -> None: ...
     @property
     def evaluations(self) -> int: ...

@@ -36,6 +36,7 @@ from nowplan.core.atoms import Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
+from nowplan.planning.axioms import evaluator
 from nowplan.planning.hff import CostType, Kind, RelaxedHeuristic
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.postprocess import eliminate_actions
@@ -128,7 +129,13 @@ def _goal_reached(task: Task, state: frozenset[int]) -> bool:
 
 
 def _apply(task: Task, state: frozenset[int], a: int) -> frozenset[int]:
-    return state.difference(task.dele[a]).union(task.add[a])
+    """The successor of ``state`` by action ``a`` (its derived facts recomputed when the task has axioms)."""
+    nxt = state.difference(task.dele[a]).union(task.add[a])
+    if task.axioms:
+        ev = evaluator(task)
+        assert ev is not None
+        return ev.evaluate(nxt)
+    return nxt
 
 
 def _path(task: Task, parent: Mapping[frozenset[int], tuple[frozenset[int], int] | None],
@@ -281,9 +288,36 @@ def regress_actions(
     from nowplan.planning.regression import regress_through, static_drop
 
     goals, failed = regress_through(goal, actions, levels, domain, static_drop(domain, belief))
-    if failed is not None or not domain.satisfies(belief, goals[0]):
+    if failed is not None:
+        return None
+    if domain.axioms:
+        goals = _trim_derived(domain, goal, actions, levels, goals)
+    if not domain.satisfies(belief, [a for a in goals[0].atoms if a.predicate not in domain.derived]):
         return None
     return [(None, goals[0]), *zip(actions, goals[1:], strict=True)]
+
+
+def _trim_derived(domain: Domain, goal: Goal, actions: Sequence[Action], levels: LevelMap,
+                  goals: list[Goal]) -> list[Goal]:
+    """Pre-images with the derived literals kept only where they are needed.
+
+    No action adds or deletes a derived atom, so plain regression carries each
+    derived literal back to the start, where it may not hold yet.  Its true
+    pre-image through an action is a condition on the base facts that is no
+    conjunction of literals; so ``g_i`` keeps the base literals regressed as
+    usual and only the derived literals that step ``i + 1`` needs (the goal's
+    own in ``g_n``).  The forward search checked them in the states it went
+    through; these pre-images are not the weakest ones (the executive, which
+    monitors pre-images, refuses such domains).
+    """
+    from nowplan.core.atoms import Goal as GoalT
+
+    out = []
+    for i, g in enumerate(goals):
+        need = set(goal.atoms) if i == len(actions) else set(actions[i].preconditions(levels.level(actions[i])))
+        atoms = [a for a in g.atoms if a.predicate not in domain.derived or a in need]
+        out.append(GoalT.of(atoms, domain.rules))
+    return out
 
 
 def forward_plan(

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 from collections import deque
 
+from nowplan.planning.axioms import relaxed_task
 from nowplan.planning.task import Task
 
 
@@ -108,6 +109,8 @@ class LandmarkCount:
     """
 
     def __init__(self, task: Task) -> None:
+        nactions = len(task.pre)
+        task = relaxed_task(task)  # derived facts are reached by the rules (relaxed actions of cost 0)
         self.task = task
         lm = landmark_sets(task)
         found: set[int] = set()
@@ -129,7 +132,7 @@ class LandmarkCount:
                 self.of_fact.setdefault(f, []).append(i)
         # actions that make each landmark true
         self.achievers: dict[int, list[int]] = {}
-        for a, adds in enumerate(task.add):
+        for a, adds in enumerate(task.add[:nactions]):
             for i in sorted({i for e in adds for i in self.of_fact.get(e, ())}):
                 self.achievers.setdefault(i, []).append(a)
         self.evaluations = 0

@@ -1,0 +1,243 @@
+"""Derived predicates (PDDL axioms): stratification, and the recursive ones compiled to rules.
+
+A derived predicate ``p`` depends on the predicates its definitions mention,
+positively or negatively (under an odd number of ``not``).  The strongly
+connected components of this graph are the recursions; a set of axioms is
+*stratifiable* when no recursion goes through a negation, and then each
+derived predicate gets a *stratum*: at least the stratum of every derived
+predicate it depends on positively, and one more than those it depends on
+negatively.  Evaluating the strata in order, each to its least fixpoint,
+gives the standard (stratified, closed-world) semantics of PDDL 2.2.
+
+Non-recursive derived predicates are compiled away by substitution
+(:mod:`nowplan.io.pddl_adl`); the recursive ones are compiled here into
+*rules*: lifted operators whose only effect is the derived atom, cost 0,
+one per disjunct of a definition's body in disjunctive normal form.
+Existentially quantified variables at the top of a body (under ``and`` /
+``or``) become parameters of the rule, as in Fast Downward's translator,
+instead of being expanded over the objects.  The forward search evaluates
+the ground rules after every action (:mod:`nowplan.planning.axioms`).
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+
+from nowplan.core.atoms import Atom, Var
+from nowplan.core.operators import Operator, Precondition
+from nowplan.errors import UnsupportedPDDLError
+from nowplan.io import pddl_adl as adl
+from nowplan.io.pddl_ast import FAnd, FAtom, FNot, FOr, Formula, FQuant, TypedName
+from nowplan.io.pddl_syntax import DomainDef
+
+AXIOM_CRITICALITY = 10**6  # a rule's conditions are kept at every level
+AXIOM_PREFIX = "axiom:"  # rule operators are named axiom:PRED-N (not a PDDL name: never an action's)
+
+
+@dataclass(frozen=True)
+class Strata:
+    """The derived predicates' strata and which of them are recursive."""
+
+    stratum: Mapping[str, int]
+    recursive: frozenset[str]
+
+
+def polarities(f: Formula, positive: bool = True) -> set[tuple[str, bool]]:
+    """The predicates of ``f`` with the sign they occur with (``False``: under a negation)."""
+    if isinstance(f, FAtom):
+        return {(f.pred, positive)}
+    if isinstance(f, FNot):
+        return polarities(f.arg, not positive)
+    if isinstance(f, FAnd | FOr):
+        return {x for p in f.parts for x in polarities(p, positive)}
+    return polarities(f.body, positive)
+
+
+def stratify(d: DomainDef) -> Strata:
+    """Strata of the derived predicates; refuses a recursion through a negation, naming the predicate."""
+    derived = {dv.pred for dv in d.derived}
+    line = {dv.pred: dv.line for dv in reversed(d.derived)}
+    edges: dict[str, set[tuple[str, bool]]] = {p: set() for p in derived}
+    for dv in d.derived:
+        edges[dv.pred] |= {(q, s) for q, s in polarities(dv.body) if q in derived}
+    comp = _components(sorted(derived), {p: sorted({q for q, _ in es}) for p, es in edges.items()})
+    recursive: set[str] = set()
+    for p in sorted(derived):
+        for q, positive in sorted(edges[p]):
+            if comp[q] != comp[p]:
+                continue
+            recursive.add(p)
+            if not positive:
+                why = "in its own definition" if p == q else f"while {q} depends on {p}"
+                raise UnsupportedPDDLError(
+                    f"the derived predicates are not stratifiable: {p} depends on (not {q}) {why}; "
+                    "negation is only allowed on a derived predicate of a lower stratum (define it without "
+                    "the negated recursion)", path=d.path, line=line[p])
+    # strata: longest path with a weight of 1 on negative edges, over the components (a DAG)
+    stratum: dict[str, int] = {}
+
+    def level(p: str, depth: int) -> int:  # depth-first; bounded by the number of predicates
+        if p in stratum:
+            return stratum[p]
+        members = [x for x in derived if comp[x] == comp[p]]
+        best = 0
+        for x in members:
+            for q, positive in edges[x]:
+                if comp[q] != comp[p]:
+                    best = max(best, level(q, depth + 1) + (0 if positive else 1))
+        for x in members:
+            stratum[x] = best
+        return best
+
+    for p in sorted(derived):
+        level(p, 0)
+    return Strata(stratum, frozenset(recursive))
+
+
+def _components(nodes: list[str], succ: Mapping[str, list[str]]) -> dict[str, int]:
+    """Tarjan's strongly connected components (iterative): node -> component id."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    comp: dict[str, int] = {}
+    stack: list[str] = []
+    on: set[str] = set()
+    counter = 0
+    for root in nodes:
+        if root in index:
+            continue
+        work = [(root, 0)]
+        while work:
+            v, i = work.pop()
+            if i == 0:
+                index[v] = low[v] = counter
+                counter += 1
+                stack.append(v)
+                on.add(v)
+            out = succ.get(v, [])
+            if i < len(out):
+                work.append((v, i + 1))
+                w = out[i]
+                if w not in index:
+                    work.append((w, 0))
+                elif w in on:
+                    low[v] = min(low[v], index[w])
+                continue
+            if low[v] == index[v]:
+                while True:
+                    w = stack.pop()
+                    on.discard(w)
+                    comp[w] = index[v]
+                    if w == v:
+                        break
+            if work:
+                u = work[-1][0]
+                low[u] = min(low[u], low[v])
+    return comp
+
+
+# --------------------------------------------------------------------------- rules
+
+
+def _lift(f: Formula, taken: set[str]) -> list[tuple[list[TypedName], Formula, dict[str, str]]]:
+    """``f`` as a disjunction of (new parameters, body, renaming): top-level ``exists`` lifted.
+
+    The renaming maps each lifted variable to a fresh name (not in ``taken``).
+    """
+    if isinstance(f, FOr):
+        return [r for p in f.parts for r in _lift(p, taken)]
+    if isinstance(f, FQuant) and f.kind == "exists":
+        fresh: dict[str, str] = {}
+        params = []
+        for p in f.params:
+            n, k = p.name, 1
+            while n in taken:
+                k += 1
+                n = f"{p.name}-{k}"
+            taken.add(n)
+            fresh[p.name] = n
+            params.append(TypedName(n, p.types, p.line))
+        return [([*params, *extra], body, {**fresh, **sub}) for extra, body, sub in _lift(f.body, taken)]
+    if isinstance(f, FAnd):
+        out: list[tuple[list[TypedName], Formula, dict[str, str]]] = [([], FAnd(()), {})]
+        for part in f.parts:
+            nxt = []
+            for (e1, b1, s1), (e2, b2, s2) in itertools.product(out, _lift(part, taken)):
+                nxt.append(([*e1, *e2], FAnd((*_parts(b1), b2)), {**s1, **s2}))
+            out = nxt
+            if len(out) > adl.MAX_DISJUNCTS:
+                raise adl.TooLarge(f"has more than {adl.MAX_DISJUNCTS} disjuncts")
+        return out
+    return [([], f, {})]
+
+
+def _parts(f: Formula) -> tuple[Formula, ...]:
+    return f.parts if isinstance(f, FAnd) else (f,)
+
+
+def _rename(f: Formula, sub: Mapping[str, str]) -> Formula:
+    """``f`` with the free occurrences of the variables in ``sub`` renamed."""
+    if not sub:
+        return f
+    if isinstance(f, FAtom):
+        return FAtom(f.pred, tuple(sub.get(a, a) for a in f.args), f.line)
+    if isinstance(f, FNot):
+        return FNot(_rename(f.arg, sub))
+    if isinstance(f, FAnd):
+        return FAnd(tuple(_rename(p, sub) for p in f.parts))
+    if isinstance(f, FOr):
+        return FOr(tuple(_rename(p, sub) for p in f.parts))
+    inner = {k: v for k, v in sub.items() if k not in {p.name for p in f.params}}
+    return FQuant(f.kind, f.params, _rename(f.body, inner), f.line)
+
+
+def compile_rules(
+    d: DomainDef,
+    strata: Strata,
+    objects_of: Callable[[tuple[str, ...]], Sequence[str]],
+    static: adl.StaticValue,
+    substituted: adl.Derived,
+    type_alternatives: Callable[[tuple[str, ...]], list[str | None]],
+) -> tuple[Operator, ...]:
+    """The rules of the recursive derived predicates, as operators ``axiom:PRED-N`` of cost 0."""
+    out: list[Operator] = []
+    count: dict[str, int] = {}
+    for dv in d.derived:
+        if dv.pred not in strata.recursive:
+            continue
+        where = f"the derived predicate {dv.pred}"
+        head = Atom(dv.pred, tuple(Var(p.name[1:]) for p in dv.params))
+        try:
+            lifted = _lift(dv.body, {p.name for p in dv.params})
+        except adl.TooLarge as exc:
+            raise UnsupportedPDDLError(f"{where} {exc}; it is not compiled", path=d.path, line=dv.line) from None
+        for extra, body, sub in lifted:
+            params = (*dv.params, *extra)
+            try:
+                nnf = adl.to_nnf(_rename(body, sub), {}, objects_of, static, derived=substituted)
+                disjuncts = adl.dnf(nnf, where)
+            except adl.TooLarge as exc:
+                raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=d.path, line=dv.line) from None
+            choices = [type_alternatives(p.types) for p in params]
+            combos = list(itertools.islice(itertools.product(*choices), 65))
+            if len(combos) > 64:
+                raise UnsupportedPDDLError(f"{where} has (either ...) parameters with more than 64 combinations "
+                                           "of types", path=d.path, line=dv.line)
+            for disjunct, types in itertools.product(disjuncts, combos):
+                count[dv.pred] = count.get(dv.pred, 0) + 1
+                out.append(Operator(
+                    f"{AXIOM_PREFIX}{dv.pred}-{count[dv.pred]}",
+                    tuple(Var(p.name[1:]) for p in params),
+                    tuple(Precondition(_atom(lit), AXIOM_CRITICALITY) for lit in sorted(disjunct)),
+                    (head,),
+                    cost=0.0,
+                    param_types=tuple(types),
+                    pddl_name="",
+                ))
+    return tuple(out)
+
+
+def _atom(lit: adl.Lit) -> Atom:
+    pred, args, v = lit
+    return Atom(pred, tuple(Var(a[1:]) if a.startswith("?") else a for a in args), v)
