@@ -162,7 +162,7 @@ def _lift(f: Formula, taken: set[str]) -> list[tuple[list[TypedName], Formula, d
     if isinstance(f, FAnd):
         out: list[tuple[list[TypedName], Formula, dict[str, str]]] = [([], FAnd(()), {})]
         for part in f.parts:
-            nxt = []
+            nxt: list[tuple[list[TypedName], Formula, dict[str, str]]] = []
             for (e1, b1, s1), (e2, b2, s2) in itertools.product(out, _lift(part, taken)):
                 nxt.append(([*e1, *e2], FAnd((*_parts(b1), b2)), {**s1, **s2}))
             out = nxt

@@ -478,6 +478,13 @@ static PyObject *Kernel_applicable(Kernel *k, PyObject *state) {
     return lst;
 }
 
+static PyObject *Kernel_close(Kernel *k, PyObject *state) {
+    int32_t ns = load_state(k, state);
+    if (ns < 0) return NULL;
+    if (k->dmask) axioms_eval(k, k->bits);
+    return id_list(k->sf, facts_of(k->bits, k->words, k->sf));
+}
+
 #include "_kernel_heap.h"
 #include "_kernel_gbfs.h"
 #include "_kernel_lama.h"
@@ -487,6 +494,8 @@ static PyMethodDef Kernel_methods[] = {
     {"evaluate", (PyCFunction)Kernel_evaluate, METH_O,
      "evaluate(state) -> (h, preferred action ids ascending); h is inf at a dead end"},
     {"applicable", (PyCFunction)Kernel_applicable, METH_O, "applicable(state) -> action ids ascending"},
+    {"close", (PyCFunction)Kernel_close, METH_O,
+     "close(facts) -> the state's fact ids ascending, derived facts recomputed by the rules (axioms)"},
     {"gbfs", (PyCFunction)(void (*)(void))Kernel_gbfs, METH_VARARGS | METH_KEYWORDS,
      "gbfs(init, max_nodes, out_of_time) -> (status, plan action ids or None, expanded, generated, evaluations)"},
     {"lama", (PyCFunction)(void (*)(void))Kernel_lama, METH_VARARGS | METH_KEYWORDS,

@@ -24,7 +24,7 @@ with the same algorithm; this Python code is the reference.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 
 from nowplan.planning.task import GroundAxioms, Task
 
@@ -107,11 +107,14 @@ def rule_costs(task: Task, costs: list[float]) -> list[float]:
     return [*costs, *[0.0] * (len(relaxed_task(task).pre) - len(task.pre))]
 
 
-def kernel_axioms(task: Task) -> dict[str, object]:
-    """The compiled kernel's extra arguments for a task with axioms (none without)."""
+AxiomArgs = tuple[Sequence[Sequence[int]], Sequence[int], Sequence[tuple[int, int]], Sequence[Sequence[int]],
+                  Sequence[int]]
+
+
+def kernel_axioms(task: Task) -> tuple[int, AxiomArgs | None]:
+    """The compiled kernel's ``nactions`` and ``axioms`` arguments for ``task`` (``None``: no axioms)."""
     ax = task.axioms
     if not ax:
-        return {}
-    return {"nactions": len(task.pre),
-            "axioms": (ax.body, ax.head, ax.layers, [[f for pair in negs for f in pair] for negs in ax.negs],
-                       sorted(ax.derived))}
+        return len(task.pre), None
+    return len(task.pre), (ax.body, ax.head, ax.layers, [[f for pair in negs for f in pair] for negs in ax.negs],
+                           sorted(ax.derived))

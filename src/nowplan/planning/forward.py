@@ -287,37 +287,46 @@ def regress_actions(
     """
     from nowplan.planning.regression import regress_through, static_drop
 
-    goals, failed = regress_through(goal, actions, levels, domain, static_drop(domain, belief))
-    if failed is not None:
-        return None
+    drop = static_drop(domain, belief)
     if domain.axioms:
-        goals = _trim_derived(domain, goal, actions, levels, goals)
+        found = _regress_base(domain, goal, actions, levels, drop)
+        if found is None:
+            return None
+        goals = found
+    else:
+        goals, failed = regress_through(goal, actions, levels, domain, drop)
+        if failed is not None:
+            return None
     if not domain.satisfies(belief, [a for a in goals[0].atoms if a.predicate not in domain.derived]):
         return None
     return [(None, goals[0]), *zip(actions, goals[1:], strict=True)]
 
 
-def _trim_derived(domain: Domain, goal: Goal, actions: Sequence[Action], levels: LevelMap,
-                  goals: list[Goal]) -> list[Goal]:
-    """Pre-images with the derived literals kept only where they are needed.
+def _regress_base(domain: Domain, goal: Goal, actions: Sequence[Action], levels: LevelMap,
+                  drop: frozenset[str]) -> list[Goal] | None:
+    """Pre-images ``[g0, …, gn = goal]`` where derived literals are kept only where they are needed.
 
-    No action adds or deletes a derived atom, so plain regression carries each
-    derived literal back to the start, where it may not hold yet.  Its true
-    pre-image through an action is a condition on the base facts that is no
-    conjunction of literals; so ``g_i`` keeps the base literals regressed as
-    usual and only the derived literals that step ``i + 1`` needs (the goal's
-    own in ``g_n``).  The forward search checked them in the states it went
-    through; these pre-images are not the weakest ones (the executive, which
-    monitors pre-images, refuses such domains).
+    No action adds or deletes a derived atom, yet an action may change its
+    truth; its pre-image through the action is a condition on the base facts
+    that is no conjunction of literals.  So each step regresses the base
+    literals as usual and adds the action's own conditions: ``g_i`` holds the
+    derived literals that step ``i + 1`` needs (``g_n`` the goal's).  The
+    forward search checked them in the states it went through; these are not
+    the weakest pre-images (the executive, which monitors pre-images, refuses
+    such domains).  ``None`` if an action destroys a base literal needed later.
     """
     from nowplan.core.atoms import Goal as GoalT
+    from nowplan.planning.regression import preimage
 
-    out = []
-    for i, g in enumerate(goals):
-        need = set(goal.atoms) if i == len(actions) else set(actions[i].preconditions(levels.level(actions[i])))
-        atoms = [a for a in g.atoms if a.predicate not in domain.derived or a in need]
-        out.append(GoalT.of(atoms, domain.rules))
-    return out
+    goals = [goal]
+    for i in range(len(actions) - 1, -1, -1):
+        base = GoalT.of([a for a in goals[-1].atoms if a.predicate not in domain.derived], domain.rules)
+        g = preimage(base, actions[i], levels.level(actions[i]), domain, drop)
+        if g is None:
+            return None
+        goals.append(g)
+    goals.reverse()
+    return goals
 
 
 def forward_plan(

@@ -62,10 +62,11 @@ class RelaxedHeuristic:
         self.goalset = frozenset(task.goal)
         self.evaluations = 0
         cls = kernel_class()
+        nactions, axioms = kernel_axioms(task)
         self.native: Kernel | None = None if cls is None else cls(
             self.nfacts, relaxed.pre, relaxed.add, relaxed.dele, self.acost, task.goal,
             [relaxed.by_pre.get(f, ()) for f in range(self.nfacts)], relaxed.no_pre, kind,
-            **kernel_axioms(task))
+            nactions=nactions, axioms=axioms)
 
     def evaluate(self, state: frozenset[int]) -> tuple[float, list[int]]:
         if self.native is not None:
