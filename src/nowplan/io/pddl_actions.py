@@ -80,11 +80,15 @@ def atom_of(lit: adl.Lit) -> Atom:
 
 
 def compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: frozenset[str],
-                   world: World | None, derived: adl.Derived) -> tuple[list[Operator], bool]:
-    """The operators of one action, and whether it increases total-cost."""
+                   world: World | None, derived: adl.Derived,
+                   oracle: Callable[[adl.Lit], bool | None] | None = None) -> tuple[list[Operator], bool]:
+    """The operators of one action, and whether it increases total-cost.
+
+    ``oracle`` (default: :func:`static_value`) gives the ground literals known in every state.
+    """
     where = f"action {act.name}"
     objs = objects_of(checker, world)
-    value = static_value(static, world)
+    value = oracle if oracle is not None else static_value(static, world)
     try:
         pre = adl.to_nnf(act.precondition or TRUE, {}, objs, value, derived=derived)
         flat = adl.flatten_effects(act.effect, objs, value, where, derived)

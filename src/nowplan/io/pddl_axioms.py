@@ -23,14 +23,14 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from nowplan.core.atoms import Atom, Var
 from nowplan.core.operators import Operator, Precondition
 from nowplan.errors import UnsupportedPDDLError
 from nowplan.io import pddl_adl as adl
 from nowplan.io.pddl_ast import FAnd, FAtom, FNot, FOr, Formula, FQuant, TypedName
-from nowplan.io.pddl_syntax import DomainDef
+from nowplan.io.pddl_syntax import DerivedDef, DomainDef
 
 AXIOM_CRITICALITY = 10**6  # a rule's conditions are kept at every level
 AXIOM_PREFIX = "axiom:"  # rule operators are named axiom:PRED-N (not a PDDL name: never an action's)
@@ -42,6 +42,18 @@ class Strata:
 
     stratum: Mapping[str, int]
     recursive: frozenset[str]
+
+    @property
+    def native(self) -> frozenset[str]:
+        """The derived predicates evaluated by rules: all of them once one is recursive, else none.
+
+        Without recursion every derived atom is replaced by its definition
+        (exact, and the regression planner and HPN can use the domain); with
+        recursion the search evaluates rules anyway, and substituting the
+        non-recursive ones into each other (PSR's ``fed`` over ``upstream``)
+        can blow up the disjunctive normal forms.
+        """
+        return frozenset(self.stratum) if self.recursive else frozenset()
 
 
 def polarities(f: Formula, positive: bool = True) -> set[tuple[str, bool]]:
@@ -137,6 +149,73 @@ def _components(nodes: list[str], succ: Mapping[str, list[str]]) -> dict[str, in
     return comp
 
 
+def with_auxiliaries(d: DomainDef) -> DomainDef:
+    """``d`` with each universal condition of a natively evaluated derived predicate made an auxiliary one.
+
+    ``(forall (?v) phi)`` in a definition (or ``(exists (?v) phi)`` under a
+    negation) would put one conjunct per object into every disjunct of the
+    disjunctive normal form (blocker's ``cat-moves``: 3**n disjuncts).  As
+    Fast Downward's translator does, it becomes ``(not (AUX ?free))`` with the
+    new derived predicate ``AUX(?free) = (exists (?v) (not phi))`` over its
+    free variables: one stratum lower, evaluated by rules like the others.
+    Domains without recursion (whose derived predicates are substituted) are
+    returned as they are.
+    """
+    if not stratify(d).native:
+        return d
+    preds = dict(d.predicates)
+    extra: list[DerivedDef] = []
+
+    def fresh(base: str) -> str:
+        k = 1
+        while f"{base}-aux{k}" in preds:
+            k += 1
+        return f"{base}-aux{k}"
+
+    def walk(f: Formula, positive: bool, scope: dict[str, TypedName], owner: DerivedDef) -> Formula:
+        if isinstance(f, FAtom):
+            return f
+        if isinstance(f, FNot):
+            return FNot(walk(f.arg, not positive, scope, owner))
+        if isinstance(f, FAnd):
+            return FAnd(tuple(walk(x, positive, scope, owner) for x in f.parts))
+        if isinstance(f, FOr):
+            return FOr(tuple(walk(x, positive, scope, owner) for x in f.parts))
+        inner = {**scope, **{p.name: p for p in f.params}}
+        universal = (f.kind == "forall") == positive
+        if not universal:
+            return FQuant(f.kind, f.params, walk(f.body, positive, inner, owner), f.line)
+        free = sorted(v for v in _free(f) if v in scope)
+        name = fresh(owner.pred)
+        params = tuple(TypedName(v, scope[v].types, f.line) for v in free)
+        preds[name] = (params, f.line)
+        body: Formula = FQuant("exists", f.params, FNot(f.body), f.line) if f.kind == "forall" else f
+        aux = DerivedDef(name, params, body, f.line)
+        extra.append(DerivedDef(name, params, walk(body, True, {p.name: p for p in params}, aux), f.line))
+        atom = FAtom(name, tuple(free), f.line)
+        return FNot(atom) if f.kind == "forall" else atom
+
+    native = stratify(d).native
+    derived = []
+    for dv in d.derived:
+        if dv.pred in native:
+            dv = DerivedDef(dv.pred, dv.params, walk(dv.body, True, {p.name: p for p in dv.params}, dv), dv.line)
+        derived.append(dv)
+    if not extra:
+        return d
+    return replace(d, predicates=preds, derived=[*derived, *extra])
+
+
+def _free(f: Formula) -> set[str]:
+    if isinstance(f, FAtom):
+        return {a for a in f.args if a.startswith("?")}
+    if isinstance(f, FNot):
+        return _free(f.arg)
+    if isinstance(f, FAnd | FOr):
+        return {v for x in f.parts for v in _free(x)}
+    return _free(f.body) - {p.name for p in f.params}
+
+
 # --------------------------------------------------------------------------- rules
 
 
@@ -200,11 +279,11 @@ def compile_rules(
     substituted: adl.Derived,
     type_alternatives: Callable[[tuple[str, ...]], list[str | None]],
 ) -> tuple[Operator, ...]:
-    """The rules of the recursive derived predicates, as operators ``axiom:PRED-N`` of cost 0."""
+    """The rules of the derived predicates evaluated natively, as operators ``axiom:PRED-N`` of cost 0."""
     out: list[Operator] = []
     count: dict[str, int] = {}
     for dv in d.derived:
-        if dv.pred not in strata.recursive:
+        if dv.pred not in strata.native:
             continue
         where = f"the derived predicate {dv.pred}"
         head = Atom(dv.pred, tuple(Var(p.name[1:]) for p in dv.params))
@@ -236,6 +315,49 @@ def compile_rules(
                     pddl_name="",
                 ))
     return tuple(out)
+
+
+def static_oracle(d: DomainDef, strata: Strata, objects_of: Callable[[tuple[str, ...]], Sequence[str]],
+                  static: adl.StaticValue) -> adl.StaticValue:
+    """``static`` extended to ground atoms of natively evaluated derived predicates that are always false.
+
+    A ground derived atom is false in every state when each of its
+    definitions is false on the static facts alone (derived atoms inside it
+    taken as unknown): PSR's ``(affected ?b)`` needs ``(breaker ?b)``, so it
+    is false for every switch, and the ``wait`` action's one conditional
+    effect per device keeps only those of the breakers.  Anything else is
+    unknown (``None``), as before.
+    """
+    defs: dict[str, list[tuple[tuple[str, ...], Formula]]] = {}
+    for dv in d.derived:
+        if dv.pred in strata.native:
+            defs.setdefault(dv.pred, []).append((tuple(p.name for p in dv.params), dv.body))
+    memo: dict[tuple[str, tuple[str, ...]], bool] = {}
+
+    def plain(lit: adl.Lit) -> bool | None:
+        return None if lit[0] in defs else static(lit)
+
+    def value(lit: adl.Lit) -> bool | None:
+        pred, args, v = lit
+        if pred not in defs:
+            return static(lit)
+        if any(a.startswith("?") for a in args):
+            return None
+        key = (pred, args)
+        if key not in memo:
+            false = True
+            for params, body in defs[pred]:
+                try:
+                    x = adl.to_nnf(body, dict(zip(params, args, strict=True)), objects_of, plain)
+                except adl.TooLarge:
+                    x = None
+                if x is not False:
+                    false = False
+                    break
+            memo[key] = false
+        return (not v) if memo[key] else None
+
+    return value
 
 
 def _atom(lit: adl.Lit) -> Atom:

@@ -45,7 +45,7 @@ from nowplan.io import pddl_adl as adl
 from nowplan.io.pddl_ast import TOTAL_COST, EAnd, Reader, Effect, EForall, ELit, EWhen, FAnd, FAtom, FNot, Formula
 from nowplan.io.pddl_check import EQUALITY, Checker, warn_undeclared
 from nowplan.io.pddl_actions import NeedsObjects, World, atom_of, compile_action, objects_of, static_value
-from nowplan.io.pddl_axioms import Strata, compile_rules, stratify
+from nowplan.io.pddl_axioms import Strata, compile_rules, static_oracle, stratify, with_auxiliaries
 from nowplan.io.pddl_source import read_source
 from nowplan.io.pddl_syntax import DomainDef, ProblemDef, parse_domain, parse_problem
 from nowplan.io.sexpr import SList, Token
@@ -86,7 +86,7 @@ def _read_domain_def(path: str | Path) -> tuple[DomainDef, Checker]:
         checker.formula(act.precondition, f"the precondition of action {act.name}", scope, checker.constants,
                         d.path)
         checker.effect(act.effect, f"the effect of action {act.name}", scope, checker.constants, d.path)
-    return d, checker
+    return with_auxiliaries(d), checker
 
 
 def _check_derived(d: DomainDef, checker: Checker) -> None:
@@ -121,11 +121,11 @@ def _preds(f: Formula) -> set[str]:
 
 
 def _derived_map(d: DomainDef) -> adl.Derived:
-    """The non-recursive derived predicates' definitions (substituted); the recursive ones stay atoms."""
-    recursive = stratify(d).recursive
+    """The definitions of the derived predicates that are substituted (none once one is recursive)."""
+    native = stratify(d).native
     out: dict[str, list[tuple[tuple[str, ...], Formula]]] = {}
     for dv in d.derived:
-        if dv.pred in recursive:
+        if dv.pred in native:
             continue
         out.setdefault(dv.pred, []).append((tuple(p.name for p in dv.params), dv.body))
     return out
@@ -176,8 +176,11 @@ def _compile_domain(d: DomainDef, checker: Checker, world: World | None) -> Doma
     costed: list[bool] = []
     substituted = _derived_map(d)
     axioms = _compile_axioms(d, checker, static, world, strata, substituted)
+    oracle = None
+    if strata.native and world is not None:
+        oracle = static_oracle(d, strata, objects_of(checker, world), static_value(static, world))
     for act in d.actions:
-        ops, has_cost = compile_action(act, d, checker, static, world, substituted)
+        ops, has_cost = compile_action(act, d, checker, static, world, substituted, oracle)
         operators.extend(ops)
         costed.extend([has_cost] * len(ops))
     # PDDL :action-costs semantics: once costs are used, an action without an increase costs 0
@@ -193,7 +196,7 @@ def _compile_domain(d: DomainDef, checker: Checker, world: World | None) -> Doma
                             "action of the domain; rename that action", path=d.path)
     if EQUALITY not in predicates and any(p.atom.predicate == EQUALITY for ax in axioms for p in ax.preconditions):
         predicates[EQUALITY] = equality_predicate()
-    derived = {p: strata.stratum[p] for p in sorted(strata.recursive)}
+    derived = {p: strata.stratum[p] for p in sorted(strata.native)}
     return Domain(d.name, predicates, tuple(operators), dict(checker.parent), dict(checker.constants),
                   axioms=axioms, derived=derived)
 
@@ -201,7 +204,7 @@ def _compile_domain(d: DomainDef, checker: Checker, world: World | None) -> Doma
 def _compile_axioms(d: DomainDef, checker: Checker, static: frozenset[str], world: World | None,
                     strata: Strata, substituted: adl.Derived) -> tuple[Operator, ...]:
     """The rules of the recursive derived predicates (:mod:`nowplan.io.pddl_axioms`)."""
-    if not strata.recursive:
+    if not strata.native:
         return ()
 
     def alternatives(types: tuple[str, ...]) -> list[str | None]:
@@ -212,8 +215,8 @@ def _compile_axioms(d: DomainDef, checker: Checker, static: frozenset[str], worl
         return compile_rules(d, strata, objects_of(checker, world), static_value(static, world), substituted,
                              alternatives)
     except NeedsObjects:
-        line = min(dv.line for dv in d.derived if dv.pred in strata.recursive)
-        raise UnsupportedPDDLError("a recursive derived predicate quantifies over objects (forall); quantifiers "
+        line = min(dv.line for dv in d.derived if dv.pred in strata.native)
+        raise UnsupportedPDDLError("a derived predicate quantifies over objects (forall); quantifiers "
                                    "are compiled over a problem's objects: read the domain together with a "
                                    "problem (load_pddl)", path=d.path, line=line) from None
 
@@ -365,8 +368,11 @@ def load_pddl(
             _changed(act.effect, changed)
         static = frozenset(x for x in d.predicates if x not in changed and x not in domain.derived)
         try:
-            nnf = adl.to_nnf(p.goal, {}, objects_of(checker, world), static_value(static, world),
-                             derived=_derived_map(d))
+            value = static_value(static, world)
+            strata = stratify(d)
+            if strata.native:
+                value = static_oracle(d, strata, objects_of(checker, world), value)
+            nnf = adl.to_nnf(p.goal, {}, objects_of(checker, world), value, derived=_derived_map(d))
             disjuncts = adl.dnf(nnf, "the goal")
         except adl.TooLarge as exc:
             raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=p.path, line=p.goal_line) from None

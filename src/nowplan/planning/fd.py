@@ -100,8 +100,8 @@ def solve_fd(
     if problem.domain.axioms:
         from nowplan.errors import UsageError
 
-        raise UsageError(f"--engine fd: domain {problem.domain.name} has recursive derived predicates "
-                         f"({', '.join(sorted(problem.domain.derived))}), which unified-planning's PDDL reader "
+        raise UsageError(f"--engine fd: domain {problem.domain.name} has recursive derived predicates, so "
+                         f"derived predicates evaluated by rules ({', '.join(sorted(problem.domain.derived))}), which unified-planning's PDDL reader "
                          "(the way to Fast Downward here) does not read; use the default engine, or run Fast "
                          "Downward's own driver on the original files (benchmarks/ipc_check.py does)")
     require("unified_planning", "fd")

@@ -418,9 +418,10 @@ class _Search:
 
 
 def axioms_refusal(domain: Domain) -> str:
-    """Why the regression planner (and HPN) refuses a domain with recursive derived predicates, and the fix."""
+    """Why the regression planner (and HPN) refuses a domain with derived predicates evaluated by rules, and the fix."""
     names = ", ".join(sorted(domain.derived))
-    return (f"domain {domain.name} has recursive derived predicates ({names}): the regression planner, and "
+    return (f"domain {domain.name} has recursive derived predicates, so its derived predicates are evaluated by "
+            f"rules ({names}): the regression planner, and "
             "HPN's executive that regresses at abstract levels, cannot regress through them (a derived atom's "
             "pre-image is no conjunction of literals); plan it flat with the forward engine (nowplan plan, "
             "--engine forward; PlannerConfig(engine='forward'))")
