@@ -47,10 +47,15 @@ class NeedsObjects(Exception):
 
 def objects_of(checker: Checker, world: World | None) -> Callable[[tuple[str, ...]], list[str]]:
     """The objects (and constants) fitting some types; raises NeedsObjects without a problem."""
+    memo: dict[tuple[str, ...], list[str]] = {}
+
     def objects_of(types: tuple[str, ...]) -> list[str]:
         if world is None:
             raise NeedsObjects()
-        return sorted(o for o, t in world.objects.items() if checker.is_a(t, types))
+        hit = memo.get(types)
+        if hit is None:
+            hit = memo[types] = sorted(o for o, t in world.objects.items() if checker.is_a(t, types))
+        return hit
 
     return objects_of
 

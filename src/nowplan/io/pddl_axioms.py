@@ -345,17 +345,26 @@ def static_oracle(d: DomainDef, strata: Strata, objects_of: Callable[[tuple[str,
             return None
         key = (pred, args)
         if key not in memo:
-            false = True
-            for params, body in defs[pred]:
-                try:
-                    x = adl.to_nnf(body, dict(zip(params, args, strict=True)), objects_of, plain)
-                except adl.TooLarge:
-                    x = None
-                if x is not False:
-                    false = False
-                    break
-            memo[key] = false
+            memo[key] = not any(maybe(body, dict(zip(params, args, strict=True)), True)
+                                for params, body in defs[pred])
         return (not v) if memo[key] else None
+
+    def maybe(f: Formula, sub: dict[str, str], positive: bool) -> bool:
+        """Can ``f`` (negated unless ``positive``) hold, judged on the static facts only?"""
+        if isinstance(f, FAtom):
+            known = plain((f.pred, tuple(sub.get(a, a) for a in f.args), positive))
+            return known is not False
+        if isinstance(f, FNot):
+            return maybe(f.arg, sub, not positive)
+        if isinstance(f, FAnd | FOr):
+            conj = isinstance(f, FAnd) == positive
+            test = all if conj else any
+            return test(maybe(x, sub, positive) for x in f.parts)
+        conj = (f.kind == "forall") == positive
+        pools = [objects_of(p.types) for p in f.params]
+        test = all if conj else any
+        return test(maybe(f.body, {**sub, **dict(zip((p.name for p in f.params), combo, strict=True))}, positive)
+                    for combo in itertools.product(*pools))
 
     return value
 
