@@ -49,6 +49,7 @@ class Kernel:
         out_of_time: Callable[[], object] | None = None,
         boost: int = 1000,
         unreachable: bool = False,
+        reasonable: Sequence[Sequence[int]] | None = None,
     ) -> tuple[int, list[int] | None, int, int, int]: ...
     def bounded_wastar(
         self,

@@ -31,6 +31,7 @@ from __future__ import annotations
 from collections import deque
 
 from nowplan.planning.axioms import relaxed_task
+from nowplan.planning.lm_orders import Mutex, disjunctive_landmarks, first_achievers as possible_first, reasonable_orders
 from nowplan.planning.task import Task
 
 
@@ -108,8 +109,9 @@ class LandmarkCount:
     is accepted (its index in the accepted set) once one of its facts holds.
     """
 
-    def __init__(self, task: Task) -> None:
+    def __init__(self, task: Task, orders: bool = True) -> None:
         nactions = len(task.pre)
+        mutex = task.memo.get("mutex")
         task = relaxed_task(task)  # derived facts are reached by the rules (relaxed actions of cost 0)
         self.task = task
         lm = landmark_sets(task)
@@ -125,6 +127,9 @@ class LandmarkCount:
         self.goal = frozenset(task.goal)
         self.sets: list[frozenset[int]] = [frozenset((f,)) for f in sorted(found)]
         self.before = self._orderings(task, lm)
+        self.reasonable: dict[int, list[int]] = {}
+        if orders and not self.unreachable:
+            self._add_orders(task, mutex)
         self.is_goal = [len(d) == 1 and next(iter(d)) in self.goal for d in self.sets]
         self.of_fact: dict[int, list[int]] = {}
         for i, d in enumerate(self.sets):
@@ -160,6 +165,20 @@ class LandmarkCount:
                 before.setdefault(index[l1], []).append(index[l2])
         return before
 
+    def _add_orders(self, task: Task, mutex: Mutex | None) -> None:
+        """Disjunctive landmarks and reasonable orderings (:mod:`nowplan.planning.lm_orders`)."""
+        index = {next(iter(d)): i for i, d in enumerate(self.sets)}
+        for d, lm in disjunctive_landmarks(task, self.landmarks):
+            i = len(self.sets)
+            self.sets.append(d)
+            self.before.setdefault(i, []).append(index[lm])
+            acts = possible_first(task, d)
+            if acts:
+                common = set(task.pre[acts[0]]).intersection(*(task.pre[a] for a in acts[1:]))
+                for f in sorted(common & self.landmarks):
+                    self.before.setdefault(index[f], []).append(i)
+        self.reasonable = reasonable_orders(task, self.sets, self.before, self.goal, mutex)
+
     def initial_accepted(self) -> frozenset[int]:
         return self.accept(frozenset(), self.task.init)
 
@@ -177,6 +196,9 @@ class LandmarkCount:
         todoset = set(todo)
         again = 0
         for i in accepted:
+            if any(j not in accepted for j in self.reasonable.get(i, ())):
+                again += 1  # reached before a reasonable predecessor: to be reached again
+                continue
             if self.sets[i] & state:
                 continue
             if self.is_goal[i] or any(j in todoset for j in self.before.get(i, ())):

@@ -393,7 +393,28 @@ def build_task(
         goal_ids.append(i)
     task.goal = tuple(sorted(goal_ids))
     task.index_preconditions()
+    keyed = [c for c in domain.rules.conflicts if isinstance(c, KeyedRule)]
+    if keyed:
+        task.memo["mutex"] = _mutex(facts, keyed)
     return task
+
+
+def _mutex(facts: list[Atom], keyed: list[KeyedRule]) -> Any:
+    """``mutex(f, g)``: the conflict rules (inferred invariants) exclude facts ``f`` and ``g`` together."""
+    memo: dict[int, frozenset[Any]] = {}
+
+    def keys(f: int) -> frozenset[Any]:
+        hit = memo.get(f)
+        if hit is None:
+            a = facts[f]
+            hit = memo[f] = frozenset((i, k) for i, r in enumerate(keyed) for k in r.group_keys(a)) \
+                if a.value is True else frozenset()
+        return hit
+
+    def mutex(f: int, g: int) -> bool:
+        return f != g and bool(keys(f) & keys(g))
+
+    return mutex
 
 
 def _axiom_names(domain: Domain) -> frozenset[str]:
