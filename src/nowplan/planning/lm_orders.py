@@ -52,10 +52,12 @@ def first_achievers(task: Task, facts: frozenset[int]) -> list[int]:
         if m == 0 and not banned[a]:
             queue.extend(e for e in add[a] if e not in reached)
     fired = [False] * len(pre)
+    done: set[int] = set()
     while queue:
         f = queue.pop()
-        if f in facts:
+        if f in facts or f in done:
             continue
+        done.add(f)
         reached.add(f)
         for a in by_pre.get(f, ()):
             missing[a] -= 1
