@@ -129,7 +129,7 @@ class LandmarkCount:
         self.before = self._orderings(task, lm)
         self.reasonable: dict[int, list[int]] = {}
         if orders and not self.unreachable:
-            self._add_orders(task, mutex)
+            self._add_orders(task, mutex, lm)
         self.is_goal = [len(d) == 1 and next(iter(d)) in self.goal for d in self.sets]
         self.of_fact: dict[int, list[int]] = {}
         for i, d in enumerate(self.sets):
@@ -165,11 +165,15 @@ class LandmarkCount:
                 before.setdefault(index[l1], []).append(index[l2])
         return before
 
-    def _add_orders(self, task: Task, mutex: Mutex | None) -> None:
+    def _add_orders(self, task: Task, mutex: Mutex | None, lm_sets: list[frozenset[int] | None]) -> None:
         """Disjunctive landmarks and reasonable orderings (:mod:`nowplan.planning.lm_orders`)."""
         index = {next(iter(d)): i for i, d in enumerate(self.sets)}
-        for d, lm in disjunctive_landmarks(task, self.landmarks):
-            i = len(self.sets)
+        of_set: dict[frozenset[int], int] = {}
+        for d, lm in disjunctive_landmarks(task, self.landmarks, lm_sets):
+            if d in of_set:
+                self.before.setdefault(of_set[d], []).append(index[lm])
+                continue
+            i = of_set[d] = len(self.sets)
             self.sets.append(d)
             self.before.setdefault(i, []).append(index[lm])
             acts = possible_first(task, d)
@@ -177,7 +181,7 @@ class LandmarkCount:
                 common = set(task.pre[acts[0]]).intersection(*(task.pre[a] for a in acts[1:]))
                 for f in sorted(common & self.landmarks):
                     self.before.setdefault(index[f], []).append(i)
-        self.reasonable = reasonable_orders(task, self.sets, self.before, self.goal, mutex)
+        self.reasonable = reasonable_orders(task, self.sets, self.before, self.goal, mutex, lm_sets)
 
     def initial_accepted(self) -> frozenset[int]:
         return self.accept(frozenset(), self.task.init)

@@ -10,8 +10,10 @@ and Sebastia's reasonable orderings as LAMA approximates them:
   relaxation without any action that adds ``L``) needs some fact of one
   predicate, the set of those facts is a landmark: gripper's "ball b is in
   the left or in the right gripper" before "b is in room B".  Sets of more
-  than :data:`MAX_DISJUNCTION` facts, sets with a fact true initially and sets
-  containing a fact landmark are left out.  ``D`` comes necessarily before
+  than :data:`MAX_DISJUNCTION` facts, sets with a fact true initially, sets
+  containing a fact landmark and sets sharing a fact with a disjunctive
+  landmark found before (Fast Downward's landmark graph does not let two
+  disjunctive landmarks overlap) are left out.  ``D`` comes necessarily before
   ``L``, and every fact landmark that all first achievers of ``D`` need comes
   before ``D``.
 * **Reasonable orderings** ``A -> B``: achieving ``B`` before ``A`` would mean
@@ -41,9 +43,22 @@ MAX_DISJUNCTION = 4  # facts of one disjunctive landmark
 Mutex = Callable[[int, int], bool]
 
 
-def first_achievers(task: Task, facts: frozenset[int]) -> list[int]:
-    """Actions adding a fact of ``facts`` that are applicable in the relaxation before any fact of it holds."""
+LMSets = Sequence["frozenset[int] | None"]
+
+
+def first_achievers(task: Task, facts: frozenset[int], lm: LMSets | None = None) -> list[int]:
+    """Actions adding a fact of ``facts`` that are applicable in the relaxation before any fact of it holds.
+
+    With the fact landmarks of every fact (``lm``, Zhu and Givan's sets) a
+    single fact ``L`` needs no exploration: a precondition ``p`` is reachable
+    without ``L`` exactly when ``L`` is not in ``LM(p)``.
+    """
     pre, add, by_pre = task.pre, task.add, task.by_pre
+    if lm is not None and len(facts) == 1:
+        (f,) = facts
+        if f not in task.init:
+            return [a for a, adds in enumerate(add) if f in adds
+                    and all(lm[p] is not None and f not in lm[p] for p in pre[a])]  # type: ignore[operator]
     banned = [bool(facts.intersection(a)) for a in add]
     missing = [len(p) for p in pre]
     reached = set(task.init) - facts
@@ -67,16 +82,20 @@ def first_achievers(task: Task, facts: frozenset[int]) -> list[int]:
     return [a for a, adds in enumerate(add) if banned[a] and all(p in reached for p in pre[a])]
 
 
-def disjunctive_landmarks(task: Task, landmarks: Iterable[int]) -> list[tuple[frozenset[int], int]]:
-    """``(D, L)``: the disjunctive landmarks ``D`` found one step before each fact landmark ``L``."""
+def disjunctive_landmarks(task: Task, landmarks: Iterable[int], lm: LMSets | None = None
+                          ) -> list[tuple[frozenset[int], int]]:
+    """``(D, L)``: the disjunctive landmarks ``D`` found one step before each fact landmark ``L``.
+
+    One ``D`` may come with several ``L``; two different ``D`` share no fact.
+    """
     facts, init = task.facts, task.init
     known = frozenset(landmarks)
     out: list[tuple[frozenset[int], int]] = []
-    seen: set[frozenset[int]] = set()
-    for lm in sorted(known):
-        if lm in init:
+    found: list[tuple[frozenset[int], int]] = []
+    for fact in sorted(known):
+        if fact in init:
             continue
-        acts = first_achievers(task, frozenset((lm,)))
+        acts = first_achievers(task, frozenset((fact,)), lm)
         if not acts:
             continue
         by_pred: list[dict[str, set[int]]] = []
@@ -89,15 +108,21 @@ def disjunctive_landmarks(task: Task, landmarks: Iterable[int]) -> list[tuple[fr
         common = set(by_pred[0]).intersection(*by_pred[1:])
         for pred in sorted(common):
             d = frozenset().union(*(g[pred] for g in by_pred))
-            if not 2 <= len(d) <= MAX_DISJUNCTION or d & init or d & known or d in seen:
-                continue
-            seen.add(d)
-            out.append((d, lm))
+            if 2 <= len(d) <= MAX_DISJUNCTION and not d & init and not d & known:
+                found.append((d, fact))
+    # as in FD's landmark graph a fact is in at most one disjunctive landmark: the smaller ones first
+    used: set[int] = set()
+    chosen: set[frozenset[int]] = set()
+    for d, fact in sorted(found, key=lambda x: (len(x[0]), sorted(x[0]), x[1])):
+        if d in chosen or not d & used:  # the same set may come before several fact landmarks
+            used |= d
+            chosen.add(d)
+            out.append((d, fact))
     return out
 
 
 def reasonable_orders(task: Task, sets: Sequence[frozenset[int]], before: Mapping[int, list[int]],
-                      goal: frozenset[int], mutex: Mutex | None) -> dict[int, list[int]]:
+                      goal: frozenset[int], mutex: Mutex | None, lm: LMSets | None = None) -> dict[int, list[int]]:
     """Landmark index ``B`` -> the indices ``A`` with ``A -> B`` reasonable (``B`` a fact landmark)."""
     n = len(sets)
     parents: dict[int, set[int]] = {}
@@ -109,7 +134,7 @@ def reasonable_orders(task: Task, sets: Sequence[frozenset[int]], before: Mappin
     def achievers_of(i: int) -> list[int]:
         hit = achievers.get(i)
         if hit is None:
-            hit = achievers[i] = first_achievers(task, sets[i])
+            hit = achievers[i] = first_achievers(task, sets[i], lm)
         return hit
 
     def mutex_sets(x: frozenset[int], f: int) -> bool:
