@@ -57,9 +57,17 @@ def first_achievers(task: Task, facts: frozenset[int], lm: LMSets | None = None)
     if lm is not None and len(facts) == 1:
         (f,) = facts
         if f not in task.init:
-            return [a for a, adds in enumerate(add) if f in adds
-                    and all(lm[p] is not None and f not in lm[p] for p in pre[a])]  # type: ignore[operator]
-    banned = [bool(facts.intersection(a)) for a in add]
+            return [a for a in _adders(task).get(f, ())
+                    if all(lm[p] is not None and f not in lm[p] for p in pre[a])]  # type: ignore[operator]
+    memo = task.memo.setdefault("first_achievers", {})
+    hit = memo.get(facts)
+    if hit is not None:
+        return list(hit)
+    adders = _adders(task)
+    banned_ids = sorted({a for f in facts for a in adders.get(f, ())})
+    banned = [False] * len(pre)
+    for a in banned_ids:
+        banned[a] = True
     missing = [len(p) for p in pre]
     reached = set(task.init) - facts
     queue = sorted(reached)
@@ -79,7 +87,22 @@ def first_achievers(task: Task, facts: frozenset[int], lm: LMSets | None = None)
             if missing[a] == 0 and not banned[a] and not fired[a]:
                 fired[a] = True
                 queue.extend(e for e in add[a] if e not in reached and e not in facts)
-    return [a for a, adds in enumerate(add) if banned[a] and all(p in reached for p in pre[a])]
+    out = [a for a in banned_ids if all(p in reached for p in pre[a])]
+    memo[facts] = tuple(out)
+    return out
+
+
+def _adders(task: Task) -> dict[int, list[int]]:
+    """Fact -> the actions that add it, ascending (made once per task)."""
+    hit = task.memo.get("adders")
+    if hit is None:
+        hit = {}
+        for a, adds in enumerate(task.add):
+            for e in adds:
+                hit.setdefault(e, []).append(a)
+        task.memo["adders"] = hit
+    assert isinstance(hit, dict)
+    return hit
 
 
 def disjunctive_landmarks(task: Task, landmarks: Iterable[int], lm: LMSets | None = None
