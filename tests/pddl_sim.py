@@ -2,10 +2,13 @@
 
 It reads the ORIGINAL domain and problem text with its own tokenizer and
 replays a plan: preconditions (and, or, not, imply, forall, exists, =,
-non-recursive derived predicates) are
+derived predicates) are
 evaluated in the state, conditional and universally quantified effects are
 all evaluated in the state before the action (deletes, then adds), and
 ``(increase (total-cost) ...)`` is summed from the problem's function values.
+Derived predicates (recursive or not) are recomputed after every change of
+the state, naively: strata by counting negations along dependencies, then
+per stratum every typed tuple of objects is tried until nothing changes.
 """
 
 from __future__ import annotations
@@ -51,6 +54,8 @@ class Sim:
         self.objects: dict[str, str] = {}
         self.actions: dict[str, list[Tree]] = {}
         self.derived: dict[str, list[tuple[list[str], Tree]]] = {}
+        self.derived_types: dict[str, list[tuple[str, ...]]] = {}
+        self.dstate: set[tuple[str, ...]] = set()
         for sec in d[2:]:
             if sec[0] == ":types":
                 for n, ts in typed(sec[1:]):
@@ -61,6 +66,7 @@ class Sim:
                 self.actions[sec[1]] = sec
             elif sec[0] == ":derived":
                 self.derived.setdefault(sec[1][0], []).append(([v for v, _ in typed(sec[1][1:])], sec[2]))
+                self.derived_types[sec[1][0]] = [ts for _, ts in typed(sec[1][1:])]
         self.state: set[tuple[str, ...]] = set()
         self.values: dict[tuple[str, ...], float] = {}
         self.goal: Tree = ["and"]
@@ -76,6 +82,55 @@ class Sim:
             elif sec[0] == ":goal":
                 self.goal = sec[1]
         self.cost = 0.0
+        self.close()
+
+    def _uses(self, f: Tree, positive: bool, out: set) -> None:
+        if isinstance(f, str) or not f:
+            return
+        if f[0] == "not":
+            self._uses(f[1], not positive, out)
+        elif f[0] in ("and", "or"):
+            for x in f[1:]:
+                self._uses(x, positive, out)
+        elif f[0] == "imply":
+            self._uses(f[1], not positive, out)
+            self._uses(f[2], positive, out)
+        elif f[0] in ("forall", "exists"):
+            self._uses(f[2], positive, out)
+        elif f[0] in self.derived:
+            out.add((f[0], positive))
+
+    def close(self) -> None:
+        """The derived facts of the state: stratum by stratum, naive fixpoint over all tuples."""
+        stratum = {p: 0 for p in self.derived}
+        for _ in range(len(stratum) ** 2 + 1):
+            grew = False
+            for p, defs in self.derived.items():
+                uses: set = set()
+                for _, body in defs:
+                    self._uses(body, True, uses)
+                for q, positive in uses:
+                    need = stratum[q] + (0 if positive else 1)
+                    if need > stratum[p]:
+                        stratum[p], grew = need, True
+            if not grew:
+                break
+        self.dstate = set()
+        for level in sorted(set(stratum.values())):
+            preds = [p for p in self.derived if stratum[p] == level]
+            changed = True
+            while changed:
+                changed = False
+                for p in preds:
+                    tuples = [()]
+                    for types in self.derived_types[p]:
+                        tuples = [(*t, o) for t in tuples for o in self.domain_of(types)]
+                    for args in tuples:
+                        if (p, *args) in self.dstate:
+                            continue
+                        if any(self.holds(body, dict(zip(params, args))) for params, body in self.derived[p]):
+                            self.dstate.add((p, *args))
+                            changed = True
 
     def is_a(self, t: str, types: tuple[str, ...]) -> bool:
         seen = set()
@@ -108,8 +163,8 @@ class Sim:
             test = all if op == "forall" else any
             return test(self.holds(f[2], c) for c in combos)
         args = tuple(b.get(a, a) for a in f[1:])
-        if op in self.derived:  # non-recursive axioms: true when one definition holds
-            return any(self.holds(body, dict(zip(params, args))) for params, body in self.derived[op])
+        if op in self.derived:  # computed by close() after every change of the state
+            return (op, *args) in self.dstate
         if op == "=":
             return args[0] == args[1]
         return (op, *args) in self.state
@@ -168,6 +223,7 @@ class Sim:
         dels: set = set()
         self.effects(keys.get(":effect", []), b, adds, dels)
         self.state = (self.state - dels) | adds
+        self.close()
 
 
 def check_plan(domain_text: str, problem_text: str, steps: list[str]) -> float:

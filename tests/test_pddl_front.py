@@ -171,8 +171,9 @@ def test_false_static_goal_is_unsolvable_not_an_error(tmp_path: Path, capsys: py
     (":precondition (and)", ":precondition (> (stock ?b) 1)", "numeric condition"),
     (":effect (sealed ?b)", ":effect (oneof (sealed ?b) (and))", "non-deterministic effect"),
     (":effect (sealed ?b)", ":effect (at end (sealed ?b))", "temporal effect"),
-    ("(:action seal", "(:derived (shiny ?i - item) (or (free ?i) (exists (?j - item) (and (shiny ?j) (in ?j crate)))))"
-                      "\n  (:action seal", "derived predicates are recursive (shiny -> shiny)"),
+    ("(:action seal", "(:derived (shiny ?i - item) (or (free ?i) (exists (?j - item) (and (not (shiny ?j)) "
+                      "(in ?j crate)))))\n  (:action seal",
+     "the derived predicates are not stratifiable: shiny depends on (not shiny)"),
 ])
 def test_refusals_name_the_construct_and_line(tmp_path: Path, old: str, new: str, what: str) -> None:
     dom = DOMAIN.replace("(:action pack", "(:functions (stock ?b - box))\n  (:action pack").replace(old, new)

@@ -18,12 +18,16 @@ from hypothesis import strategies as st
 from nowplan.errors import NowplanError
 from nowplan.io.pddl_read import load_pddl
 
+AXIOM_CASES = 2  # the last PAIRS: recursive derived predicates
+
 ROOT = Path(__file__).resolve().parent
 PAIRS = [(ROOT / "data" / "pddl_ipc_style" / f"{n}-domain.pddl", ROOT / "data" / "pddl_ipc_style" / f"{n}-p01.pddl")
          for n in ("blocks", "miconic", "transport", "zenotravel", "tidybot", "briefcase", "rooms", "floortile",
                    "miconic-adl")]
 DATA = ROOT.parent / "src" / "nowplan" / "data" / "pddl"
 PAIRS += [(DATA / n / "domain.pddl", DATA / n / "p01.pddl") for n in ("logistics", "lights", "gripper")]
+AXIOMS = ROOT / "data" / "pddl_axioms"  # recursive derived predicates
+PAIRS += [(AXIOMS / f"{n}-domain.pddl", AXIOMS / f"{n}-p02.pddl") for n in ("doors", "grid")]
 TOKENS = re.compile(r"\(|\)|[^\s()]+")
 
 
@@ -60,6 +64,11 @@ def _read_and_ground(tmp: Path, domain: str, problem: str) -> None:
         from nowplan.planning.task import grounding
 
         grounding(prob.domain, prob.objects, prob.init, 0)
+        if prob.domain.axioms:  # the rules' grounding and the evaluation of the initial state
+            from nowplan.core.levels import flat_levels
+            from nowplan.planning.task import build_task
+
+            build_task(prob.domain, prob.objects, prob.init, prob.goal, flat_levels(), lambda a: 1.0)
     except NowplanError as exc:
         assert "\n" not in str(exc)
 
@@ -88,4 +97,12 @@ def test_mutated_pddl_gives_only_nowplan_errors(tmp_path: Path, case: tuple[str,
                                                                      HealthCheck.too_slow])
 @given(case=cases())
 def test_mutated_pddl_gives_only_nowplan_errors_long(tmp_path: Path, case: tuple[str, str]) -> None:
+    _read_and_ground(tmp_path, *case)
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture,
+                                                                    HealthCheck.too_slow])
+@given(case=st.sampled_from(PAIRS[-AXIOM_CASES:]).flatmap(
+    lambda pair: st.tuples(mutated(pair[0].read_text()), mutated(pair[1].read_text()))))
+def test_mutated_axiom_domains_give_only_nowplan_errors(tmp_path: Path, case: tuple[str, str]) -> None:
     _read_and_ground(tmp_path, *case)

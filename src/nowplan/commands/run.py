@@ -69,6 +69,11 @@ def build_episode(args: argparse.Namespace, hierarchical: bool = True) -> Episod
         from nowplan.worlds.symbolic import SymbolicWorld
 
         prob = load_pddl(args.pddl[0], args.pddl[1], args.criticality)
+        if prob.domain.axioms:
+            from nowplan.planning.regression import axioms_refusal
+
+            raise UsageError(f"{axioms_refusal(prob.domain)}; the executive's world and belief "
+                             "do not evaluate derived predicates either")
         if args.criticality == "auto" and hierarchical:
             from nowplan.planning.abstraction import prepare_problem
 

@@ -79,13 +79,24 @@ class Domain:
     # what the expected-vs-observed monitor needs (distance between states, an own planner,
     # plan adaptation, body predicates; default: the number of differing fluents)
     monitor: MonitorSupport | None = field(default=None, hash=False, compare=False)
+    # rules of derived predicates (PDDL axioms) evaluated after every action, stratum by stratum:
+    # each an operator of cost 0 whose only effect is the derived atom (nowplan.io.pddl_axioms);
+    # ``derived`` maps each derived predicate to its stratum.  Only the forward engine plans with them.
+    axioms: tuple[Operator, ...] = ()
+    derived: Mapping[str, int] = field(default_factory=dict, hash=False, compare=False)
 
     def __post_init__(self) -> None:
+        for ax in self.axioms:
+            if len(ax.effects) != 1 or ax.effects[0].predicate not in self.derived:
+                raise ModelError(f"domain {self.name}: the axiom {ax.name} must have one effect, an atom of a "
+                                 "derived predicate")
+            for p in ax.preconditions:
+                self.check_atom(p.atom, where=f"condition of axiom {ax.name}")
         names = [o.name for o in self.operators]
         dup = {n for n in names if names.count(n) > 1}
         if dup:
             raise ModelError(f"domain {self.name}: operator names repeated: {sorted(dup)}")
-        changed = {e.predicate for o in self.operators for e in o.effects}
+        changed = {e.predicate for o in self.operators for e in o.effects} | set(self.derived)
         for op in self.operators:
             for p in op.preconditions:
                 self.check_atom(p.atom, where=f"precondition of operator {op.name}")
@@ -141,7 +152,7 @@ class Domain:
     @cached_property
     def static_predicates(self) -> frozenset[str]:
         """Predicates no operator changes: their preconditions are checked at grounding."""
-        changed = {e.predicate for o in self.operators for e in o.effects}
+        changed = {e.predicate for o in self.operators for e in o.effects} | set(self.derived)
         return frozenset(n for n in self.predicates if n not in changed)
 
     def subtypes(self, t: str | None) -> set[str | None]:

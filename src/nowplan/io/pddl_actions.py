@@ -41,16 +41,21 @@ class World:
     path: str = ""  # the problem file (function values come from its :init)
 
 
-class _NeedsObjects(Exception):
+class NeedsObjects(Exception):
     pass
 
 
 def objects_of(checker: Checker, world: World | None) -> Callable[[tuple[str, ...]], list[str]]:
-    """The objects (and constants) fitting some types; raises _NeedsObjects without a problem."""
+    """The objects (and constants) fitting some types; raises NeedsObjects without a problem."""
+    memo: dict[tuple[str, ...], list[str]] = {}
+
     def objects_of(types: tuple[str, ...]) -> list[str]:
         if world is None:
-            raise _NeedsObjects()
-        return sorted(o for o, t in world.objects.items() if checker.is_a(t, types))
+            raise NeedsObjects()
+        hit = memo.get(types)
+        if hit is None:
+            hit = memo[types] = sorted(o for o, t in world.objects.items() if checker.is_a(t, types))
+        return hit
 
     return objects_of
 
@@ -80,15 +85,19 @@ def atom_of(lit: adl.Lit) -> Atom:
 
 
 def compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: frozenset[str],
-                   world: World | None, derived: adl.Derived) -> tuple[list[Operator], bool]:
-    """The operators of one action, and whether it increases total-cost."""
+                   world: World | None, derived: adl.Derived,
+                   oracle: Callable[[adl.Lit], bool | None] | None = None) -> tuple[list[Operator], bool]:
+    """The operators of one action, and whether it increases total-cost.
+
+    ``oracle`` (default: :func:`static_value`) gives the ground literals known in every state.
+    """
     where = f"action {act.name}"
     objs = objects_of(checker, world)
-    value = static_value(static, world)
+    value = oracle if oracle is not None else static_value(static, world)
     try:
         pre = adl.to_nnf(act.precondition or TRUE, {}, objs, value, derived=derived)
         flat = adl.flatten_effects(act.effect, objs, value, where, derived)
-    except _NeedsObjects:
+    except NeedsObjects:
         raise UnsupportedPDDLError(f"{where} quantifies over objects; quantifiers are compiled over a problem's "
                                    "objects: read the domain together with a problem (load_pddl)",
                                    path=d.path, line=act.line) from None

@@ -10,7 +10,7 @@ from the problem's ``(= (f a b) 5)``).  :mod:`nowplan.io.pddl_check` checks
 names, arities and types; :mod:`nowplan.io.pddl_adl` compiles quantifiers,
 disjunctions and conditional effects to STRIPS operators over the problem's
 objects.  What stays outside (durative actions, numeric fluents that change,
-recursive derived predicates, ...) raises :class:`nowplan.errors.UnsupportedPDDLError`
+derived predicates recursive through a negation, ...) raises :class:`nowplan.errors.UnsupportedPDDLError`
 naming the construct and its line.
 
 Modelling choices:
@@ -44,7 +44,8 @@ from nowplan.errors import ContradictoryGoalError, PDDLError, UnsupportedPDDLErr
 from nowplan.io import pddl_adl as adl
 from nowplan.io.pddl_ast import TOTAL_COST, EAnd, Reader, Effect, EForall, ELit, EWhen, FAnd, FAtom, FNot, Formula
 from nowplan.io.pddl_check import EQUALITY, Checker, warn_undeclared
-from nowplan.io.pddl_actions import World, atom_of, compile_action, objects_of, static_value
+from nowplan.io.pddl_actions import NeedsObjects, World, atom_of, compile_action, objects_of, static_value
+from nowplan.io.pddl_axioms import Strata, compile_rules, static_oracle, stratify, with_auxiliaries
 from nowplan.io.pddl_source import read_source
 from nowplan.io.pddl_syntax import DomainDef, ProblemDef, parse_domain, parse_problem
 from nowplan.io.sexpr import SList, Token
@@ -85,15 +86,14 @@ def _read_domain_def(path: str | Path) -> tuple[DomainDef, Checker]:
         checker.formula(act.precondition, f"the precondition of action {act.name}", scope, checker.constants,
                         d.path)
         checker.effect(act.effect, f"the effect of action {act.name}", scope, checker.constants, d.path)
-    return d, checker
+    return with_auxiliaries(d), checker
 
 
 def _check_derived(d: DomainDef, checker: Checker) -> None:
-    """Derived predicates: declared, typed bodies, never in effects, not recursive."""
+    """Derived predicates: declared, typed bodies, never in effects, stratifiable."""
     changed: set[str] = set()
     for act in d.actions:
         _changed(act.effect, changed)
-    deps: dict[str, set[str]] = {}
     for dv in d.derived:
         where = f"the derived predicate {dv.pred}"
         if dv.pred not in d.predicates:
@@ -106,24 +106,7 @@ def _check_derived(d: DomainDef, checker: Checker) -> None:
                             path=d.path, line=dv.line)
         scope = checker.bind(dv.params, {}, where, d.path)
         checker.formula(dv.body, where, scope, checker.constants, d.path)
-        deps.setdefault(dv.pred, set()).update(_preds(dv.body))
-    state: dict[str, int] = {}
-
-    def visit(p: str, path: list[str]) -> None:  # depth-first search for a cycle; bounded by len(deps)
-        if state.get(p) == 2 or p not in deps:
-            return
-        if state.get(p) == 1:
-            cycle = " -> ".join(path[path.index(p):] + [p])
-            line = next(dv.line for dv in d.derived if dv.pred == p)
-            raise UnsupportedPDDLError(f"the derived predicates are recursive ({cycle}); only non-recursive "
-                                       "derived predicates are compiled", path=d.path, line=line)
-        state[p] = 1
-        for q in sorted(deps[p]):
-            visit(q, [*path, p])
-        state[p] = 2
-
-    for p in sorted(deps):
-        visit(p, [])
+    stratify(d)  # refuses a recursion through a negation
 
 
 def _preds(f: Formula) -> set[str]:
@@ -138,8 +121,12 @@ def _preds(f: Formula) -> set[str]:
 
 
 def _derived_map(d: DomainDef) -> adl.Derived:
+    """The definitions of the derived predicates that are substituted (none once one is recursive)."""
+    native = stratify(d).native
     out: dict[str, list[tuple[tuple[str, ...], Formula]]] = {}
     for dv in d.derived:
+        if dv.pred in native:
+            continue
         out.setdefault(dv.pred, []).append((tuple(p.name for p in dv.params), dv.body))
     return out
 
@@ -176,7 +163,8 @@ def _compile_domain(d: DomainDef, checker: Checker, world: World | None) -> Doma
     changed: set[str] = set()
     for act in d.actions:
         _changed(act.effect, changed)
-    static = frozenset(p for p in d.predicates if p not in changed)
+    strata = stratify(d)
+    static = frozenset(p for p in d.predicates if p not in changed and p not in strata.stratum)
     predicates: dict[str, Predicate] = {}
     for name, (args, _) in d.predicates.items():
         predicates[name] = Predicate(name, len(args), tuple(a.types[0] if len(a.types) == 1 else None
@@ -186,8 +174,13 @@ def _compile_domain(d: DomainDef, checker: Checker, world: World | None) -> Doma
         predicates[EQUALITY] = equality_predicate()
     operators: list[Operator] = []
     costed: list[bool] = []
+    substituted = _derived_map(d)
+    axioms = _compile_axioms(d, checker, static, world, strata, substituted)
+    oracle = None
+    if strata.native and world is not None:
+        oracle = static_oracle(d, strata, objects_of(checker, world), static_value(static, world))
     for act in d.actions:
-        ops, has_cost = compile_action(act, d, checker, static, world, _derived_map(d))
+        ops, has_cost = compile_action(act, d, checker, static, world, substituted, oracle)
         operators.extend(ops)
         costed.extend([has_cost] * len(ops))
     # PDDL :action-costs semantics: once costs are used, an action without an increase costs 0
@@ -201,7 +194,31 @@ def _compile_domain(d: DomainDef, checker: Checker, world: World | None) -> Doma
         if op.pddl_name is not None and op.name in taken:
             raise PDDLError(f"the action '{op.pddl_name}' compiles to the operator '{op.name}', which is also an "
                             "action of the domain; rename that action", path=d.path)
-    return Domain(d.name, predicates, tuple(operators), dict(checker.parent), dict(checker.constants))
+    if EQUALITY not in predicates and any(p.atom.predicate == EQUALITY for ax in axioms for p in ax.preconditions):
+        predicates[EQUALITY] = equality_predicate()
+    derived = {p: strata.stratum[p] for p in sorted(strata.native)}
+    return Domain(d.name, predicates, tuple(operators), dict(checker.parent), dict(checker.constants),
+                  axioms=axioms, derived=derived)
+
+
+def _compile_axioms(d: DomainDef, checker: Checker, static: frozenset[str], world: World | None,
+                    strata: Strata, substituted: adl.Derived) -> tuple[Operator, ...]:
+    """The rules of the recursive derived predicates (:mod:`nowplan.io.pddl_axioms`)."""
+    if not strata.native:
+        return ()
+
+    def alternatives(types: tuple[str, ...]) -> list[str | None]:
+        alts: list[str | None] = [t for t in types if not any(o != t and o in checker.ancestors(t) for o in types)]
+        return alts or [None]
+
+    try:
+        return compile_rules(d, strata, objects_of(checker, world), static_value(static, world), substituted,
+                             alternatives)
+    except NeedsObjects:
+        line = min(dv.line for dv in d.derived if dv.pred in strata.native)
+        raise UnsupportedPDDLError("a derived predicate quantifies over objects (forall); quantifiers "
+                                   "are compiled over a problem's objects: read the domain together with a "
+                                   "problem (load_pddl)", path=d.path, line=line) from None
 
 
 def read_domain(domain_path: str | Path) -> Domain:
@@ -349,10 +366,13 @@ def load_pddl(
         changed: set[str] = set()
         for act in d.actions:
             _changed(act.effect, changed)
-        static = frozenset(x for x in d.predicates if x not in changed)
+        static = frozenset(x for x in d.predicates if x not in changed and x not in domain.derived)
         try:
-            nnf = adl.to_nnf(p.goal, {}, objects_of(checker, world), static_value(static, world),
-                             derived=_derived_map(d))
+            value = static_value(static, world)
+            strata = stratify(d)
+            if strata.native:
+                value = static_oracle(d, strata, objects_of(checker, world), value)
+            nnf = adl.to_nnf(p.goal, {}, objects_of(checker, world), value, derived=_derived_map(d))
             disjuncts = adl.dnf(nnf, "the goal")
         except adl.TooLarge as exc:
             raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=p.path, line=p.goal_line) from None

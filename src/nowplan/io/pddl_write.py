@@ -121,6 +121,12 @@ def domain_text(domain: Domain, level: int | None = None) -> str:
         reqs.append(":equality")
     if costs:
         reqs.append(":action-costs")
+    if domain.axioms:
+        reqs.append(":derived-predicates")
+        if not negative and any(p.atom.value is False for ax in domain.axioms for p in ax.preconditions):
+            reqs.append(":negative-preconditions")
+        if any(len(ax.params) > len(ax.effects[0].args) for ax in domain.axioms):
+            reqs.append(":existential-preconditions")
     static = domain.static_predicates
     lines = [f"(define (domain {domain.name})", f"  (:requirements {' '.join(reqs)})"]
     if domain.types:
@@ -142,6 +148,7 @@ def domain_text(domain: Domain, level: int | None = None) -> str:
         fns = "".join(f" ({f}{''.join(f' ?x{i}' for i in range(n))}) - number"
                       for f, n in sorted(_cost_functions(domain).items()))
         lines.append(f"  (:functions (total-cost) - number{fns})")
+    lines.extend(_derived_text(domain, typed))
     for op in domain.operators:
         if op.generators:
             raise ModelError(f"operator {op.name} uses generators; it cannot be written as PDDL")
@@ -164,6 +171,25 @@ def domain_text(domain: Domain, level: int | None = None) -> str:
         lines.append(f"    :effect {effect})")
     lines.append(")")
     return "\n".join(lines) + "\n"
+
+
+def _derived_text(domain: Domain, typed: bool) -> list[str]:
+    """One ``(:derived ...)`` per rule of a recursive derived predicate; its other variables existential."""
+    lines = []
+    for ax in domain.axioms:
+        head = ax.effects[0]
+        types = dict(zip(ax.params, ax.param_types or tuple(None for _ in ax.params), strict=True))
+        hv = [t for t in head.args if isinstance(t, Var)]
+        if len(hv) != len(head.args) or len(set(hv)) != len(hv):
+            raise ModelError(f"the axiom {ax.name} has a head {head} that is not distinct variables")
+        shown = _typed(((f"?{v.name}", types[v]) for v in hv), typed)
+        body = _conj((p.atom for p in ax.preconditions), "      ")
+        extra = [v for v in ax.params if v not in hv]
+        if extra:
+            body = f"(exists ({_typed(((f'?{v.name}', types[v]) for v in extra), typed)}) {body})"
+        lines.append(f"  (:derived ({head.predicate}{' ' + shown if shown else ''})")
+        lines.append(f"      {body})")
+    return lines
 
 
 def _init_atoms(init: Any) -> list[Atom]:

@@ -1,7 +1,8 @@
 /* The forward engine's compiled kernel: h_FF / h_add / h_max with preferred
  * operators, the successor generator, lazy GBFS, LAMA's first iteration
  * (_kernel_lama.h) and the bounded weighted A* of the anytime improvement
- * (_kernel_wastar.h) over bitset states.
+ * (_kernel_wastar.h) over bitset states, and the stratified evaluation of the
+ * rules of derived predicates after every action (_kernel_axioms.h, axioms.py).
  *
  * It mirrors nowplan/planning/hff.py, forward.py, lama.py and anytime.py (the reference: both
  * paths must give the same h, the same preferred operators, the same plan
@@ -17,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define KERNEL_API 5
+#define KERNEL_API 6
 #define BIT(b, f) (((b)[(f) >> 6] >> ((f) & 63)) & 1u)
 #define SETBIT(b, f) ((b)[(f) >> 6] |= (uint64_t)1 << ((f) & 63))
 #define CLRBIT(b, f) ((b)[(f) >> 6] &= ~((uint64_t)1 << ((f) & 63)))
@@ -45,6 +46,11 @@ typedef struct {
     BEnt *bpool;
     uint64_t *bits;
     long long evaluations;
+    int32_t nact;     /* actions [0, nact) are applicable; the others are rules, relaxed only */
+    int32_t nax, nlayers;  /* the rules of derived predicates (axioms) and their layers */
+    CSR axbody, axby, negs;  /* rule -> conditions; fact -> rules needing it; layer -> (d, not d) pairs */
+    int32_t *axhead, *axnbody, *axunsat, *axqueue, *laylo, *layhi;
+    uint64_t *dmask;  /* the facts the evaluation recomputes (derived facts and their "not" facts) */
 } Kernel;
 
 /* ------------------------------------------------------------------ building */
@@ -118,10 +124,11 @@ fail:
 static void free_csr(CSR *c) { PyMem_Free(c->off); PyMem_Free(c->v); }
 
 static void Kernel_dealloc(Kernel *k) {
-    CSR *csrs[] = {&k->pre, &k->add, &k->del, &k->bypre, &k->trig};
+    CSR *csrs[] = {&k->pre, &k->add, &k->del, &k->bypre, &k->trig, &k->axbody, &k->axby, &k->negs};
     for (size_t i = 0; i < sizeof csrs / sizeof *csrs; i++) free_csr(csrs[i]);
     void *arrs[] = {k->nopre, k->goal, k->npre, k->chosen, k->stack, k->sf, k->isgoal, k->marked, k->chmark,
-                    k->acost, k->fcost, k->acc, k->sup, k->unsat, k->heap, k->bhead, k->bpool, k->bits};
+                    k->acost, k->fcost, k->acc, k->sup, k->unsat, k->heap, k->bhead, k->bpool, k->bits,
+                    k->axhead, k->axnbody, k->axunsat, k->axqueue, k->laylo, k->layhi, k->dmask};
     for (size_t i = 0; i < sizeof arrs / sizeof *arrs; i++) PyMem_Free(arrs[i]);
     Py_TYPE(k)->tp_free((PyObject *)k);
 }
@@ -136,6 +143,7 @@ static int build_triggers(Kernel *k) {
     if (of == NULL) { PyErr_NoMemory(); return -1; }
     for (int32_t a = 0; a < na; a++) {
         int32_t best = -1, bestn = 0;
+        if (a >= k->nact) { of[a] = -1; continue; }  /* a rule: never applied by the search */
         for (int32_t j = k->pre.off[a]; j < k->pre.off[a + 1]; j++) {
             int32_t f = k->pre.v[j], n = k->bypre.off[f + 1] - k->bypre.off[f];
             if (best < 0 || n < bestn) { best = f; bestn = n; }
@@ -153,13 +161,16 @@ static int build_triggers(Kernel *k) {
     return 0;
 }
 
+#include "_kernel_axioms.h"
+
 static PyObject *Kernel_new(PyTypeObject *type, PyObject *args, PyObject *kwds) {
-    static char *kwlist[] = {"nfacts", "pre", "add", "dele", "cost", "goal", "by_pre", "no_pre", "kind", NULL};
-    int nf;
-    PyObject *pre, *add, *dele, *cost, *goal, *bypre, *nopre;
+    static char *kwlist[] = {"nfacts", "pre", "add", "dele", "cost", "goal", "by_pre", "no_pre", "kind",
+                             "nactions", "axioms", NULL};
+    int nf, nactions = -1;
+    PyObject *pre, *add, *dele, *cost, *goal, *bypre, *nopre, *axioms = Py_None;
     const char *kind;
-    if (!PyArg_ParseTupleAndKeywords(args, kwds, "iOOOOOOOs", kwlist, &nf, &pre, &add, &dele, &cost, &goal,
-                                     &bypre, &nopre, &kind))
+    if (!PyArg_ParseTupleAndKeywords(args, kwds, "iOOOOOOOs|iO", kwlist, &nf, &pre, &add, &dele, &cost, &goal,
+                                     &bypre, &nopre, &kind, &nactions, &axioms))
         return NULL;
     Kernel *k = (Kernel *)type->tp_alloc(type, 0);
     if (k == NULL) return NULL;
@@ -172,6 +183,7 @@ static PyObject *Kernel_new(PyTypeObject *type, PyObject *args, PyObject *kwds) 
     if (nf < 0 || nf >= INT32_MAX - 64 || na >= INT32_MAX) { PyErr_SetString(PyExc_ValueError, "task too large"); goto fail; }
     k->nf = nf;
     k->na = (int32_t)na;
+    k->nact = nactions < 0 || nactions > na ? (int32_t)na : nactions;
     k->words = (nf + 63) / 64;
     if (build_csr(pre, k->na, nf, "pre", &k->pre) || build_csr(add, k->na, nf, "add", &k->add) ||
         build_csr(dele, k->na, nf, "dele", &k->del) || build_csr(bypre, nf, k->na, "by_pre", &k->bypre) ||
@@ -213,6 +225,7 @@ static PyObject *Kernel_new(PyTypeObject *type, PyObject *args, PyObject *kwds) 
     for (int32_t a = 0; a < k->na; a++) k->npre[a] = k->pre.off[a + 1] - k->pre.off[a];
     for (int32_t i = 0; i < k->ngoal; i++) k->isgoal[k->goal[i]] = 1;
     if (build_triggers(k) < 0) goto fail;
+    if (axioms != Py_None && build_axioms(k, axioms) < 0) goto fail;
     return (PyObject *)k;
 fail:
     Py_DECREF(k);
@@ -383,7 +396,7 @@ static double evaluate_core(Kernel *k, const uint64_t *bits, const int32_t *sf, 
         int32_t a = k->chosen[i], ok = 1;
         h += acost[a];
         for (int32_t j = poff[a]; j < poff[a + 1] && ok; j++) ok = BIT(bits, pv[j]);
-        if (ok) pref[(*npref)++] = a;
+        if (ok && a < k->nact) pref[(*npref)++] = a;
     }
     qsort(pref, (size_t)*npref, sizeof(int32_t), cmp_i32);
     return h;
@@ -393,7 +406,7 @@ static double evaluate_core(Kernel *k, const uint64_t *bits, const int32_t *sf, 
 static int32_t applicable_core(Kernel *k, const uint64_t *bits, const int32_t *sf, int32_t ns, int32_t *out) {
     int32_t n = 0;
     const int32_t *poff = k->pre.off, *pv = k->pre.v;
-    for (int32_t i = 0; i < k->nnopre; i++) out[n++] = k->nopre[i];
+    for (int32_t i = 0; i < k->nnopre; i++) if (k->nopre[i] < k->nact) out[n++] = k->nopre[i];
     for (int32_t i = 0; i < ns; i++) {
         int32_t f = sf[i];
         for (int32_t t = k->trig.off[f]; t < k->trig.off[f + 1]; t++) {
@@ -465,6 +478,13 @@ static PyObject *Kernel_applicable(Kernel *k, PyObject *state) {
     return lst;
 }
 
+static PyObject *Kernel_close(Kernel *k, PyObject *state) {
+    int32_t ns = load_state(k, state);
+    if (ns < 0) return NULL;
+    if (k->dmask) axioms_eval(k, k->bits);
+    return id_list(k->sf, facts_of(k->bits, k->words, k->sf));
+}
+
 #include "_kernel_heap.h"
 #include "_kernel_gbfs.h"
 #include "_kernel_lama.h"
@@ -474,6 +494,8 @@ static PyMethodDef Kernel_methods[] = {
     {"evaluate", (PyCFunction)Kernel_evaluate, METH_O,
      "evaluate(state) -> (h, preferred action ids ascending); h is inf at a dead end"},
     {"applicable", (PyCFunction)Kernel_applicable, METH_O, "applicable(state) -> action ids ascending"},
+    {"close", (PyCFunction)Kernel_close, METH_O,
+     "close(facts) -> the state's fact ids ascending, derived facts recomputed by the rules (axioms)"},
     {"gbfs", (PyCFunction)(void (*)(void))Kernel_gbfs, METH_VARARGS | METH_KEYWORDS,
      "gbfs(init, max_nodes, out_of_time) -> (status, plan action ids or None, expanded, generated, evaluations)"},
     {"lama", (PyCFunction)(void (*)(void))Kernel_lama, METH_VARARGS | METH_KEYWORDS,

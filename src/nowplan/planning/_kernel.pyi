@@ -23,11 +23,16 @@ class Kernel:
         by_pre: Sequence[Sequence[int]],
         no_pre: Sequence[int],
         kind: str,
+        nactions: int = -1,
+        axioms: tuple[
+            Sequence[Sequence[int]], Sequence[int], Sequence[tuple[int, int]], Sequence[Sequence[int]], Sequence[int]
+        ] | None = None,
     ) -> None: ...
     @property
     def evaluations(self) -> int: ...
     def evaluate(self, state: Iterable[int], /) -> tuple[float, list[int]]: ...
     def applicable(self, state: Iterable[int], /) -> list[int]: ...
+    def close(self, facts: Iterable[int], /) -> list[int]: ...
     def gbfs(
         self,
         init: Iterable[int],
@@ -44,6 +49,7 @@ class Kernel:
         out_of_time: Callable[[], object] | None = None,
         boost: int = 1000,
         unreachable: bool = False,
+        reasonable: Sequence[Sequence[int]] | None = None,
     ) -> tuple[int, list[int] | None, int, int, int]: ...
     def bounded_wastar(
         self,

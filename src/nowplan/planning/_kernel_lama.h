@@ -18,6 +18,7 @@ typedef struct {
     CSR of;               /* fact -> the landmarks it is a fact of */
     uint8_t *isgoal;      /* landmark index -> a single goal fact */
     CSR before;           /* landmark index -> the landmark indices it comes before */
+    CSR reasonable;       /* landmark index -> its reasonable predecessors (empty rows without them) */
     uint64_t *acc;        /* state id -> accepted bitset (lwords words each) */
     size_t acccap;        /* states with room in acc */
 } Landmarks;
@@ -27,10 +28,11 @@ static void lm_free(Landmarks *L) {
     free_csr(&L->of);
     PyMem_Free(L->isgoal);
     free_csr(&L->before);
+    free_csr(&L->reasonable);
     PyMem_Free(L->acc);
 }
 
-static int lm_build(Kernel *k, PyObject *landmarks, PyObject *before, Landmarks *L) {
+static int lm_build(Kernel *k, PyObject *landmarks, PyObject *before, PyObject *reasonable, Landmarks *L) {
     Py_ssize_t n = PyObject_Length(landmarks);
     if (n < 0) return -1;
     if (n >= INT32_MAX - 64) { PyErr_SetString(PyExc_ValueError, "too many landmarks"); return -1; }
@@ -55,7 +57,14 @@ static int lm_build(Kernel *k, PyObject *landmarks, PyObject *before, Landmarks 
             L->of.v[L->of.off[f] + fill[f]++] = i;
         }
     PyMem_Free(fill);
-    return build_csr(before, L->nlm, L->nlm > 0 ? L->nlm : 1, "before", &L->before);
+    if (build_csr(before, L->nlm, L->nlm > 0 ? L->nlm : 1, "before", &L->before) < 0) return -1;
+    if (reasonable == Py_None) {  /* none: an empty row per landmark */
+        if (!(L->reasonable.off = xcalloc((size_t)L->nlm + 1, sizeof(int32_t))) ||
+            !(L->reasonable.v = xcalloc(1, sizeof(int32_t))))
+            return -1;
+        return 0;
+    }
+    return build_csr(reasonable, L->nlm, L->nlm > 0 ? L->nlm : 1, "reasonable", &L->reasonable);
 }
 
 /* Room for the accepted set of state sid; its words (zeroed when new). */
@@ -92,6 +101,10 @@ static double lm_count(const Kernel *k, const Landmarks *L, const uint64_t *acc,
     int32_t todo = 0, again = 0;
     for (int32_t i = 0; i < L->nlm; i++) {
         if (!BIT(acc, i)) { todo++; continue; }
+        int early = 0;  /* reached before a reasonable predecessor: to be reached again */
+        for (int32_t j = L->reasonable.off[i]; j < L->reasonable.off[i + 1] && !early; j++)
+            early = !BIT(acc, L->reasonable.v[j]);
+        if (early) { again++; continue; }
         if (lm_holds(L, i, bits)) continue;
         if (L->isgoal[i]) { again++; continue; }
         for (int32_t j = L->before.off[i]; j < L->before.off[i + 1]; j++)
@@ -134,12 +147,13 @@ static int lama_expand(LamaExpander *x, uint32_t sid, const uint64_t *bits, cons
 
 static PyObject *Kernel_lama(Kernel *k, PyObject *args, PyObject *kwds) {
     static char *kwlist[] = {"init", "max_nodes", "landmarks", "before", "out_of_time", "boost", "unreachable",
-                             NULL};
+                             "reasonable", NULL};
     PyObject *init, *landmarks, *before, *out_of_time = Py_None, *plan = NULL, *result = NULL;
+    PyObject *reasonable = Py_None;
     long long max_nodes, boost = 1000;
     int unreachable = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwds, "OLOO|OLp", kwlist, &init, &max_nodes, &landmarks, &before,
-                                     &out_of_time, &boost, &unreachable))
+    if (!PyArg_ParseTupleAndKeywords(args, kwds, "OLOO|OLpO", kwlist, &init, &max_nodes, &landmarks, &before,
+                                     &out_of_time, &boost, &unreachable, &reasonable))
         return NULL;
     Landmarks L = {0};
     Store st = {.words = k->words};
@@ -148,7 +162,7 @@ static PyObject *Kernel_lama(Kernel *k, PyObject *args, PyObject *kwds) {
     uint64_t *cur = NULL, *acc;
     long long evals0 = k->evaluations, expanded = 0;
     int status = ST_EXHAUSTED, added;
-    if (lm_build(k, landmarks, before, &L) < 0) goto error;
+    if (lm_build(k, landmarks, before, reasonable, &L) < 0) goto error;
     int32_t ns = load_state(k, init), npref = 0, words = k->words;
     if (ns < 0) goto error;
     size_t na1 = (size_t)(k->na ? k->na : 1);
@@ -181,6 +195,7 @@ static PyObject *Kernel_lama(Kernel *k, PyObject *args, PyObject *kwds) {
         memcpy(cur, st.bits + (size_t)e.sid * (size_t)words, (size_t)words * sizeof(uint64_t));
         for (int32_t j = k->del.off[e.a]; j < k->del.off[e.a + 1]; j++) CLRBIT(cur, k->del.v[j]);
         for (int32_t j = k->add.off[e.a]; j < k->add.off[e.a + 1]; j++) SETBIT(cur, k->add.v[j]);
+        if (k->dmask) axioms_eval(k, cur);
         long long sid = store_add(&st, cur, e.sid, e.a, &added);
         if (sid < 0) goto error;
         if (!added) continue;

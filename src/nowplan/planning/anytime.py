@@ -17,6 +17,7 @@ import math
 import time
 from collections.abc import Callable
 
+from nowplan.planning.axioms import rule_costs
 from nowplan.planning.forward import _apply, _goal_reached, _Successors
 from nowplan.planning.hff import CostType, RelaxedHeuristic
 from nowplan.planning.task import Task
@@ -84,7 +85,7 @@ def improve(task: Task, plan: list[int], budget_s: float, cost_type: CostType = 
         while True:
             bound = sum(task.cost[a] for a in best)
             if h.native is not None:
-                found = h.native.bounded_wastar(task.init, task.cost, w, bound, stop)
+                found = h.native.bounded_wastar(task.init, rule_costs(task, task.cost), w, bound, stop)
             else:
                 found = _bounded_wastar(task, h, succ, w, bound, stop)
             if found is None:

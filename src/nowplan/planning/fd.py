@@ -97,6 +97,13 @@ def solve_fd(
     keep_dir: str | Path | None = None,
 ) -> PlanResult:
     """Solve ``problem`` at ``level`` (None: flat, every precondition) with Fast Downward."""
+    if problem.domain.axioms:
+        from nowplan.errors import UsageError
+
+        raise UsageError(f"--engine fd: domain {problem.domain.name} has recursive derived predicates, so "
+                         f"derived predicates evaluated by rules ({', '.join(sorted(problem.domain.derived))}), which unified-planning's PDDL reader "
+                         "(the way to Fast Downward here) does not read; use the default engine, or run Fast "
+                         "Downward's own driver on the original files (benchmarks/ipc_check.py does)")
     require("unified_planning", "fd")
     require("up_fast_downward", "fd")
     shortcuts = require("unified_planning.shortcuts", "fd")

@@ -36,6 +36,7 @@ from nowplan.core.atoms import Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
+from nowplan.planning.axioms import evaluator
 from nowplan.planning.hff import CostType, Kind, RelaxedHeuristic
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.postprocess import eliminate_actions
@@ -128,7 +129,13 @@ def _goal_reached(task: Task, state: frozenset[int]) -> bool:
 
 
 def _apply(task: Task, state: frozenset[int], a: int) -> frozenset[int]:
-    return state.difference(task.dele[a]).union(task.add[a])
+    """The successor of ``state`` by action ``a`` (its derived facts recomputed when the task has axioms)."""
+    nxt = state.difference(task.dele[a]).union(task.add[a])
+    if task.axioms:
+        ev = evaluator(task)
+        assert ev is not None
+        return ev.evaluate(nxt)
+    return nxt
 
 
 def _path(task: Task, parent: Mapping[frozenset[int], tuple[frozenset[int], int] | None],
@@ -280,10 +287,46 @@ def regress_actions(
     """
     from nowplan.planning.regression import regress_through, static_drop
 
-    goals, failed = regress_through(goal, actions, levels, domain, static_drop(domain, belief))
-    if failed is not None or not domain.satisfies(belief, goals[0]):
+    drop = static_drop(domain, belief)
+    if domain.axioms:
+        found = _regress_base(domain, goal, actions, levels, drop)
+        if found is None:
+            return None
+        goals = found
+    else:
+        goals, failed = regress_through(goal, actions, levels, domain, drop)
+        if failed is not None:
+            return None
+    if not domain.satisfies(belief, [a for a in goals[0].atoms if a.predicate not in domain.derived]):
         return None
     return [(None, goals[0]), *zip(actions, goals[1:], strict=True)]
+
+
+def _regress_base(domain: Domain, goal: Goal, actions: Sequence[Action], levels: LevelMap,
+                  drop: frozenset[str]) -> list[Goal] | None:
+    """Pre-images ``[g0, …, gn = goal]`` where derived literals are kept only where they are needed.
+
+    No action adds or deletes a derived atom, yet an action may change its
+    truth; its pre-image through the action is a condition on the base facts
+    that is no conjunction of literals.  So each step regresses the base
+    literals as usual and adds the action's own conditions: ``g_i`` holds the
+    derived literals that step ``i + 1`` needs (``g_n`` the goal's).  The
+    forward search checked them in the states it went through; these are not
+    the weakest pre-images (the executive, which monitors pre-images, refuses
+    such domains).  ``None`` if an action destroys a base literal needed later.
+    """
+    from nowplan.core.atoms import Goal as GoalT
+    from nowplan.planning.regression import preimage
+
+    goals = [goal]
+    for i in range(len(actions) - 1, -1, -1):
+        base = GoalT.of([a for a in goals[-1].atoms if a.predicate not in domain.derived], domain.rules)
+        g = preimage(base, actions[i], levels.level(actions[i]), domain, drop)
+        if g is None:
+            return None
+        goals.append(g)
+    goals.reverse()
+    return goals
 
 
 def forward_plan(

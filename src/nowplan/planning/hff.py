@@ -28,6 +28,7 @@ import heapq
 import math
 from typing import TYPE_CHECKING, Literal
 
+from nowplan.planning.axioms import kernel_axioms, relaxed_task, rule_costs
 from nowplan.planning.native import kernel_class
 from nowplan.planning.task import Task
 
@@ -50,18 +51,22 @@ class RelaxedHeuristic:
     """``evaluate(state) -> (h, preferred action ids)``; ``h`` is ``inf`` at a dead end."""
 
     def __init__(self, task: Task, kind: Kind = "ff", cost_type: CostType = "plusone") -> None:
-        self.task = task
+        self.nactions = len(task.pre)
+        relaxed = relaxed_task(task)  # the task's rules (axioms) as relaxed actions of cost 0
+        self.task = relaxed
         self.kind = kind
-        self.acost = adapt_costs(task.cost, cost_type)
-        self.npre = [len(p) for p in task.pre]
+        self.acost = rule_costs(task, adapt_costs(task.cost, cost_type))
+        self.npre = [len(p) for p in relaxed.pre]
         self.nfacts = len(task.facts)
         self.goal = task.goal
         self.goalset = frozenset(task.goal)
         self.evaluations = 0
         cls = kernel_class()
+        nactions, axioms = kernel_axioms(task)
         self.native: Kernel | None = None if cls is None else cls(
-            self.nfacts, task.pre, task.add, task.dele, self.acost, task.goal,
-            [task.by_pre.get(f, ()) for f in range(self.nfacts)], task.no_pre, kind)
+            self.nfacts, relaxed.pre, relaxed.add, relaxed.dele, self.acost, task.goal,
+            [relaxed.by_pre.get(f, ()) for f in range(self.nfacts)], relaxed.no_pre, kind,
+            nactions=nactions, axioms=axioms)
 
     def evaluate(self, state: frozenset[int]) -> tuple[float, list[int]]:
         if self.native is not None:
@@ -149,5 +154,5 @@ class RelaxedHeuristic:
             stack.extend(p for p in pre[a] if p not in state and p not in marked)
         for a in chosen:
             h += acost[a]
-        preferred = sorted(a for a in chosen if all(p in state for p in pre[a]))
+        preferred = sorted(a for a in chosen if a < self.nactions and all(p in state for p in pre[a]))
         return h, preferred

@@ -47,7 +47,8 @@ def lama_search(
     if ff.native is not None:
         sets = [sorted(d) for d in lm.sets]
         before = [lm.before.get(i, []) for i in range(len(sets))]
-        out = ff.native.lama(task.init, max_nodes, sets, before, out_of_time, BOOST, lm.unreachable)
+        reasonable = [lm.reasonable.get(i, []) for i in range(len(sets))]
+        out = ff.native.lama(task.init, max_nodes, sets, before, out_of_time, BOOST, lm.unreachable, reasonable)
         return native_result(task, out, max_nodes)
     succ = _Successors(task)
     init = task.init

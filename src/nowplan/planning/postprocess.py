@@ -9,11 +9,13 @@ less.  Quadratic in the plan length, and never makes a plan worse.
 
 from __future__ import annotations
 
+from nowplan.planning.axioms import evaluator
 from nowplan.planning.task import Task
 
 
 def _run(task: Task, plan: list[int], skip: int) -> list[int] | None:
     """``plan`` without step ``skip`` and the later steps left inapplicable; ``None`` if the goal fails."""
+    ev = evaluator(task)
     state = set(task.init)
     kept: list[int] = []
     for i, a in enumerate(plan):
@@ -21,6 +23,8 @@ def _run(task: Task, plan: list[int], skip: int) -> list[int] | None:
             continue
         state.difference_update(task.dele[a])
         state.update(task.add[a])
+        if ev is not None:
+            state = set(ev.evaluate(state))
         kept.append(a)
     return kept if all(g in state for g in task.goal) else None
 

@@ -417,6 +417,16 @@ class _Search:
         return steps
 
 
+def axioms_refusal(domain: Domain) -> str:
+    """Why the regression planner (and HPN) refuses a domain with derived predicates evaluated by rules, and the fix."""
+    names = ", ".join(sorted(domain.derived))
+    return (f"domain {domain.name} has recursive derived predicates, so its derived predicates are evaluated by "
+            f"rules ({names}): the regression planner, and "
+            "HPN's executive that regresses at abstract levels, cannot regress through them (a derived atom's "
+            "pre-image is no conjunction of literals); plan it flat with the forward engine (nowplan plan, "
+            "--engine forward; PlannerConfig(engine='forward'))")
+
+
 def concrete(domain: Domain, levels: LevelMap) -> bool:
     """Every operator instance keeps all its preconditions at ``levels`` (a flat call).
 
@@ -481,6 +491,10 @@ def plan(
         forward = plan_forward(domain, objects, belief, goal, levels, config)
         if forward is not None:
             return forward
+    if domain.axioms:
+        from nowplan.errors import ModelError
+
+        raise ModelError(axioms_refusal(domain))
     search = _Search(domain, objects, belief, levels, config, context)
     attempts: list[str] = []
     result: tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str] = (

@@ -111,14 +111,15 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
     facts: dict[str, set[tuple[Any, ...]]] = {}
     for a in reached:
         facts.setdefault(a.predicate, set()).add(a.args)
-    joins = [_Join(op, statics, level, facts) for op in domain.operators]
+    schemas = (*domain.operators, *domain.axioms)  # an axiom's conditions are kept at every level
+    joins = [_Join(op, statics, level, facts) for op in schemas]
     seen: set[tuple[str, tuple[Any, ...]]] = set()
     actions: list[Action] = []
     changed: set[str] | None = None  # predicates with new facts in the last round (None: all)
     while changed is None or changed:
         index = _Index(facts)
         new: list[Atom] = []
-        for op, join in zip(domain.operators, joins, strict=True):
+        for op, join in zip(schemas, joins, strict=True):
             if changed is not None and not join.predicates & changed:
                 continue  # nothing new to join against: the same bindings as last round
             for args in join.bindings(index, by_type, type_sets):
@@ -262,6 +263,21 @@ _UNBOUND = object()
 # --------------------------------------------------------------------------- the task
 
 
+@dataclass(frozen=True)
+class GroundAxioms:
+    """The ground rules of a task, ordered by stratum (layer)."""
+
+    body: tuple[tuple[int, ...], ...]  # rule -> its condition facts ("not" facts included)
+    head: tuple[int, ...]  # rule -> the derived fact it makes true
+    layers: tuple[tuple[int, int], ...]  # layer -> its rules [lo, hi)
+    negs: tuple[tuple[tuple[int, int], ...], ...]  # layer -> (d or -1, "not d") set after the layer
+    derived: frozenset[int]  # every fact the evaluation recomputes (derived atoms, their "not" facts)
+
+    def __bool__(self) -> bool:
+        return bool(self.body) or bool(self.derived)
+
+
+
 @dataclass
 class Task:
     """Integer actions at one level map: ``pre``/``add``/``dele`` are fact-id tuples."""
@@ -278,6 +294,9 @@ class Task:
     unsolvable: str = ""  # why the goal cannot be reached (a goal atom never reachable)
     by_pre: dict[int, list[int]] = field(default_factory=dict)  # fact -> actions that need it
     no_pre: list[int] = field(default_factory=list)  # actions with no preconditions
+    # the ground rules of derived predicates, evaluated after every action (nowplan.planning.axioms)
+    axioms: GroundAxioms | None = None
+    memo: dict[str, Any] = field(default_factory=dict, repr=False)  # what searches derive once per task
 
     def index_preconditions(self) -> None:
         """Fill ``by_pre`` and ``no_pre`` from ``pre``."""
@@ -315,12 +334,15 @@ def build_task(
     true_now = {a for a in belief.atoms() if a.value is True}
     negs: set[Atom] = set()  # the positive atoms whose negation is a condition somewhere
     kept = _reachable(gr, levels, statics, true_now)
-    for _, conds in kept:
+    rules = [(act, conds) for act, conds in kept if act.operator.name in _axiom_names(domain)]
+    if rules:
+        kept = [(act, conds) for act, conds in kept if act.operator.name not in _axiom_names(domain)]
+    for _, conds in kept + rules:
         negs.update(p.negate() for p in conds if p.value is False)
     negs.update(a.negate() for a in goal.atoms if a.value is False and a.predicate not in statics)
     # ids in a canonical order, whatever the cache saw before: the same call makes the same plan
     reached = set(true_now)
-    for act, _ in kept:
+    for act, _ in kept + rules:
         reached.update(e for e in act.effects() if e.value is True)
     for a in sorted(reached, key=_atom_order):
         fid(a)
@@ -351,6 +373,13 @@ def build_task(
     init = frozenset({index[a] for a in true_now if a in index}
                      | {index[n.negate()] for n in negs if n not in true_now})
     task = Task(facts, index, actions, pre, add, dele, cost, init, ())
+    if domain.axioms:
+        task.axioms = _ground_axioms(domain, rules, index, negs)
+        from nowplan.planning.axioms import evaluator
+
+        ev = evaluator(task)
+        if ev is not None:
+            task.init = ev.evaluate(task.init)
     goal_ids: list[int] = []
     for a in goal.atoms:
         if a.predicate in statics:
@@ -364,7 +393,59 @@ def build_task(
         goal_ids.append(i)
     task.goal = tuple(sorted(goal_ids))
     task.index_preconditions()
+    keyed = [c for c in domain.rules.conflicts if isinstance(c, KeyedRule)]
+    if keyed:
+        task.memo["mutex"] = _mutex(facts, keyed)
     return task
+
+
+def _mutex(facts: list[Atom], keyed: list[KeyedRule]) -> Any:
+    """``mutex(f, g)``: the conflict rules (inferred invariants) exclude facts ``f`` and ``g`` together."""
+    memo: dict[int, frozenset[Any]] = {}
+
+    def keys(f: int) -> frozenset[Any]:
+        hit = memo.get(f)
+        if hit is None:
+            a = facts[f]
+            hit = memo[f] = frozenset((i, k) for i, r in enumerate(keyed) for k in r.group_keys(a)) \
+                if a.value is True else frozenset()
+        return hit
+
+    def mutex(f: int, g: int) -> bool:
+        return f != g and bool(keys(f) & keys(g))
+
+    return mutex
+
+
+def _axiom_names(domain: Domain) -> frozenset[str]:
+    return frozenset(ax.name for ax in domain.axioms)
+
+
+def _ground_axioms(domain: Domain, rules: list[tuple[Action, list[Atom]]], index: Mapping[Atom, int],
+                   negs: set[Atom]) -> GroundAxioms:
+    """The ground rules as fact ids, sorted by stratum, and the derived facts they recompute."""
+    strata = sorted(set(domain.derived.values()))
+    layer_of = {p: strata.index(s) for p, s in domain.derived.items()}
+    entries: list[tuple[int, tuple[int, ...], int]] = []
+    for act, conds in rules:
+        (head,) = act.effects()
+        body = tuple(sorted({index[c] for c in conds}))
+        entries.append((layer_of[head.predicate], body, index[head]))
+    entries.sort(key=lambda e: e[0])  # stable: the rules keep their order within a layer
+    layers = []
+    for i in range(len(strata)):
+        lo = next((k for k, e in enumerate(entries) if e[0] >= i), len(entries))
+        hi = next((k for k, e in enumerate(entries) if e[0] > i), len(entries))
+        layers.append((lo, hi))
+    derived = {i for a, i in index.items() if a.value is True and a.predicate in domain.derived}
+    negs_of: list[list[tuple[int, int]]] = [[] for _ in strata]
+    for d in sorted(negs, key=_atom_order):
+        if d.predicate in domain.derived and d in index:  # a derived atom never reached: "not d" always holds
+            nd = index[d.negate()]
+            derived.add(nd)
+            negs_of[layer_of[d.predicate]].append((index[d], nd))
+    return GroundAxioms(tuple(e[1] for e in entries), tuple(e[2] for e in entries), tuple(layers),
+                        tuple(tuple(n) for n in negs_of), frozenset(derived))
 
 
 def _atom_order(a: Atom) -> tuple[str, str, bool]:

@@ -1,0 +1,194 @@
+"""Disjunctive landmarks and reasonable orderings for the landmark count (LAMA's landmark graph).
+
+Two additions to the fact landmarks of :mod:`nowplan.planning.landmarks`, in
+the spirit of Richter, Helmert and Westphal (RHW) and of Hoffmann, Porteous
+and Sebastia's reasonable orderings as LAMA approximates them:
+
+* **Disjunctive landmarks.**  For a fact landmark ``L`` not true initially,
+  if each of its *first achievers* (actions that add ``L`` and can be applied
+  before ``L`` first holds: their preconditions are reachable in the delete
+  relaxation without any action that adds ``L``) needs some fact of one
+  predicate, the set of those facts is a landmark: gripper's "ball b is in
+  the left or in the right gripper" before "b is in room B".  Sets of more
+  than :data:`MAX_DISJUNCTION` facts, sets with a fact true initially, sets
+  containing a fact landmark and sets sharing a fact with a disjunctive
+  landmark found before (Fast Downward's landmark graph does not let two
+  disjunctive landmarks overlap) are left out.  ``D`` comes necessarily before
+  ``L``, and every fact landmark that all first achievers of ``D`` need comes
+  before ``D``.
+* **Reasonable orderings** ``A -> B``: achieving ``B`` before ``A`` would mean
+  destroying ``B`` to achieve ``A`` and making it true again.  Candidates are
+  (a) ``B`` a goal fact and ``A`` any fact landmark, and (b) ``B`` necessarily
+  before some landmark ``C`` that needs ``A`` too.  ``A`` *interferes* with
+  ``B`` when the two are mutex, when every first achiever of ``A`` deletes
+  ``B`` or adds a fact mutex with ``B``, or when a landmark that comes
+  necessarily before ``A`` is mutex with ``B``.  Mutexes come from the
+  domain's inferred invariants (:mod:`nowplan.planning.invariants`).
+
+The landmark count uses a reasonable ordering as Fast Downward's status
+manager does: a landmark reached while one of its reasonable predecessors is
+not yet reached still counts (it will have to be reached again).  In gripper,
+moving to room B with one ball no longer looks like progress while balls
+that could be carried along are still in room A.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping, Sequence
+
+from nowplan.planning.task import Task
+
+MAX_DISJUNCTION = 4  # facts of one disjunctive landmark
+
+Mutex = Callable[[int, int], bool]
+
+
+LMSets = Sequence["frozenset[int] | None"]
+
+
+def first_achievers(task: Task, facts: frozenset[int], lm: LMSets | None = None) -> list[int]:
+    """Actions adding a fact of ``facts`` that are applicable in the relaxation before any fact of it holds.
+
+    With the fact landmarks of every fact (``lm``, Zhu and Givan's sets) a
+    single fact ``L`` needs no exploration: a precondition ``p`` is reachable
+    without ``L`` exactly when ``L`` is not in ``LM(p)``.
+    """
+    pre, add, by_pre = task.pre, task.add, task.by_pre
+    if lm is not None and len(facts) == 1:
+        (f,) = facts
+        if f not in task.init:
+            return [a for a in _adders(task).get(f, ())
+                    if all(lm[p] is not None and f not in lm[p] for p in pre[a])]  # type: ignore[operator]
+    memo = task.memo.setdefault("first_achievers", {})
+    hit = memo.get(facts)
+    if hit is not None:
+        return list(hit)
+    adders = _adders(task)
+    banned_ids = sorted({a for f in facts for a in adders.get(f, ())})
+    banned = [False] * len(pre)
+    for a in banned_ids:
+        banned[a] = True
+    missing = [len(p) for p in pre]
+    reached = set(task.init) - facts
+    queue = sorted(reached)
+    for a, m in enumerate(missing):
+        if m == 0 and not banned[a]:
+            queue.extend(e for e in add[a] if e not in reached)
+    fired = [False] * len(pre)
+    done: set[int] = set()
+    while queue:
+        f = queue.pop()
+        if f in facts or f in done:
+            continue
+        done.add(f)
+        reached.add(f)
+        for a in by_pre.get(f, ()):
+            missing[a] -= 1
+            if missing[a] == 0 and not banned[a] and not fired[a]:
+                fired[a] = True
+                queue.extend(e for e in add[a] if e not in reached and e not in facts)
+    out = [a for a in banned_ids if all(p in reached for p in pre[a])]
+    memo[facts] = tuple(out)
+    return out
+
+
+def _adders(task: Task) -> dict[int, list[int]]:
+    """Fact -> the actions that add it, ascending (made once per task)."""
+    hit = task.memo.get("adders")
+    if hit is None:
+        hit = {}
+        for a, adds in enumerate(task.add):
+            for e in adds:
+                hit.setdefault(e, []).append(a)
+        task.memo["adders"] = hit
+    assert isinstance(hit, dict)
+    return hit
+
+
+def disjunctive_landmarks(task: Task, landmarks: Iterable[int], lm: LMSets | None = None
+                          ) -> list[tuple[frozenset[int], int]]:
+    """``(D, L)``: the disjunctive landmarks ``D`` found one step before each fact landmark ``L``.
+
+    One ``D`` may come with several ``L``; two different ``D`` share no fact.
+    """
+    facts, init = task.facts, task.init
+    known = frozenset(landmarks)
+    out: list[tuple[frozenset[int], int]] = []
+    found: list[tuple[frozenset[int], int]] = []
+    for fact in sorted(known):
+        if fact in init:
+            continue
+        acts = first_achievers(task, frozenset((fact,)), lm)
+        if not acts:
+            continue
+        by_pred: list[dict[str, set[int]]] = []
+        for a in acts:
+            groups: dict[str, set[int]] = {}
+            for p in task.pre[a]:
+                if facts[p].value is True:
+                    groups.setdefault(facts[p].predicate, set()).add(p)
+            by_pred.append(groups)
+        common = set(by_pred[0]).intersection(*by_pred[1:])
+        for pred in sorted(common):
+            d = frozenset().union(*(g[pred] for g in by_pred))
+            if 2 <= len(d) <= MAX_DISJUNCTION and not d & init and not d & known:
+                found.append((d, fact))
+    # as in FD's landmark graph a fact is in at most one disjunctive landmark: the smaller ones first
+    used: set[int] = set()
+    chosen: set[frozenset[int]] = set()
+    for d, fact in sorted(found, key=lambda x: (len(x[0]), sorted(x[0]), x[1])):
+        if d in chosen or not d & used:  # the same set may come before several fact landmarks
+            used |= d
+            chosen.add(d)
+            out.append((d, fact))
+    return out
+
+
+def reasonable_orders(task: Task, sets: Sequence[frozenset[int]], before: Mapping[int, list[int]],
+                      goal: frozenset[int], mutex: Mutex | None, lm: LMSets | None = None) -> dict[int, list[int]]:
+    """Landmark index ``B`` -> the indices ``A`` with ``A -> B`` reasonable (``B`` a fact landmark)."""
+    n = len(sets)
+    parents: dict[int, set[int]] = {}
+    for a, heads in before.items():
+        for b in heads:
+            parents.setdefault(b, set()).add(a)
+    achievers: dict[int, list[int]] = {}
+
+    def achievers_of(i: int) -> list[int]:
+        hit = achievers.get(i)
+        if hit is None:
+            hit = achievers[i] = first_achievers(task, sets[i], lm)
+        return hit
+
+    def mutex_sets(x: frozenset[int], f: int) -> bool:
+        return mutex is not None and all(mutex(g, f) for g in x)
+
+    def interferes(a: int, b: int) -> bool:
+        (fb,) = sets[b]
+        if fb in sets[a]:
+            return False
+        if mutex_sets(sets[a], fb):
+            return True
+        acts = achievers_of(a)
+        if acts and all(fb in task.dele[x] or (mutex is not None and any(mutex(e, fb) for e in task.add[x]))
+                        for x in acts):
+            return True
+        return any(mutex_sets(sets[p], fb) for p in parents.get(a, ()) if fb not in sets[p])
+
+    out: dict[int, list[int]] = {}
+    for b in range(n):
+        if len(sets[b]) != 1:
+            continue
+        (fb,) = sets[b]
+        if fb in goal:
+            candidates = {a for a in range(n) if a != b and len(sets[a]) == 1}
+        else:
+            candidates = {a for c in before.get(b, ()) for a in parents.get(c, ()) if a != b}
+        for a in sorted(candidates):
+            if a in before.get(b, ()) or b in before.get(a, ()):
+                continue  # already ordered necessarily
+            if sets[a] & task.init and fb in task.init:
+                continue
+            if interferes(a, b):
+                out.setdefault(b, []).append(a)
+    return out

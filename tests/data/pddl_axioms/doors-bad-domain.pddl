@@ -1,0 +1,5 @@
+(define (domain doors-bad)
+  (:requirements :strips :derived-predicates :negative-preconditions)
+  (:predicates (edge ?a ?b) (win ?x) (move ?x))
+  (:derived (win ?x) (exists (?y) (and (edge ?x ?y) (not (win ?y)))))
+  (:action go :parameters (?x) :precondition (win ?x) :effect (move ?x)))

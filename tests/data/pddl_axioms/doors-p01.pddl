@@ -1,0 +1,10 @@
+; A corridor r1-r2-r3-r4-r5: each door needs the key lying in the room before it.
+(define (problem doors-p01)
+  (:domain doors)
+  (:objects r1 r2 r3 r4 r5 - room k1 k2 k3 k4 - key)
+  (:init (at r1)
+    (door r1 r2) (door r2 r3) (door r3 r4) (door r4 r5)
+    (opens k1 r1 r2) (opens k1 r2 r1) (opens k2 r2 r3) (opens k2 r3 r2)
+    (opens k3 r3 r4) (opens k3 r4 r3) (opens k4 r4 r5) (opens k4 r5 r4)
+    (key-at k1 r1) (key-at k2 r2) (key-at k3 r3) (key-at k4 r4))
+  (:goal (walkable r5)))
