@@ -148,10 +148,11 @@ class Reorderer:
     def combinable(self, a: Action) -> bool:
         return self.arrangeable(a) and self.levels.describe(a) >= self.config.min_hidden_to_combine
 
-    def arrange(self, s1: Subgoal, s2: Subgoal) -> Arrange:
+    def arrange(self, s1: Subgoal, s2: Subgoal, want: Arrange | None = None) -> Arrange:
+        """``arrange`` with the combination rule of ours; ``want``: see :func:`~.arrange.arrange`."""
         verdict = arrange(
             s1, s2, self.belief, domain=self.domain, levels=self.levels, estimator=self.estimator,
-            model=self.model,
+            model=self.model, want=want,
         )
         if verdict is Arrange.COMBINE and not all(self.combinable(a) for a in (*s1.actions, *s2.actions)):
             # nothing left to share at this level: independent, so the easier one first
@@ -171,7 +172,7 @@ class Reorderer:
             for j in range(1, len(ops)):
                 if not self.arrangeable(ops[j]):
                     continue
-                if self.arrange(first, Subgoal((ops[j],), goals[j + 1])) is not Arrange.SECOND:
+                if self.arrange(first, Subgoal((ops[j],), goals[j + 1]), Arrange.SECOND) is not Arrange.SECOND:
                     continue
                 new = [ops[j], *ops[:j], *ops[j + 1 :]]
                 res = self.valid(new, goals[-1])
@@ -211,7 +212,7 @@ class Reorderer:
         while j < len(ops) and last + 1 < self.config.max_combined:
             if self.combinable(ops[j]) and not self._failed_within([*ops[: last + 1], ops[j]]):
                 group = Subgoal(tuple(ops[: last + 1]), goals[last + 1])
-                if self.arrange(group, Subgoal((ops[j],), goals[j + 1])) is Arrange.COMBINE:
+                if self.arrange(group, Subgoal((ops[j],), goals[j + 1]), Arrange.COMBINE) is Arrange.COMBINE:
                     new = [*ops[: last + 1], ops[j], *ops[last + 1 : j], *ops[j + 1 :]]
                     res = self.valid(new, goals[-1])
                     if res is not None and res[0][: last + 2] == new[: last + 2]:
