@@ -102,7 +102,14 @@ def _set_down(hold: Hold, door: Door, anchor: Cell) -> Config:
     return base.with_items([*hold.items, (hold.held, hold.held_shape, anchor)]), door
 
 
-def successors(conf: Config) -> list[tuple[Transition, float]]:
+@lru_cache(maxsize=50_000)
+def successors(conf: Config) -> tuple[tuple[Transition, float], ...]:
+    """The robot operators from ``conf`` (memoised: the searches of one bay, for stow, fetch and
+    the shareability test, expand many of the same configurations)."""
+    return tuple(_successors(conf))
+
+
+def _successors(conf: Config) -> list[tuple[Transition, float]]:
     hold, door = conf
     rows, cols = hold.rows, hold.cols
     out: list[tuple[Transition, float]] = []
