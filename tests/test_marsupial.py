@@ -445,3 +445,54 @@ def test_demo_writes_frames(tmp_path):
     events = [json.loads(x) for x in (tmp_path / "trace.jsonl").read_text().splitlines()]
     frames = [e for e in events if e["event"] == "frame"]
     assert len(frames) > 3 and all(f["image"].startswith("data:image/png;base64,") for f in frames)
+
+
+def test_border_is_the_cells_next_to_a_shape():
+    from nowplan.domains.marsupial.grid import STEPS, border
+
+    for shape in SHAPES:
+        for anchor in [(0, 0), (1, 2), (2, 4)]:
+            cs = set(cells(shape, anchor))
+            want = {(r + dr, c + dc) for r, c in cs for dr, dc in STEPS} - cs
+            assert border(shape, anchor) == want
+            assert all(any(abs(x[0] - y[0]) + abs(x[1] - y[1]) == 1 for y in cs) for x in want)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("regime,n,trial", [("dests", 9, 9), ("both", 10, 2), ("both", 9, 1)])
+def test_rchpn_reaches_the_goal_where_it_used_to_livelock(regime, n, trial):
+    # a54fd7a's full run: RCHPN livelocked on these (a plane flown away and back around a refinement
+    # below a combined step that failed at the joint budget, the combined unloads' lowered levels kept
+    # after the combination was given up); 2-5 CPU s each now
+    from nowplan.trace import Trace
+
+    ep = episode(regime, n, trial)
+    tr = Trace()
+    m, bad, _ = _checked_run(ep, "hpn+peephole", trial, trace=tr)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert not bad and ep.problem.domain.satisfies(ep.world.state, ep.problem.goal)
+    assert any("which combined them, are given up" in e["text"] for e in tr.of("note"))
+
+
+def test_arrange_asked_for_one_verdict_keeps_rchpns_choices_on_marsupial(monkeypatch):
+    """On a real domain (the packer and the loader's stow search as the shareability test), every
+    ``arrange`` SelectGap and SelectParallelOps ask answers as the full rules would."""
+    from nowplan.acting.arrange import Arrange
+    from nowplan.acting.peephole import Reorderer
+
+    seen = {Arrange.SECOND: 0, Arrange.COMBINE: 0}
+    original = Reorderer.arrange
+
+    def checked(self, s1, s2, want=None):
+        quick = original(self, s1, s2, want)
+        if want is not None:
+            full = original(self, s1, s2)
+            assert (quick is want) == (full is want), (str(s1), str(s2), want, full, quick)
+            seen[want] += full is want
+        return quick
+
+    monkeypatch.setattr(Reorderer, "arrange", checked)
+    ep = episode("both", 4, 1)
+    m, bad, _ = _checked_run(ep, "hpn+peephole", 1)
+    assert m.outcome is Outcome.REACHED and not bad
+    assert seen[Arrange.COMBINE] > 0  # the check met the verdicts it is about

@@ -376,3 +376,142 @@ def test_estimates_can_use_the_executives_planner_settings():
                   PeepholeConfig(estimate_search=None), planner=PlannerConfig(heuristic="hmax"))
     assert r.estimator.search.heuristic == "hmax" and r.estimator.search.max_nodes == 300
     assert Reorderer(TOY, OBJECTS, s, LevelMap(TOY.top_level)).estimator.search.heuristic == "hadd"
+
+
+# ------------------------------------------------------------------ giving a combination up
+
+def _toy_executive(s: State):
+    from types import SimpleNamespace
+
+    from nowplan.acting.strategy import parse_strategy
+    from nowplan.trace import Trace
+
+    problem = SimpleNamespace(objects=OBJECTS)
+    return SimpleNamespace(domain=TOY, problem=problem, belief=s, strategy=parse_strategy("hpn+peephole"),
+                           metrics=SimpleNamespace(actions=0), trace=Trace(), stack=[])
+
+
+def test_combined_operators_are_lowered_for_their_joint_refinement_only():
+    from types import SimpleNamespace
+
+    from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
+
+    s = state(robot="yard", x="yard", z="yard", w="yard")
+    ops = [act("carry", "x", "yard"), act("carry", "z", "yard"), act("carry", "w", "yard")]
+    goal = Goal.of([atom("carried", q) for q in "xzw"])
+    own = LevelMap(TOY.top_level)
+    kept, goals = Reorderer(TOY, OBJECTS, s, own).chain(ops, goal)
+    plan = Plan((PlanStep(None, goals[0]), *(PlanStep(a, g) for a, g in zip(kept, goals[1:]))), own)
+    m = Peephole(PeepholeConfig(max_combined=3, min_hidden_to_combine=1))
+    ex = _toy_executive(s)
+    frame = SimpleNamespace(plan=plan, plan_id=1, i=0, root=False, info={}, n=len(plan.steps))
+    step = m.next_step(ex, frame)
+    assert frame.info["joint"] == frame.i == 3 and step is frame.plan.steps[3]
+    lowered = frame.plan.levels
+    assert lowered != own and frame.info["own_levels"] == own  # Alg. 2 lines 11-13, for the joint subgoal
+    # the joint subgoal had no plan: the next choice refines one step, from the plan's own levels
+    # the joint subgoal ran out of nodes: two steps are combined, lowered from the plan's own levels
+    # (not from the levels lowered for the three)
+    m.after_plan_failure(ex, frame, goals[-1], PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
+    frame.i = 0
+    m.next_step(ex, frame)
+    assert frame.info["joint"] == 2 and frame.plan.levels == own.next_level(frame.plan.steps[1].action)
+    # that one too: the next choice refines one step, at the plan's own levels
+    m.after_plan_failure(ex, frame, goals[-1], PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
+    frame.i = 0
+    m.next_step(ex, frame)
+    assert frame.info["joint"] is None and frame.plan.levels == own and "own_levels" not in frame.info
+
+
+def test_a_failure_below_a_combined_step_pops_the_plans_above_the_one_that_combined_them():
+    from types import SimpleNamespace
+
+    from nowplan.planning.plan import PlanResult, PlanStatus
+    from nowplan.trace import Trace
+
+    m = Peephole(PeepholeConfig(joint_nodes=500))
+    ex = SimpleNamespace(metrics=SimpleNamespace(actions=2), trace=Trace(), stack=[])
+    combo = frozenset({("carry", ("x", "yard")), ("carry", ("z", "yard"))})
+    plan = SimpleNamespace(steps=(None, None, None))
+    base = SimpleNamespace(plan_id=0, i=1, info={}, plan=plan, root=False, n=3)
+    top = SimpleNamespace(plan_id=1, i=2, info={"joint": 2, "joint_ops": combo}, plan=plan, root=False, n=3)
+    child = SimpleNamespace(plan_id=2, i=1, info={}, plan=plan, root=False, n=3)
+    grandchild = SimpleNamespace(plan_id=3, i=1, info={}, plan=plan, root=False, n=3)
+    for fr in (base, top, child, grandchild):
+        ex.stack.append(fr)
+        m.after_push(ex, fr)
+    assert child.info["joint_owner"] == grandchild.info["joint_owner"] == 1
+    # the joint subgoal itself has no plan: the executive's backtrack pops the plan that combined them
+    m.after_plan_failure(ex, top, Goal(), PlanResult(PlanStatus.UNSOLVABLE, reason="exhausted"))
+    assert m._unwind_to is None
+    # a refinement two levels below fails: every plan above the combining one is popped
+    m.after_plan_failure(ex, grandchild, Goal(), PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
+    assert m._unwind_to == 1 and "plans above plan 1" in ex.trace.of("note")[-1]["text"]
+    ex.stack.pop()  # the executive's backtrack pops the failing frame itself
+    assert m.applicable(ex, child) is False
+    ex.stack.pop()
+    top.i = top.n  # (so that applicable() answers without a domain)
+    m.applicable(ex, top)
+    assert m._unwind_to is None  # reached the combining plan: it chooses again, without the combination
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_arrange_asked_for_one_verdict_agrees_with_the_full_verdict(seed):
+    """The cheap path of ``arrange(want=...)`` (no shareability test where it cannot matter) is
+    conservative: it answers ``want`` exactly when the full rules do, on random resource uses,
+    domain tests and reachability."""
+    import random
+
+    from nowplan.core.operators import Operator as Op
+
+    rng = random.Random(seed)
+    uses = (SH, CT, CN)
+    names = [("robot",), ("doorway",), ("room", "a"), ("room", "b")]
+
+    def random_op(k: int) -> Op:
+        res = tuple(Resource(r, rng.choice(uses)) for r in rng.sample(names, rng.randint(0, 3)))
+        return Op(f"job{k}", (), (Precondition(atom(f"ready{k}"), 1),), (atom(f"done{k}"),),
+                  cost=float(rng.randint(1, 3)), resources=res)
+
+    jobs = [random_op(k) for k in range(4)]
+    helpers = tuple(Op(f"prep{k}", (), (), (atom(f"ready{k}"),), cost=float(rng.randint(0, 4)),
+                       resources=tuple(Resource(r, rng.choice(uses)) for r in rng.sample(names, rng.randint(0, 2))))
+                    for k in range(4) if rng.random() < 0.8)  # some jobs cannot be prepared: effort inf
+    preds = {**{f"ready{k}": Predicate(f"ready{k}", 0) for k in range(4)},
+             **{f"done{k}": Predicate(f"done{k}", 0) for k in range(4)}}
+    dom = Domain("jobs", preds, (*jobs, *helpers))
+    belief = State([atom(f"ready{k}") for k in range(4) if rng.random() < 0.3])
+    table = {r: rng.choice([True, False, None]) for r in names}
+    model = ResourceModel(orders={j.name: 1 for j in jobs}, shareable=lambda r, a, b, s: table[r])
+    levels = LevelMap(1)
+    acts = [j.instantiate({}) for j in jobs]
+    for i in range(4):
+        for j in range(4):
+            if i == j:
+                continue
+            est = Estimator(dom, {}, belief, model)
+            s1, s2 = Subgoal((acts[i],), Goal()), Subgoal((acts[j],), Goal())
+            full = arrange(s1, s2, belief, domain=dom, levels=levels, estimator=est, model=model)
+            for want in (Arrange.SECOND, Arrange.COMBINE):
+                quick = arrange(s1, s2, belief, domain=dom, levels=levels, estimator=est, model=model, want=want)
+                assert (quick is want) == (full is want), (i, j, want, full, quick)
+
+
+def test_arrange_asked_for_second_skips_the_domains_test_when_it_cannot_matter():
+    calls: list[object] = []
+
+    def test(r, a, b, s):
+        calls.append(r)
+        return True
+
+    model = ResourceModel(orders={"place": 1, "carry": 1}, shareable=test)
+    s = state(robot="yard", x="yard", y="yard")
+    est = Estimator(TOY, OBJECTS, s, model)
+    s1 = Subgoal((act("carry", "x", "yard"),), Goal())
+    s2 = Subgoal((act("carry", "y", "yard"),), Goal())
+    lv = LevelMap(TOY.top_level)
+    # both only share the robot, both as easy: SECOND is impossible whatever the test says
+    assert arrange(s1, s2, s, domain=TOY, levels=lv, estimator=est, model=model, want=Arrange.SECOND) is not Arrange.SECOND
+    assert calls == []
+    assert arrange(s1, s2, s, domain=TOY, levels=lv, estimator=est, model=model) is Arrange.COMBINE
+    assert calls == [("robot",)]

@@ -97,8 +97,15 @@ def arrange(
     levels: LevelMap,
     estimator: Estimator,
     model: ResourceModel | None = None,
+    want: Arrange | None = None,
 ) -> Arrange:
-    """The seed's ``arrange(g1, g2, s)`` from declared resources (or the domain's own)."""
+    """The seed's ``arrange(g1, g2, s)`` from declared resources (or the domain's own).
+
+    With ``want``, the caller only asks whether the verdict is ``want`` (SelectGap
+    needs SECOND, SelectParallelOps COMBINE): the answer is ``want`` exactly when the
+    full verdict is, and otherwise some other verdict, found without the domain's
+    shareability tests that cannot make it ``want`` (:func:`_cannot_be_second`).
+    """
     model = model or estimator.model
     if model.arrange is not None:
         return Arrange(model.arrange(s1, s2, belief, domain=domain, levels=levels, estimator=estimator))
@@ -122,6 +129,8 @@ def arrange(
     if not pairs:
         return Arrange.FIRST
     C, K, S = ResourceUse.CONTINUAL, ResourceUse.CONTAINED, ResourceUse.SHAREABLE
+    if want is Arrange.SECOND and _cannot_be_second(s1, s2, pairs, estimator, levels):
+        return Arrange.FIRST
     if model.shareable is not None:
         # the domain's test, in the now: a resource that can be shared by these two is
         # shareable whatever the declared uses; one that cannot is at best contained
@@ -132,6 +141,8 @@ def arrange(
                 a, b = S, S
             elif verdict is False:
                 a, b = (K if a is S else a), (K if b is S else b)
+            if want is Arrange.COMBINE and (a is not S or b is not S):
+                return Arrange.FIRST  # combine needs every shared resource shareable
             tested.append((r, a, b))
         pairs = tested
     # continual for one, contained for the other: the contained one first
@@ -148,3 +159,27 @@ def arrange(
         e2 = sum(estimator.effort(a, levels) for a in s2.actions)
         return Arrange.SECOND if e2 < e1 else Arrange.FIRST
     return Arrange.COMBINE
+
+
+def _cannot_be_second(
+    s1: Subgoal,
+    s2: Subgoal,
+    pairs: Sequence[tuple[ResourceName, ResourceUse, ResourceUse]],
+    estimator: Estimator,
+    levels: LevelMap,
+) -> bool:
+    """A sufficient condition, before the domain's shareability tests, for a verdict other than SECOND.
+
+    With both subgoals reachable, ``arrange`` answers SECOND only (a) through a pair
+    continual for ``s1`` and contained for ``s2`` — the domain's test never makes a
+    use continual, and it can only turn a shareable use of ``s2`` into a contained
+    one — or (b) when ``s2`` is easier to reach than ``s1`` (contained pairs, or a
+    combination of steps with nothing left to share, ``Reorderer.arrange``).  Neither
+    needs the test's answer to be ruled out.
+    """
+    C = ResourceUse.CONTINUAL
+    if any(a is C and b is not C for _, a, b in pairs):
+        return False
+    e1 = sum(estimator.effort(a, levels) for a in s1.actions)
+    e2 = sum(estimator.effort(a, levels) for a in s2.actions)
+    return not e2 < e1

@@ -148,10 +148,11 @@ class Reorderer:
     def combinable(self, a: Action) -> bool:
         return self.arrangeable(a) and self.levels.describe(a) >= self.config.min_hidden_to_combine
 
-    def arrange(self, s1: Subgoal, s2: Subgoal) -> Arrange:
+    def arrange(self, s1: Subgoal, s2: Subgoal, want: Arrange | None = None) -> Arrange:
+        """``arrange`` with the combination rule of ours; ``want``: see :func:`~.arrange.arrange`."""
         verdict = arrange(
             s1, s2, self.belief, domain=self.domain, levels=self.levels, estimator=self.estimator,
-            model=self.model,
+            model=self.model, want=want,
         )
         if verdict is Arrange.COMBINE and not all(self.combinable(a) for a in (*s1.actions, *s2.actions)):
             # nothing left to share at this level: independent, so the easier one first
@@ -171,7 +172,7 @@ class Reorderer:
             for j in range(1, len(ops)):
                 if not self.arrangeable(ops[j]):
                     continue
-                if self.arrange(first, Subgoal((ops[j],), goals[j + 1])) is not Arrange.SECOND:
+                if self.arrange(first, Subgoal((ops[j],), goals[j + 1]), Arrange.SECOND) is not Arrange.SECOND:
                     continue
                 new = [ops[j], *ops[:j], *ops[j + 1 :]]
                 res = self.valid(new, goals[-1])
@@ -211,7 +212,7 @@ class Reorderer:
         while j < len(ops) and last + 1 < self.config.max_combined:
             if self.combinable(ops[j]) and not self._failed_within([*ops[: last + 1], ops[j]]):
                 group = Subgoal(tuple(ops[: last + 1]), goals[last + 1])
-                if self.arrange(group, Subgoal((ops[j],), goals[j + 1])) is Arrange.COMBINE:
+                if self.arrange(group, Subgoal((ops[j],), goals[j + 1]), Arrange.COMBINE) is Arrange.COMBINE:
                     new = [*ops[: last + 1], ops[j], *ops[last + 1 : j], *ops[j + 1 :]]
                     res = self.valid(new, goals[-1])
                     if res is not None and res[0][: last + 2] == new[: last + 2]:
@@ -260,6 +261,10 @@ class Peephole(Mechanism):
         # problems solvable), so that after at most max_combined - 1 such failures RCHPN plans
         # the steps one at a time, as HPN does
         self._cap = self.config.max_combined
+        # the plan holding a combined step whose refinement failed below its joint subgoal: every
+        # frame above it is popped, so that the combination is given up where it was made (popping
+        # only the failing frame lets the plans in between lead back to the same failure)
+        self._unwind_to: int | None = None
 
     def _failed_now(self, ex: Executive) -> list[frozenset[Any]]:
         """The combinations that failed in the current belief (forgotten after each action)."""
@@ -271,13 +276,20 @@ class Peephole(Mechanism):
     def after_push(self, ex: Executive, frame: Frame) -> None:
         frame.info["orig"] = list(range(len(frame.plan.steps)))
         if len(ex.stack) >= 2 and ex.stack[-1] is frame:
-            under = _combination(ex.stack[-2])
+            below = ex.stack[-2]
+            under = _combination(below)
             if under is not None:
                 frame.info["under_joint"] = under  # a refinement of a combined step, at any depth
+                frame.info["joint_owner"] = _owner(below)
 
     def applicable(self, ex: Executive, frame: Frame) -> bool | None:
         if frame.root:
             return None
+        if self._unwind_to is not None:
+            if frame.plan_id == self._unwind_to or all(f.plan_id != self._unwind_to for f in ex.stack):
+                self._unwind_to = None
+            else:
+                return False  # above a combination given up: popped (as not applicable)
         if frame.i >= frame.n:
             return False
         k = highest_applicable(ex.domain, ex.belief, frame.plan)
@@ -291,6 +303,13 @@ class Peephole(Mechanism):
     def next_step(self, ex: Executive, frame: Frame) -> PlanStep | None:
         if frame.root:
             return None
+        own = frame.info.pop("own_levels", None)
+        if own is not None:
+            # the combined operators were lowered for their joint refinement only (Alg. 2 lines
+            # 11-13): every later choice, and a step refined alone after the combination was given
+            # up, starts from the plan's own levels, so no step skips the levels at which its
+            # vehicle's travel is planned before its loader work
+            frame.plan = replace(frame.plan, levels=own)
         plan = frame.plan
         k = highest_applicable(ex.domain, ex.belief, plan)
         if k is None or k >= frame.n:
@@ -314,6 +333,8 @@ class Peephole(Mechanism):
             levels = plan.levels
             for a in ops[:last]:
                 levels = levels.next_level(a)  # Alg. 2 lines 11-13
+            if last > 0:
+                frame.info["own_levels"] = plan.levels
             steps = [*plan.steps[:k], PlanStep(plan.steps[k].action, goals[0])]
             steps += [PlanStep(a, g) for a, g in zip(ops, goals[1:], strict=True)]
             frame.plan = replace(plan, steps=tuple(steps), levels=levels)
@@ -339,10 +360,16 @@ class Peephole(Mechanism):
         too_big = result.status in (PlanStatus.TIME_LIMIT, PlanStatus.NODE_LIMIT)
         if too_big:
             self._cap = min(self._cap, len(ops) - 1)
+        owner = _owner(parent)
+        below = owner is not None and owner != parent.plan_id
+        if below:
+            self._unwind_to = owner
         ex.trace.emit("note", plan_id=parent.plan_id,
                       text=f"peephole: combined subgoal of {len(ops)} steps has no plan "
                            f"({result.status.value}); not combined again until the next action"
-                           + (f", nor more than {self._cap} steps" if too_big else ""))
+                           + (f", nor more than {self._cap} steps" if too_big else "")
+                           + (f"; the plans above plan {owner}, which combined them, are given up"
+                              if below else ""))
 
     def planner_config(
         self, ex: Executive, parent: Frame, goal: Goal, config: PlannerConfig
@@ -371,6 +398,15 @@ def _combination(frame: Frame) -> frozenset[Any] | None:
         return frozenset(frame.info["joint_ops"])
     under = frame.info.get("under_joint")
     return frozenset(under) if under is not None else None
+
+
+def _owner(frame: Frame) -> int | None:
+    """The plan id of the frame holding the combined step ``frame`` refines now or is pushed under."""
+    joint = frame.info.get("joint")
+    if joint is not None and joint == frame.i and frame.info.get("joint_ops") is not None:
+        return frame.plan_id
+    owner = frame.info.get("joint_owner")
+    return int(owner) if owner is not None else None
 
 
 def _dropped_positions(before: Sequence[Action], after: Sequence[Action]) -> list[int]:

@@ -23,6 +23,7 @@ from __future__ import annotations
 from collections import deque
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 Cell = tuple[int, int]  # (row, column); row 0 at the top, the door on the right
 
@@ -42,9 +43,17 @@ NONE = "none"  # door(v) when the load region is free
 BUSY = "busy"  # door(v) when something else is in the load region
 
 
+@lru_cache(maxsize=4096)
 def cells(shape: str, anchor: Cell) -> tuple[Cell, ...]:
     r, c = anchor
     return tuple((r + dr, c + dc) for dr, dc in SHAPES[shape])
+
+
+@lru_cache(maxsize=4096)
+def border(shape: str, anchor: Cell) -> frozenset[Cell]:
+    """The cells next to ``shape`` set down at ``anchor`` (outside it; may lie off the grid)."""
+    cs = cells(shape, anchor)
+    return frozenset((r + dr, c + dc) for r, c in cs for dr, dc in STEPS) - frozenset(cs)
 
 
 def load_anchor(cols: int) -> Cell:

@@ -24,6 +24,7 @@ import itertools
 import logging
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 from nowplan.domains.marsupial.grid import (
     STEPS,
@@ -31,6 +32,7 @@ from nowplan.domains.marsupial.grid import (
     Door,
     Hold,
     adjacent,
+    border,
     cells,
     door_status,
     in_storage,
@@ -68,6 +70,7 @@ class Transition:
         return door_status(*self.after)
 
 
+@lru_cache(maxsize=8192)
 def spot_penalty(shape: str, anchor: Cell, rows: int, cols: int) -> float:
     """Spots by the packer's preference; the load anchor first, the load-region buffer last."""
     if anchor == load_anchor(cols):
@@ -80,12 +83,13 @@ def spots(hold: Hold, door: Door, shape: str) -> list[Cell]:
     """Anchors where ``shape`` can be set down on free cells (the load anchor only if the door is free)."""
     rows, cols = hold.rows, hold.cols
     occ = occupancy(hold, door)
+    loader, anchor = hold.loader, load_anchor(cols)
     out = []
     for r in range(rows):
         for c in range(cols):
             cs = cells(shape, (r, c))
-            if all(inside(x, rows, cols) and x not in occ and x != hold.loader for x in cs):
-                if (r, c) == load_anchor(cols) or not any(x == load_anchor(cols) for x in cs) or door is None:
+            if all(0 <= x[0] < rows and 0 <= x[1] < cols and x not in occ and x != loader for x in cs):
+                if (r, c) == anchor or door is None or anchor not in cs:
                     out.append((r, c))
     return out
 
@@ -98,7 +102,14 @@ def _set_down(hold: Hold, door: Door, anchor: Cell) -> Config:
     return base.with_items([*hold.items, (hold.held, hold.held_shape, anchor)]), door
 
 
-def successors(conf: Config) -> list[tuple[Transition, float]]:
+@lru_cache(maxsize=50_000)
+def successors(conf: Config) -> tuple[tuple[Transition, float], ...]:
+    """The robot operators from ``conf`` (memoised: the searches of one bay, for stow, fetch and
+    the shareability test, expand many of the same configurations)."""
+    return tuple(_successors(conf))
+
+
+def _successors(conf: Config) -> list[tuple[Transition, float]]:
     hold, door = conf
     rows, cols = hold.rows, hold.cols
     out: list[tuple[Transition, float]] = []
@@ -124,7 +135,7 @@ def successors(conf: Config) -> list[tuple[Transition, float]]:
         if not in_storage(hold.loader, rows, cols) and parking:
             targets.add(min(parking, key=lambda x: (dist[x], x)))
         for x in sorted(targets):
-            out.append((Transition("move", x, conf, (replace(hold, loader=x), door)), 1.0))
+            out.append((Transition("move", x, conf, (_moved(hold, x), door)), 1.0))
         return out
     shape = hold.held_shape
     assert shape is not None
@@ -137,13 +148,17 @@ def successors(conf: Config) -> list[tuple[Transition, float]]:
     buffers = [a for p, a in ranked if p >= 10.0 * cols][:MAX_BUFFER]
     targets = set()
     for a in stores + buffers:
-        cs = set(cells(shape, a))
-        stand = [x for x in dist if x not in cs and any(adjacent(x, y) for y in cs)]
+        stand = [x for x in border(shape, a) if x in dist]
         if stand and hold.loader not in stand:
             targets.add(min(stand, key=lambda x: (dist[x], x)))
     for x in sorted(targets):
-        out.append((Transition("move", x, conf, (replace(hold, loader=x), door)), 1.0))
+        out.append((Transition("move", x, conf, (_moved(hold, x), door)), 1.0))
     return out
+
+
+def _moved(hold: Hold, x: Cell) -> Hold:
+    """``hold`` with the loader at ``x`` (``dataclasses.replace`` without its generic overhead)."""
+    return Hold(hold.rows, hold.cols, hold.items, x, hold.held, hold.held_shape)
 
 
 Goal = Callable[[Config], bool]
