@@ -204,7 +204,7 @@ class Executive:
             )
             self._pending_trigger = None
             self._pending_reason = ""
-        remaining = self.strategy.time_limit - (time.perf_counter() - self._t0)
+        remaining = self.remaining_time()
         cfg = self.strategy.planner
         for m in self.mechanisms:
             cfg = m.planner_config(self, parent, goal, cfg) or cfg
@@ -296,6 +296,10 @@ class Executive:
         for m in self.mechanisms:
             m.after_action(self)
 
+    def remaining_time(self) -> float:
+        """Seconds left of the run's time budget (for planner calls made outside ``make_plan``)."""
+        return self.strategy.time_limit - (time.perf_counter() - self._t0)
+
     def request_replan(self, trigger: str, reason: str) -> None:
         """Mark the next plan made as a replan, with what triggered it."""
         self._pending_trigger = trigger
@@ -338,6 +342,8 @@ class Executive:
     def on_cycle(self, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:
         self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
                         text=cyc.describe())
+        for m in self.mechanisms:
+            m.after_cycle(self, cyc)
         if cyc.clean and self.progress.livelocked:
             return Outcome.LIVELOCK, (
                 f"livelock: cycle {cyc.count} of at most {self.progress.max_cycles}: {cyc.describe()}, "

@@ -44,6 +44,7 @@ from nowplan.acting.monitor_repair import (
 )
 from nowplan.acting.monitor_support import (
     MonitorSupport,
+    drop_loops,
     plan_from_actions,
     simulate,
     state_of,
@@ -54,14 +55,17 @@ from nowplan.acting.plan_library import PlanLibrary, StoredPlan, goal_key, state
 from nowplan.belief.protocols import Reobserves
 from nowplan.core.atoms import Goal, entails
 from nowplan.core.domain import Domain
-from nowplan.core.levels import flat_levels
+from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.state import State
 from nowplan.errors import ModelError, ScenarioError
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus
+from nowplan.planning.regression import PlannerConfig
+from nowplan.planning.task import forward_unsupported
 from nowplan.planning.regression import plan as regression_plan
 
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame
+    from nowplan.acting.progress import Cycle
     from nowplan.planning.plan import PlanStep
 
 __all__ = ["Monitor", "MonitorConfig", "default_config", "monitor_settings"]
@@ -105,6 +109,11 @@ class Monitor(Mechanism):
         self._next_mem_id = -1
         self._index: dict[State, tuple[Rank, StoredPlan, int]] = {}
         self._indexed = 0  # how many of self.plans are in self._index
+        # escalation: restore / intermediate targets chosen, and those the agent's own actions reached
+        self._pending: set[Goal] = set()
+        self._reached: set[Goal] = set()
+        self._flat_goal = True  # plan the goal flat (False once that exceeded its budget; see _plan_goal)
+        self._repairs: set[int] = set()  # plan ids of the restore / intermediate plans pushed
 
     # -- hooks ---------------------------------------------------------------------
     def after_push(self, ex: Executive, frame: Frame) -> None:
@@ -130,6 +139,7 @@ class Monitor(Mechanism):
         if f.root or action is None:
             return
         expected = prev.apply(action.effects())
+        self._note_reached(ex, expected)
         observed = state_of(ex.belief)
         dm = float(self.support.distance(expected, observed))
         if dm == 0:
@@ -159,15 +169,57 @@ class Monitor(Mechanism):
             else repairs[0]
         if chosen.alternative is not order[0] and not self.config.compares:
             self.stats.fallbacks += 1
+        if chosen.target is not None and chosen.target in self._reached:
+            # the agent's own actions had reached this model and the world took it away again:
+            # restoring once more chases the world (seed 003: go directly to the final state)
+            self._escalate(ex, f"the world undid a {chosen.alternative.value} the agent had completed "
+                           f"(the model it went back to, {len(chosen.target)} atom(s), was reached and lost)")
+            to_goal = next((r for r in repairs if r.alternative is Alternative.GOAL), None) \
+                or self._make(Alternative.GOAL, ex, f, expected, observed, None)
+            chosen = to_goal or chosen
+        if chosen.target is not None and chosen.target not in self._reached:
+            self._pending.add(chosen.target)
         self._apply(ex, f, chosen, dm, dm1)
+
+    def after_cycle(self, ex: Executive, cycle: Cycle) -> None:
+        """The progress guard found a cycle: stop restoring, replan to the goal (seed 003's third way).
+
+        Restoring the expected model, or re-entering a stored plan, is what the monitor adds to
+        HPN; when the agent comes back to a situation it had left, those repairs are (or may be)
+        the loop, and committing to them would repeat it.  The monitor escalates to replanning
+        to the goal for the rest of the run, and replaces its repair plans on the stack now.
+        """
+        if self.config.decision == "goal" or self.stats.escalated:
+            return
+        self._escalate(ex, f"the progress guard found a cycle: {cycle.describe()}")
+        if not any(fr.plan_id in self._repairs for fr in ex.stack) or ex.goal_holds():
+            return
+        observed = state_of(ex.belief)
+        rep = self._make(Alternative.GOAL, ex, ex.stack[-1], observed, observed, None)
+        if rep is not None:
+            self._apply(ex, ex.stack[-1], rep, 0.0, None)
+
+    def _escalate(self, ex: Executive, why: str) -> None:
+        self.stats.escalated = why
+        text = (f"monitor: escalates from '{self.config.decision}' to replanning to the goal after every "
+                f"surprise for the rest of the run: {why}")
+        log.info(text)
+        ex.trace.emit("note", text=text, escalation=why)
+
+    def _note_reached(self, ex: Executive, expected: State) -> None:
+        """Remember the repair targets the agent's own action reached (``expected`` = before the world's doing)."""
+        done = {g for g in self._pending if ex.domain.satisfies(expected, g)}
+        self._pending -= done
+        self._reached |= done
 
     def _alternatives(
         self, ex: Executive, f: Frame, expected: State, observed: State, dm: float,
     ) -> tuple[list[Alternative], list[Repair], float | None]:
         """The alternatives to try, the repairs that could be planned (one, or all when comparing), dm1."""
-        cand = self._closest(observed, ex.domain) if self.config.uses_library else None
+        escalated = bool(self.stats.escalated)
+        cand = self._closest(observed, ex.domain) if self.config.uses_library and not escalated else None
         dm1 = cand.distance if cand is not None else None
-        order = order_to_try(self.config, dm, dm1)
+        order = [Alternative.GOAL] if escalated else order_to_try(self.config, dm, dm1)
         repairs: list[Repair] = []
         for alt in order:
             rep = self._make(alt, ex, f, expected, observed, cand)
@@ -255,7 +307,16 @@ class Monitor(Mechanism):
         return self._index
 
     # -- planning ----------------------------------------------------------------------
-    def _plan(self, ex: Executive, state: State, goal: Goal) -> PlanResult:
+    def _plan(
+        self, ex: Executive, state: State, goal: Goal, levels: LevelMap | None = None, *, bounded: bool = True,
+    ) -> PlanResult:
+        """Plan ``goal`` from ``state`` (flat unless ``levels``) within the run's remaining time.
+
+        ``bounded``: a flat call gets the planner's shortcut budget (``shortcut_nodes``) instead of
+        its full one: a repair that needs a bigger search is no small repair, and the monitor has
+        other alternatives (and HPN its own replanning) to fall back on.
+        """
+        levels = levels or flat_levels()
         if self.config.reuse and entails(goal, ex.problem.goal, ex.domain.rules) \
                 and entails(ex.problem.goal, goal, ex.domain.rules):
             reused = self._reuse(ex, state, goal)
@@ -265,8 +326,8 @@ class Monitor(Mechanism):
         if own is not None:
             res: PlanResult = own(ex.domain, ex.problem.objects, state, goal, ex.rng)
         else:
-            res = regression_plan(ex.domain, ex.problem.objects, state, goal, flat_levels(),
-                                  ex.strategy.planner, ex.context(), ex.rng)
+            res = regression_plan(ex.domain, ex.problem.objects, state, goal, levels,
+                                  self._config(ex, bounded), ex.context(), ex.rng)
         ex.metrics.planning_cpu_s += res.cpu_time_s
         self.stats.planning_s += res.cpu_time_s
         if res.solved:
@@ -274,6 +335,47 @@ class Monitor(Mechanism):
         else:
             ex.metrics.plan_failures += 1
         return res
+
+    @staticmethod
+    def _config(ex: Executive, bounded: bool) -> PlannerConfig:
+        cfg = ex.strategy.planner
+        changes: dict[str, Any] = {}
+        remaining = max(ex.remaining_time(), 0.01)
+        if remaining < cfg.time_limit:
+            changes["time_limit"] = remaining
+        if bounded and cfg.shortcut_nodes < cfg.max_nodes:
+            changes["max_nodes"] = cfg.shortcut_nodes
+        return replace(cfg, **changes) if changes else cfg
+
+    def _plan_goal(self, ex: Executive, state: State) -> PlanResult:
+        """A plan from ``state`` to the task's goal: flat, or at the strategy's levels.
+
+        The seed plans flat (its planner has no hierarchy) and its flat plans feed the library's
+        intermediate states.  Under HPN the monitor plans the goal flat only where the flat plan
+        is searched forward (the belief lists its facts, no generators or tests: logistics,
+        a few milliseconds); elsewhere a flat plan for the whole goal is what HPN exists to
+        avoid (marsupial: 50,000 regression expansions without a plan, 30-60 s per call,
+        where HPN's abstract plan takes 31), so the goal is planned at the strategy's levels,
+        as the executive plans its root, and HPN refines the abstract plan.  A flat search
+        that runs out of its budget also turns the monitor to the hierarchy for the rest of the run.
+        """
+        goal, hier = ex.problem.goal, ex.strategy.hierarchical
+        if hier and self._flat_goal and self._own_planner() is None:
+            why = None if ex.strategy.planner.engine != "regression" else "the planner is set to regress"
+            why = why or forward_unsupported(ex.domain, state)
+            if why is not None:
+                self._to_hierarchy(ex, f"a flat plan to the goal would be searched by regression ({why})")
+        if self._flat_goal or not hier:
+            res = self._plan(ex, state, goal, bounded=False)
+            if res.solved or not hier or res.status not in (PlanStatus.NODE_LIMIT, PlanStatus.TIME_LIMIT):
+                return res
+            self._to_hierarchy(ex, f"flat planning to the goal: {res.status.value}: {res.reason}")
+        return self._plan(ex, state, goal, ex.base_levels, bounded=False)
+
+    def _to_hierarchy(self, ex: Executive, why: str) -> None:
+        self._flat_goal = False
+        self.stats.hierarchical_goal = why
+        ex.trace.emit("note", text=f"monitor: {why}; planning the goal at the strategy's levels from now on")
 
     def _reuse(self, ex: Executive, state: State, goal: Goal) -> PlanResult | None:
         key = state_key(state)
@@ -298,11 +400,13 @@ class Monitor(Mechanism):
     ) -> Repair | None:
         dom, goal = ex.domain, ex.problem.goal
         if alt is Alternative.GOAL:
-            res = self._plan(ex, observed, goal)
+            res = self._plan_goal(ex, observed)
             if not res.solved or res.plan is None:
                 return None
+            flat = all(res.plan.is_primitive(i) for i in range(1, len(res.plan) + 1))
             return Repair(alt, res.plan, "replace_all", res.plan.cost(), 0.0, res.cpu_time_s,
-                          f"plan from the observed model to the goal ({res.method})")
+                          f"plan from the observed model to the goal ({res.method}"
+                          f"{'' if flat else ', abstract: HPN refines it'})")
         if alt is Alternative.INTERMEDIATE:
             if cand is None:
                 return None
@@ -329,7 +433,7 @@ class Monitor(Mechanism):
             return None
         rest = sum(a.cost() for a in f.plan.actions[f.i:])
         return Repair(alt, res.plan, "on_top", res.plan.cost(), rest, res.cpu_time_s,
-                      "plan back to the expected model, then continue")
+                      "plan back to the expected model, then continue", target)
 
     def _compose(
         self, ex: Executive, alt: Alternative, observed: State, target_atoms: Any, tail: list[Any],
@@ -347,12 +451,21 @@ class Monitor(Mechanism):
         actions = list(res.plan.actions) + list(tail)
         if self.support.adapt is not None:
             actions = self.support.adapt(actions, observed)
+        states = simulate(dom, observed, actions)
+        if states is None:
+            return None
         plan = plan_from_actions(dom, actions, goal)
-        if plan is None or simulate(dom, observed, actions) is None:
+        shorter = drop_loops(states, actions)
+        if len(shorter) < len(actions):
+            cut = plan_from_actions(dom, shorter, goal)
+            if cut is not None:
+                self.stats.loops_dropped += len(actions) - len(shorter)
+                plan = cut
+        if plan is None:
             return None
         repair_cost = plan.cost() - sum(a.cost() for a in tail)
         return Repair(alt, plan, mode, max(repair_cost, 0.0), sum(a.cost() for a in tail),
-                      res.cpu_time_s, detail)
+                      res.cpu_time_s, detail, target)
 
     # -- the plan stack ------------------------------------------------------------------
     def _apply(self, ex: Executive, f: Frame, rep: Repair, dm: float, dm1: float | None) -> None:
@@ -373,14 +486,16 @@ class Monitor(Mechanism):
                 ex.pop("replaced")
         elif rep.mode == "replace_frame":
             ex.pop("replaced")
-        self._push(ex, ex.stack[-1], rep.plan, alt, rep.planning_s)
+        fr = self._push(ex, ex.stack[-1], rep.plan, alt, rep.planning_s)
+        if rep.alternative is not Alternative.GOAL:
+            self._repairs.add(fr.plan_id)
 
-    def _push(self, ex: Executive, parent: Frame, plan: Plan, method: str, cpu_s: float) -> None:
+    def _push(self, ex: Executive, parent: Frame, plan: Plan, method: str, cpu_s: float) -> Frame:
         """Push a plan the monitor made; the executive traces it like its own (a ``plan`` event)."""
         made = getattr(ex, "_made", None)
         if isinstance(made, dict):
             made[id(plan)] = {"method": method, "cpu_s": round(cpu_s, 6), "expanded": 0}
-        ex.push(plan, parent)
+        return ex.push(plan, parent)
 
 
 def _state_index(
