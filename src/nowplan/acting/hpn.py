@@ -102,6 +102,7 @@ class Executive:
         # the progress guard: cycles across actions, and the plan committed to after one
         self.progress = CycleDetector(strategy.max_cycles)
         self._committed = False
+        self._give_up: tuple[Outcome, str] | None = None  # a mechanism's reason to end the run
         self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
         self.last_observation = Observation()
         self.last_action: Action | None = None
@@ -324,8 +325,14 @@ class Executive:
                 self.trace.emit("note", text="progress: a belief not held before; commitment ends")
         return situation(fp, (f.plan.goal for f in self.stack))
 
+    def give_up(self, outcome: Outcome, reason: str) -> None:
+        """A mechanism ends the run after this action with ``reason`` (checked by :meth:`watch`)."""
+        self._give_up = (outcome, reason)
+
     def watch(self, obs: Observation) -> tuple[Outcome, str] | None:
         """After an action and the reconsiderations: a livelock's outcome, or None."""
+        if self._give_up is not None:
+            return self._give_up
         now = self.situation()
         if now is None:
             return None

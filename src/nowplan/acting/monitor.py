@@ -51,7 +51,8 @@ from nowplan.acting.monitor_support import (
     support_for,
     target_goal,
 )
-from nowplan.acting.plan_library import PlanLibrary, StoredPlan, goal_key, state_key
+from nowplan.acting.monitor_escalation import Escalation
+from nowplan.acting.plan_library import PlanLibrary, Rank, StoredPlan, goal_key, state_index, state_key
 from nowplan.belief.protocols import Reobserves
 from nowplan.core.atoms import Goal, entails
 from nowplan.core.domain import Domain
@@ -73,8 +74,6 @@ __all__ = ["Monitor", "MonitorConfig", "default_config", "monitor_settings"]
 log = logging.getLogger(__name__)
 
 _ACTIVE: MonitorConfig | None = None
-
-Rank = tuple[float, float, int]  # how the monitor breaks ties between equally close states
 
 
 def default_config() -> MonitorConfig:
@@ -110,8 +109,7 @@ class Monitor(Mechanism):
         self._index: dict[State, tuple[Rank, StoredPlan, int]] = {}
         self._indexed = 0  # how many of self.plans are in self._index
         # escalation: restore / intermediate targets chosen, and those the agent's own actions reached
-        self._pending: set[Goal] = set()
-        self._reached: set[Goal] = set()
+        self.escalation = Escalation()
         self._flat_goal = True  # plan the goal flat (False once that exceeded its budget; see _plan_goal)
         self._repairs: set[int] = set()  # plan ids of the restore / intermediate plans pushed
 
@@ -139,10 +137,12 @@ class Monitor(Mechanism):
         if f.root or action is None:
             return
         expected = prev.apply(action.effects())
-        self._note_reached(ex, expected)
+        self.escalation.note(ex.domain, expected)
         observed = state_of(ex.belief)
         dm = float(self.support.distance(expected, observed))
         if dm == 0:
+            return
+        if self.escalation.goal_undone(ex, expected):
             return
         self.stats.surprises += 1
         self.stats.distances.append(dm)
@@ -169,16 +169,15 @@ class Monitor(Mechanism):
             else repairs[0]
         if chosen.alternative is not order[0] and not self.config.compares:
             self.stats.fallbacks += 1
-        if chosen.target is not None and chosen.target in self._reached:
+        if self.escalation.undone(chosen.target):
             # the agent's own actions had reached this model and the world took it away again:
             # restoring once more chases the world (seed 003: go directly to the final state)
             self._escalate(ex, f"the world undid a {chosen.alternative.value} the agent had completed "
-                           f"(the model it went back to, {len(chosen.target)} atom(s), was reached and lost)")
+                           f"(the model it went back to, {len(chosen.target or ())} atom(s), was reached and lost)")
             to_goal = next((r for r in repairs if r.alternative is Alternative.GOAL), None) \
                 or self._make(Alternative.GOAL, ex, f, expected, observed, None)
             chosen = to_goal or chosen
-        if chosen.target is not None and chosen.target not in self._reached:
-            self._pending.add(chosen.target)
+        self.escalation.chose(chosen.target)
         self._apply(ex, f, chosen, dm, dm1)
 
     def after_cycle(self, ex: Executive, cycle: Cycle) -> None:
@@ -189,7 +188,7 @@ class Monitor(Mechanism):
         the loop, and committing to them would repeat it.  The monitor escalates to replanning
         to the goal for the rest of the run, and replaces its repair plans on the stack now.
         """
-        if self.config.decision == "goal" or self.stats.escalated:
+        if self.config.decision == "goal" or self.escalation.escalated:
             return
         self._escalate(ex, f"the progress guard found a cycle: {cycle.describe()}")
         if not any(fr.plan_id in self._repairs for fr in ex.stack) or ex.goal_holds():
@@ -201,22 +200,13 @@ class Monitor(Mechanism):
 
     def _escalate(self, ex: Executive, why: str) -> None:
         self.stats.escalated = why
-        text = (f"monitor: escalates from '{self.config.decision}' to replanning to the goal after every "
-                f"surprise for the rest of the run: {why}")
-        log.info(text)
-        ex.trace.emit("note", text=text, escalation=why)
-
-    def _note_reached(self, ex: Executive, expected: State) -> None:
-        """Remember the repair targets the agent's own action reached (``expected`` = before the world's doing)."""
-        done = {g for g in self._pending if ex.domain.satisfies(expected, g)}
-        self._pending -= done
-        self._reached |= done
+        self.escalation.escalate(ex, self.config.decision, why)
 
     def _alternatives(
         self, ex: Executive, f: Frame, expected: State, observed: State, dm: float,
     ) -> tuple[list[Alternative], list[Repair], float | None]:
         """The alternatives to try, the repairs that could be planned (one, or all when comparing), dm1."""
-        escalated = bool(self.stats.escalated)
+        escalated = self.escalation.escalated
         cand = self._closest(observed, ex.domain) if self.config.uses_library and not escalated else None
         dm1 = cand.distance if cand is not None else None
         order = [Alternative.GOAL] if escalated else order_to_try(self.config, dm, dm1)
@@ -282,7 +272,7 @@ class Monitor(Mechanism):
     def _closest(self, observed: State, domain: Domain) -> Candidate | None:
         if self.config.library_scope == "path":
             pool = [self.current] if self.current is not None else []
-            index = _state_index(pool, domain)
+            index = state_index(pool, domain)
         else:
             index = self._library_index(domain)
         best: tuple[float, float, float, int] | None = None
@@ -302,7 +292,7 @@ class Monitor(Mechanism):
         keeps the closest-state search linear in what the library knows, not in its history.
         """
         if self._indexed < len(self.plans):
-            _state_index(self.plans[self._indexed:], domain, self._index)
+            state_index(self.plans[self._indexed:], domain, self._index)
             self._indexed = len(self.plans)
         return self._index
 
@@ -317,7 +307,9 @@ class Monitor(Mechanism):
         other alternatives (and HPN its own replanning) to fall back on.
         """
         levels = levels or flat_levels()
-        if self.config.reuse and entails(goal, ex.problem.goal, ex.domain.rules) \
+        # after an escalation a stored plan from this state may be a restore's, the very detour
+        # the world keeps undoing: plan afresh
+        if self.config.reuse and not self.escalation.escalated and entails(goal, ex.problem.goal, ex.domain.rules) \
                 and entails(ex.problem.goal, goal, ex.domain.rules):
             reused = self._reuse(ex, state, goal)
             if reused is not None:
@@ -496,33 +488,6 @@ class Monitor(Mechanism):
         if isinstance(made, dict):
             made[id(plan)] = {"method": method, "cpu_s": round(cpu_s, 6), "expanded": 0}
         return ex.push(plan, parent)
-
-
-def _state_index(
-    plans: list[StoredPlan],
-    domain: Domain,
-    into: dict[State, tuple[Rank, StoredPlan, int]] | None = None,
-) -> dict[State, tuple[Rank, StoredPlan, int]]:
-    """Distinct states -> (tie-break rank, plan, index).
-
-    Among states equally close to the observed one the monitor goes to the one with the
-    cheapest stored path to the goal (seed 003 keeps intermediate states "known to have the
-    best path from where they are to the final state"), then the one later in its plan, then
-    the lower plan id.  Preferring position alone re-entered repair plans that had detours in
-    them: under faults the library fills with such plans and the runs grew 10x longer.
-    """
-    out = {} if into is None else into
-    for sp in plans:
-        costs = [a.cost() for a in sp.rebuild(domain)]
-        remaining = sum(costs)
-        for j, st in enumerate(sp.states):
-            rank = (remaining, -j / max(len(sp.states), 1), sp.id)
-            if j < len(costs):
-                remaining -= costs[j]
-            old = out.get(st)
-            if old is None or rank < old[0]:
-                out[st] = (rank, sp, j)
-    return out
 
 
 def _factory(decision: str | None) -> Any:
