@@ -14,7 +14,10 @@ planner for shuffled pieces) the monitor makes every plan with it;
 otherwise it uses the regression planner, flat.  When no alternative can
 be planned and the belief offers ``reobserve()`` (a fresh look), the monitor
 calls it once and tries again, since an impossible model is often a
-misperceived one.
+misperceived one.  Under HPN the goal is planned at the strategy's levels
+where a flat plan would be a regression search (:meth:`Monitor._plan_goal`);
+when restoring loops the monitor escalates to replanning to the goal
+(:mod:`nowplan.acting.monitor_escalation`).
 
 Switches: ``monitor`` (the seed's rule), ``monitor-goal`` (always replan to
 the goal), ``monitor-restore`` (always restore), ``monitor-cost`` (cheapest
