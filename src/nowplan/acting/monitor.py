@@ -64,8 +64,8 @@ from nowplan.core.state import State
 from nowplan.errors import ModelError, ScenarioError
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus
 from nowplan.planning.regression import PlannerConfig
-from nowplan.planning.task import forward_unsupported
 from nowplan.planning.regression import plan as regression_plan
+from nowplan.planning.task import forward_unsupported
 
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame

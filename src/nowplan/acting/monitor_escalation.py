@@ -77,8 +77,9 @@ class Escalation:
 
     def goal_undone(self, ex: Executive, expected: State) -> bool:
         """Did the world undo the goal the agent's action just completed?  Ends the run at the bound."""
-        if not ex.domain.satisfies(expected, ex.problem.goal) or ex.goal_holds():
-            return False
+        if not ex.last_observation.success or not ex.domain.satisfies(expected, ex.problem.goal) \
+                or ex.goal_holds():
+            return False  # a failed action is no undoing by the world
         self.goal_undone_count += 1
         ex.trace.emit("note", text=f"monitor: the world undid the goal right after the agent reached it "
                       f"({self.goal_undone_count} time(s))")
