@@ -190,3 +190,18 @@ def test_flat_goal_plans_where_the_forward_search_applies() -> None:
     world = SymbolicWorld(LOGISTICS, prob.init, exogenous=Undoer(), exogenous_prob=1.0)
     _, mon, _ = run("hpn+monitor-goal", prob, world)
     assert mon.stats.hierarchical_goal == ""  # logistics lists its facts: the flat plan is searched forward
+
+
+def test_without_escalation_the_seeds_rule_chases_the_world() -> None:
+    """``MonitorConfig(escalate=False)`` is the seed's rule as written (the reproduction of seed 003
+    measures it): in the undoing world it restores until the action budget."""
+    prob = one_city({"p0": "c0-l3", "p1": "c0-l3"})
+    world = SymbolicWorld(LOGISTICS, prob.init, exogenous=Undoer(), exogenous_prob=1.0)
+    trace = Trace()
+    with monitor_settings(MonitorConfig(decision="restore", escalate=False)):
+        ex = Executive(prob, world, SymbolicBelief(prob.init), parse_strategy("hpn+monitor-restore", max_actions=120),
+                       seed=0, trace=trace)
+    m = ex.run()
+    mon = next(x for x in ex.mechanisms if isinstance(x, Monitor))
+    assert m.outcome.value == "limit" and mon.stats.escalated == ""
+    assert set(mon.stats.decisions) == {"restore"}

@@ -172,7 +172,7 @@ class Monitor(Mechanism):
             else repairs[0]
         if chosen.alternative is not order[0] and not self.config.compares:
             self.stats.fallbacks += 1
-        if self.escalation.undone(chosen.target):
+        if self.config.escalate and self.escalation.undone(chosen.target):
             # the agent's own actions had reached this model and the world took it away again:
             # restoring once more chases the world (seed 003: go directly to the final state)
             self._escalate(ex, f"the world undid a {chosen.alternative.value} the agent had completed "
@@ -191,7 +191,7 @@ class Monitor(Mechanism):
         the loop, and committing to them would repeat it.  The monitor escalates to replanning
         to the goal for the rest of the run, and replaces its repair plans on the stack now.
         """
-        if self.config.decision == "goal" or self.escalation.escalated:
+        if self.config.decision == "goal" or not self.config.escalate or self.escalation.escalated:
             return
         self._escalate(ex, f"the progress guard found a cycle: {cycle.describe()}")
         if not any(fr.plan_id in self._repairs for fr in ex.stack) or ex.goal_holds():

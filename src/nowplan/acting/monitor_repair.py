@@ -77,6 +77,9 @@ class MonitorConfig:
     planner: str = "domain"  # domain: the domain's own planner when it registers one | regression
     planning_weight: float = 0.0
     count_continuation: bool = True
+    # commit to replanning to the goal when restoring loops (nowplan.acting.monitor_escalation);
+    # False: the seed's rule as written (the reproduction of seed 003 measures that)
+    escalate: bool = True
 
     def __post_init__(self) -> None:
         checks: list[tuple[str, Any, tuple[Any, ...]]] = [
