@@ -13,7 +13,7 @@ states.  When the domain registers its own planner (the seed's means-ends
 planner for shuffled pieces) the monitor makes every plan with it;
 otherwise it uses the regression planner, flat.  When no alternative can
 be planned and the belief offers ``reobserve()`` (a fresh look), the monitor
-calls it once and tries again, since an impossible model is often a
+calls it (up to three times) and tries again, since an impossible model is often a
 misperceived one.  Under HPN the goal is planned at the strategy's levels
 where a flat plan would be a regression search (:meth:`Monitor._plan_goal`);
 when restoring loops the monitor escalates to replanning to the goal
@@ -77,6 +77,7 @@ __all__ = ["Monitor", "MonitorConfig", "default_config", "monitor_settings"]
 log = logging.getLogger(__name__)
 
 _ACTIVE: MonitorConfig | None = None
+REOBSERVATIONS = 3  # fresh looks when nothing can be planned from the observed model (each is a new sample)
 
 
 def default_config() -> MonitorConfig:
@@ -153,10 +154,12 @@ class Monitor(Mechanism):
             ex.trace.emit("note", text=f"monitor: surprise (dm={dm:g}) but the goal holds")
             return
         order, repairs, dm1 = self._alternatives(ex, f, expected, observed, dm)
-        if not repairs and isinstance(ex.belief, Reobserves):
-            # nothing can be planned from this model: perhaps it is misperceived; look once more
+        looks = 0
+        while not repairs and isinstance(ex.belief, Reobserves) and looks < REOBSERVATIONS:
+            # nothing can be planned from this model: perhaps it is misperceived; look again
             ex.trace.emit("note", text=f"monitor: no alternative could be planned (dm={dm:g}); observing again")
             self.stats.reobservations += 1
+            looks += 1
             ex.belief.reobserve()
             observed = state_of(ex.belief)
             dm = float(self.support.distance(expected, observed))
