@@ -205,3 +205,27 @@ def test_without_escalation_the_seeds_rule_chases_the_world() -> None:
     mon = next(x for x in ex.mechanisms if isinstance(x, Monitor))
     assert m.outcome.value == "limit" and mon.stats.escalated == ""
     assert set(mon.stats.decisions) == {"restore"}
+
+
+def test_under_hpn_the_goal_is_planned_at_the_strategys_levels_where_flat_would_regress() -> None:
+    """Marsupial has generators, so a flat plan to the goal would be a regression search (up to
+    50,000 LM-cut expansions, 30-60 s a call): the monitor plans the goal as HPN plans its root."""
+    from nowplan.domains.registry import get_domain
+    from nowplan.experiments.faults import Faults, apply_faults
+
+    dom = get_domain("marsupial")
+    ep = dom.scenario("single-3")(0)
+    apply_faults(ep, Faults(failure=0.25))
+    trace = Trace()
+    with monitor_settings(MonitorConfig(decision="goal")):
+        ex = Executive(ep.problem, ep.world, ep.belief, parse_strategy("hpn+monitor-goal", base_planner=dom.planner),
+                       seed=0, trace=trace)
+    m = ex.run()
+    mon = next(x for x in ex.mechanisms if isinstance(x, Monitor))
+    assert m.outcome.value == "reached", m.reason
+    assert "searched by regression (operators have generators)" in mon.stats.hierarchical_goal
+    goal_plans = [e for e in trace.of("plan") if e["method"] == "goal"]
+    assert goal_plans and mon.stats.decisions["goal"] == len(goal_plans)
+    # abstract plans: the executive refined them (plans pushed below the monitor's)
+    ids = {e["plan_id"] for e in goal_plans}
+    assert any(e.get("parent") in ids for e in trace.of("plan"))
