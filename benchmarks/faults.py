@@ -88,6 +88,15 @@ def levels_for(domain: str, scenario: str, levels: tuple[Faults, ...]) -> list[F
     return [lv for lv in levels if all(supports(ep, k) for k, _ in lv.items())]
 
 
+def parse_levels(text: str) -> tuple[Faults, ...]:
+    """``'none,exogenous=0.5'`` -> the fault levels (a bad knob is a ScenarioError naming it)."""
+    out = []
+    for lab in (x.strip() for x in text.split(",")):
+        if lab:
+            out.append(Faults() if lab == "none" else split_scenario(f"x?{lab}")[1])
+    return tuple(out)
+
+
 def export(records: list[RunRecord], out: Path) -> None:
     """faults.csv (one row per run) and faults.md (the table and every failure's reason)."""
     out.mkdir(parents=True, exist_ok=True)
@@ -144,6 +153,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--domains", default=",".join(SCENARIOS), help="domains joined by ','")
     ap.add_argument("--strategies", help="strategies joined by ',' (default: the matrix's, or --quick's five)")
     ap.add_argument("--seeds", help="seeds (default 0-19, --quick 0-1)")
+    ap.add_argument("--levels", help="fault levels joined by ',', each as in the table's faults column "
+                    "(e.g. 'exogenous=0.5,failure=0.5&exogenous=0.5', 'none'); default: every level")
     ap.add_argument("--time-limit", type=float, help="seconds per run (default 60, --quick 30)")
     ap.add_argument("--jobs", type=int, default=1, help="runs at a time (default 1: the machine is shared)")
     ap.add_argument("--store", type=Path, help="SQLite store (default results/faults.sqlite, --quick faults_quick.sqlite)")
@@ -153,6 +164,11 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
     quick = args.quick
+    try:
+        chosen_levels = parse_levels(args.levels) if args.levels else QUICK_LEVELS if quick else FULL_LEVELS
+    except NowplanError as exc:
+        print(f"faults.py: --levels: {exc}", file=sys.stderr)
+        return 2
     seeds = parse_seeds(args.seeds or ("0-1" if quick else "0-19"))
     limit = args.time_limit or (30.0 if quick else 60.0)
     out = args.out or (RESULTS / "faults_quick" if quick else RESULTS)
@@ -163,7 +179,7 @@ def main(argv: list[str] | None = None) -> int:
     backend = make_backend("local", args.jobs)
     for dom in domains:
         scen = SCENARIOS.get(dom) or get_domain(dom).default_scenario
-        levels = levels_for(dom, scen, QUICK_LEVELS if quick else FULL_LEVELS)
+        levels = levels_for(dom, scen, chosen_levels)
         names = args.strategies.split(",") if args.strategies else list(QUICK_STRATEGIES if quick else matrix_strategies())
         strategies = []
         for st in names:

@@ -102,6 +102,7 @@ class Executive:
         # the progress guard: cycles across actions, and the plan committed to after one
         self.progress = CycleDetector(strategy.max_cycles)
         self._committed = False
+        self._give_up: tuple[Outcome, str] | None = None  # a mechanism's reason to end the run
         self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
         self.last_observation = Observation()
         self.last_action: Action | None = None
@@ -204,7 +205,7 @@ class Executive:
             )
             self._pending_trigger = None
             self._pending_reason = ""
-        remaining = self.strategy.time_limit - (time.perf_counter() - self._t0)
+        remaining = self.remaining_time()
         cfg = self.strategy.planner
         for m in self.mechanisms:
             cfg = m.planner_config(self, parent, goal, cfg) or cfg
@@ -296,6 +297,10 @@ class Executive:
         for m in self.mechanisms:
             m.after_action(self)
 
+    def remaining_time(self) -> float:
+        """Seconds left of the run's time budget (for planner calls made outside ``make_plan``)."""
+        return self.strategy.time_limit - (time.perf_counter() - self._t0)
+
     def request_replan(self, trigger: str, reason: str) -> None:
         """Mark the next plan made as a replan, with what triggered it."""
         self._pending_trigger = trigger
@@ -320,8 +325,14 @@ class Executive:
                 self.trace.emit("note", text="progress: a belief not held before; commitment ends")
         return situation(fp, (f.plan.goal for f in self.stack))
 
+    def give_up(self, outcome: Outcome, reason: str) -> None:
+        """A mechanism ends the run after this action with ``reason`` (checked by :meth:`watch`)."""
+        self._give_up = (outcome, reason)
+
     def watch(self, obs: Observation) -> tuple[Outcome, str] | None:
         """After an action and the reconsiderations: a livelock's outcome, or None."""
+        if self._give_up is not None:
+            return self._give_up
         now = self.situation()
         if now is None:
             return None
@@ -338,6 +349,8 @@ class Executive:
     def on_cycle(self, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:
         self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
                         text=cyc.describe())
+        for m in self.mechanisms:
+            m.after_cycle(self, cyc)
         if cyc.clean and self.progress.livelocked:
             return Outcome.LIVELOCK, (
                 f"livelock: cycle {cyc.count} of at most {self.progress.max_cycles}: {cyc.describe()}, "

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame
+    from nowplan.acting.progress import Cycle
     from nowplan.core.atoms import Goal
     from nowplan.planning.regression import PlannerConfig
     from nowplan.planning.plan import PlanResult, PlanStep
@@ -47,6 +48,9 @@ class Mechanism:
 
     def after_plan_failure(self, ex: Executive, parent: Frame, goal: Goal, result: PlanResult) -> None:
         """The planner found no plan for ``goal``, the subgoal of ``parent``'s current step."""
+
+    def after_cycle(self, ex: Executive, cycle: Cycle) -> None:
+        """The progress guard found a cycle (before the executive commits or ends the run)."""
 
 
 MechanismFactory = Callable[[Any], Mechanism]  # Strategy -> Mechanism

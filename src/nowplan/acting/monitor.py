@@ -13,8 +13,11 @@ states.  When the domain registers its own planner (the seed's means-ends
 planner for shuffled pieces) the monitor makes every plan with it;
 otherwise it uses the regression planner, flat.  When no alternative can
 be planned and the belief offers ``reobserve()`` (a fresh look), the monitor
-calls it once and tries again, since an impossible model is often a
-misperceived one.
+calls it (up to three times) and tries again, since an impossible model is often a
+misperceived one.  Under HPN the goal is planned at the strategy's levels
+where a flat plan would be a regression search (:meth:`Monitor._plan_goal`);
+when restoring loops the monitor escalates to replanning to the goal
+(:mod:`nowplan.acting.monitor_escalation`).
 
 Switches: ``monitor`` (the seed's rule), ``monitor-goal`` (always replan to
 the goal), ``monitor-restore`` (always restore), ``monitor-cost`` (cheapest
@@ -44,24 +47,29 @@ from nowplan.acting.monitor_repair import (
 )
 from nowplan.acting.monitor_support import (
     MonitorSupport,
+    drop_loops,
     plan_from_actions,
     simulate,
     state_of,
     support_for,
     target_goal,
 )
-from nowplan.acting.plan_library import PlanLibrary, StoredPlan, goal_key, state_key
+from nowplan.acting.monitor_escalation import Escalation
+from nowplan.acting.plan_library import PlanLibrary, Rank, StoredPlan, goal_key, state_index, state_key
 from nowplan.belief.protocols import Reobserves
 from nowplan.core.atoms import Goal, entails
 from nowplan.core.domain import Domain
-from nowplan.core.levels import flat_levels
+from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.state import State
 from nowplan.errors import ModelError, ScenarioError
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus
+from nowplan.planning.regression import PlannerConfig
 from nowplan.planning.regression import plan as regression_plan
+from nowplan.planning.task import forward_unsupported
 
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame
+    from nowplan.acting.progress import Cycle
     from nowplan.planning.plan import PlanStep
 
 __all__ = ["Monitor", "MonitorConfig", "default_config", "monitor_settings"]
@@ -69,8 +77,7 @@ __all__ = ["Monitor", "MonitorConfig", "default_config", "monitor_settings"]
 log = logging.getLogger(__name__)
 
 _ACTIVE: MonitorConfig | None = None
-
-Rank = tuple[float, float, int]  # how the monitor breaks ties between equally close states
+REOBSERVATIONS = 3  # fresh looks when nothing can be planned from the observed model (each is a new sample)
 
 
 def default_config() -> MonitorConfig:
@@ -105,6 +112,10 @@ class Monitor(Mechanism):
         self._next_mem_id = -1
         self._index: dict[State, tuple[Rank, StoredPlan, int]] = {}
         self._indexed = 0  # how many of self.plans are in self._index
+        # escalation: restore / intermediate targets chosen, and those the agent's own actions reached
+        self.escalation = Escalation()
+        self._flat_goal = True  # plan the goal flat (False once that exceeded its budget; see _plan_goal)
+        self._repairs: set[int] = set()  # plan ids of the restore / intermediate plans pushed
 
     # -- hooks ---------------------------------------------------------------------
     def after_push(self, ex: Executive, frame: Frame) -> None:
@@ -130,9 +141,12 @@ class Monitor(Mechanism):
         if f.root or action is None:
             return
         expected = prev.apply(action.effects())
+        self.escalation.note(ex.domain, expected)
         observed = state_of(ex.belief)
         dm = float(self.support.distance(expected, observed))
         if dm == 0:
+            return
+        if self.escalation.goal_undone(ex, expected):
             return
         self.stats.surprises += 1
         self.stats.distances.append(dm)
@@ -140,10 +154,12 @@ class Monitor(Mechanism):
             ex.trace.emit("note", text=f"monitor: surprise (dm={dm:g}) but the goal holds")
             return
         order, repairs, dm1 = self._alternatives(ex, f, expected, observed, dm)
-        if not repairs and isinstance(ex.belief, Reobserves):
-            # nothing can be planned from this model: perhaps it is misperceived; look once more
+        looks = 0
+        while not repairs and isinstance(ex.belief, Reobserves) and looks < REOBSERVATIONS:
+            # nothing can be planned from this model: perhaps it is misperceived; look again
             ex.trace.emit("note", text=f"monitor: no alternative could be planned (dm={dm:g}); observing again")
             self.stats.reobservations += 1
+            looks += 1
             ex.belief.reobserve()
             observed = state_of(ex.belief)
             dm = float(self.support.distance(expected, observed))
@@ -159,15 +175,47 @@ class Monitor(Mechanism):
             else repairs[0]
         if chosen.alternative is not order[0] and not self.config.compares:
             self.stats.fallbacks += 1
+        if self.config.escalate and self.escalation.undone(chosen.target):
+            # the agent's own actions had reached this model and the world took it away again:
+            # restoring once more chases the world (seed 003: go directly to the final state)
+            self._escalate(ex, f"the world undid a {chosen.alternative.value} the agent had completed "
+                           f"(the model it went back to, {len(chosen.target or ())} atom(s), was reached and lost)")
+            to_goal = next((r for r in repairs if r.alternative is Alternative.GOAL), None) \
+                or self._make(Alternative.GOAL, ex, f, expected, observed, None)
+            chosen = to_goal or chosen
+        self.escalation.chose(chosen.target)
         self._apply(ex, f, chosen, dm, dm1)
+
+    def after_cycle(self, ex: Executive, cycle: Cycle) -> None:
+        """The progress guard found a cycle: stop restoring, replan to the goal (seed 003's third way).
+
+        Restoring the expected model, or re-entering a stored plan, is what the monitor adds to
+        HPN; when the agent comes back to a situation it had left, those repairs are (or may be)
+        the loop, and committing to them would repeat it.  The monitor escalates to replanning
+        to the goal for the rest of the run, and replaces its repair plans on the stack now.
+        """
+        if self.config.decision == "goal" or not self.config.escalate or self.escalation.escalated:
+            return
+        self._escalate(ex, f"the progress guard found a cycle: {cycle.describe()}")
+        if not any(fr.plan_id in self._repairs for fr in ex.stack) or ex.goal_holds():
+            return
+        observed = state_of(ex.belief)
+        rep = self._make(Alternative.GOAL, ex, ex.stack[-1], observed, observed, None)
+        if rep is not None:
+            self._apply(ex, ex.stack[-1], rep, 0.0, None)
+
+    def _escalate(self, ex: Executive, why: str) -> None:
+        self.stats.escalated = why
+        self.escalation.escalate(ex, self.config.decision, why)
 
     def _alternatives(
         self, ex: Executive, f: Frame, expected: State, observed: State, dm: float,
     ) -> tuple[list[Alternative], list[Repair], float | None]:
         """The alternatives to try, the repairs that could be planned (one, or all when comparing), dm1."""
-        cand = self._closest(observed, ex.domain) if self.config.uses_library else None
+        escalated = self.escalation.escalated
+        cand = self._closest(observed, ex.domain) if self.config.uses_library and not escalated else None
         dm1 = cand.distance if cand is not None else None
-        order = order_to_try(self.config, dm, dm1)
+        order = [Alternative.GOAL] if escalated else order_to_try(self.config, dm, dm1)
         repairs: list[Repair] = []
         for alt in order:
             rep = self._make(alt, ex, f, expected, observed, cand)
@@ -230,7 +278,7 @@ class Monitor(Mechanism):
     def _closest(self, observed: State, domain: Domain) -> Candidate | None:
         if self.config.library_scope == "path":
             pool = [self.current] if self.current is not None else []
-            index = _state_index(pool, domain)
+            index = state_index(pool, domain)
         else:
             index = self._library_index(domain)
         best: tuple[float, float, float, int] | None = None
@@ -250,13 +298,24 @@ class Monitor(Mechanism):
         keeps the closest-state search linear in what the library knows, not in its history.
         """
         if self._indexed < len(self.plans):
-            _state_index(self.plans[self._indexed:], domain, self._index)
+            state_index(self.plans[self._indexed:], domain, self._index)
             self._indexed = len(self.plans)
         return self._index
 
     # -- planning ----------------------------------------------------------------------
-    def _plan(self, ex: Executive, state: State, goal: Goal) -> PlanResult:
-        if self.config.reuse and entails(goal, ex.problem.goal, ex.domain.rules) \
+    def _plan(
+        self, ex: Executive, state: State, goal: Goal, levels: LevelMap | None = None, *, bounded: bool = True,
+    ) -> PlanResult:
+        """Plan ``goal`` from ``state`` (flat unless ``levels``) within the run's remaining time.
+
+        ``bounded``: a flat call gets the planner's shortcut budget (``shortcut_nodes``) instead of
+        its full one: a repair that needs a bigger search is no small repair, and the monitor has
+        other alternatives (and HPN its own replanning) to fall back on.
+        """
+        levels = levels or flat_levels()
+        # after an escalation a stored plan from this state may be a restore's, the very detour
+        # the world keeps undoing: plan afresh
+        if self.config.reuse and not self.escalation.escalated and entails(goal, ex.problem.goal, ex.domain.rules) \
                 and entails(ex.problem.goal, goal, ex.domain.rules):
             reused = self._reuse(ex, state, goal)
             if reused is not None:
@@ -265,8 +324,8 @@ class Monitor(Mechanism):
         if own is not None:
             res: PlanResult = own(ex.domain, ex.problem.objects, state, goal, ex.rng)
         else:
-            res = regression_plan(ex.domain, ex.problem.objects, state, goal, flat_levels(),
-                                  ex.strategy.planner, ex.context(), ex.rng)
+            res = regression_plan(ex.domain, ex.problem.objects, state, goal, levels,
+                                  self._config(ex, bounded), ex.context(), ex.rng)
         ex.metrics.planning_cpu_s += res.cpu_time_s
         self.stats.planning_s += res.cpu_time_s
         if res.solved:
@@ -274,6 +333,47 @@ class Monitor(Mechanism):
         else:
             ex.metrics.plan_failures += 1
         return res
+
+    @staticmethod
+    def _config(ex: Executive, bounded: bool) -> PlannerConfig:
+        cfg = ex.strategy.planner
+        changes: dict[str, Any] = {}
+        remaining = max(ex.remaining_time(), 0.01)
+        if remaining < cfg.time_limit:
+            changes["time_limit"] = remaining
+        if bounded and cfg.shortcut_nodes < cfg.max_nodes:
+            changes["max_nodes"] = cfg.shortcut_nodes
+        return replace(cfg, **changes) if changes else cfg
+
+    def _plan_goal(self, ex: Executive, state: State) -> PlanResult:
+        """A plan from ``state`` to the task's goal: flat, or at the strategy's levels.
+
+        The seed plans flat (its planner has no hierarchy) and its flat plans feed the library's
+        intermediate states.  Under HPN the monitor plans the goal flat only where the flat plan
+        is searched forward (the belief lists its facts, no generators or tests: logistics,
+        a few milliseconds); elsewhere a flat plan for the whole goal is what HPN exists to
+        avoid (marsupial: 50,000 regression expansions without a plan, 30-60 s per call,
+        where HPN's abstract plan takes 31), so the goal is planned at the strategy's levels,
+        as the executive plans its root, and HPN refines the abstract plan.  A flat search
+        that runs out of its budget also turns the monitor to the hierarchy for the rest of the run.
+        """
+        goal, hier = ex.problem.goal, ex.strategy.hierarchical
+        if hier and self._flat_goal and self._own_planner() is None:
+            why = None if ex.strategy.planner.engine != "regression" else "the planner is set to regress"
+            why = why or forward_unsupported(ex.domain, state)
+            if why is not None:
+                self._to_hierarchy(ex, f"a flat plan to the goal would be searched by regression ({why})")
+        if self._flat_goal or not hier:
+            res = self._plan(ex, state, goal, bounded=False)
+            if res.solved or not hier or res.status not in (PlanStatus.NODE_LIMIT, PlanStatus.TIME_LIMIT):
+                return res
+            self._to_hierarchy(ex, f"flat planning to the goal: {res.status.value}: {res.reason}")
+        return self._plan(ex, state, goal, ex.base_levels, bounded=False)
+
+    def _to_hierarchy(self, ex: Executive, why: str) -> None:
+        self._flat_goal = False
+        self.stats.hierarchical_goal = why
+        ex.trace.emit("note", text=f"monitor: {why}; planning the goal at the strategy's levels from now on")
 
     def _reuse(self, ex: Executive, state: State, goal: Goal) -> PlanResult | None:
         key = state_key(state)
@@ -298,11 +398,13 @@ class Monitor(Mechanism):
     ) -> Repair | None:
         dom, goal = ex.domain, ex.problem.goal
         if alt is Alternative.GOAL:
-            res = self._plan(ex, observed, goal)
+            res = self._plan_goal(ex, observed)
             if not res.solved or res.plan is None:
                 return None
+            flat = all(res.plan.is_primitive(i) for i in range(1, len(res.plan) + 1))
             return Repair(alt, res.plan, "replace_all", res.plan.cost(), 0.0, res.cpu_time_s,
-                          f"plan from the observed model to the goal ({res.method})")
+                          f"plan from the observed model to the goal ({res.method}"
+                          f"{'' if flat else ', abstract: HPN refines it'})")
         if alt is Alternative.INTERMEDIATE:
             if cand is None:
                 return None
@@ -329,7 +431,7 @@ class Monitor(Mechanism):
             return None
         rest = sum(a.cost() for a in f.plan.actions[f.i:])
         return Repair(alt, res.plan, "on_top", res.plan.cost(), rest, res.cpu_time_s,
-                      "plan back to the expected model, then continue")
+                      "plan back to the expected model, then continue", target)
 
     def _compose(
         self, ex: Executive, alt: Alternative, observed: State, target_atoms: Any, tail: list[Any],
@@ -347,12 +449,21 @@ class Monitor(Mechanism):
         actions = list(res.plan.actions) + list(tail)
         if self.support.adapt is not None:
             actions = self.support.adapt(actions, observed)
+        states = simulate(dom, observed, actions)
+        if states is None:
+            return None
         plan = plan_from_actions(dom, actions, goal)
-        if plan is None or simulate(dom, observed, actions) is None:
+        shorter = drop_loops(states, actions)
+        if len(shorter) < len(actions):
+            cut = plan_from_actions(dom, shorter, goal)
+            if cut is not None:
+                self.stats.loops_dropped += len(actions) - len(shorter)
+                plan = cut
+        if plan is None:
             return None
         repair_cost = plan.cost() - sum(a.cost() for a in tail)
         return Repair(alt, plan, mode, max(repair_cost, 0.0), sum(a.cost() for a in tail),
-                      res.cpu_time_s, detail)
+                      res.cpu_time_s, detail, target)
 
     # -- the plan stack ------------------------------------------------------------------
     def _apply(self, ex: Executive, f: Frame, rep: Repair, dm: float, dm1: float | None) -> None:
@@ -373,41 +484,16 @@ class Monitor(Mechanism):
                 ex.pop("replaced")
         elif rep.mode == "replace_frame":
             ex.pop("replaced")
-        self._push(ex, ex.stack[-1], rep.plan, alt, rep.planning_s)
+        fr = self._push(ex, ex.stack[-1], rep.plan, alt, rep.planning_s)
+        if rep.alternative is not Alternative.GOAL:
+            self._repairs.add(fr.plan_id)
 
-    def _push(self, ex: Executive, parent: Frame, plan: Plan, method: str, cpu_s: float) -> None:
+    def _push(self, ex: Executive, parent: Frame, plan: Plan, method: str, cpu_s: float) -> Frame:
         """Push a plan the monitor made; the executive traces it like its own (a ``plan`` event)."""
         made = getattr(ex, "_made", None)
         if isinstance(made, dict):
             made[id(plan)] = {"method": method, "cpu_s": round(cpu_s, 6), "expanded": 0}
-        ex.push(plan, parent)
-
-
-def _state_index(
-    plans: list[StoredPlan],
-    domain: Domain,
-    into: dict[State, tuple[Rank, StoredPlan, int]] | None = None,
-) -> dict[State, tuple[Rank, StoredPlan, int]]:
-    """Distinct states -> (tie-break rank, plan, index).
-
-    Among states equally close to the observed one the monitor goes to the one with the
-    cheapest stored path to the goal (seed 003 keeps intermediate states "known to have the
-    best path from where they are to the final state"), then the one later in its plan, then
-    the lower plan id.  Preferring position alone re-entered repair plans that had detours in
-    them: under faults the library fills with such plans and the runs grew 10x longer.
-    """
-    out = {} if into is None else into
-    for sp in plans:
-        costs = [a.cost() for a in sp.rebuild(domain)]
-        remaining = sum(costs)
-        for j, st in enumerate(sp.states):
-            rank = (remaining, -j / max(len(sp.states), 1), sp.id)
-            if j < len(costs):
-                remaining -= costs[j]
-            old = out.get(st)
-            if old is None or rank < old[0]:
-                out[st] = (rank, sp, j)
-    return out
+        return ex.push(plan, parent)
 
 
 def _factory(decision: str | None) -> Any:

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.acting.plan_library import StoredPlan
+from nowplan.core.atoms import Goal
 from nowplan.errors import ScenarioError
 from nowplan.planning.plan import Plan
 
@@ -76,6 +77,9 @@ class MonitorConfig:
     planner: str = "domain"  # domain: the domain's own planner when it registers one | regression
     planning_weight: float = 0.0
     count_continuation: bool = True
+    # commit to replanning to the goal when restoring loops (nowplan.acting.monitor_escalation);
+    # False: the seed's rule as written (the reproduction of seed 003 measures that)
+    escalate: bool = True
 
     def __post_init__(self) -> None:
         checks: list[tuple[str, Any, tuple[Any, ...]]] = [
@@ -165,6 +169,7 @@ class Repair:
     continuation_cost: float
     planning_s: float
     detail: str = ""
+    target: Goal | None = None  # the model a restore or intermediate repair goes back to
 
     def total(self, config: MonitorConfig) -> float:
         cont = self.continuation_cost if config.count_continuation else 0.0
@@ -179,6 +184,9 @@ class MonitorStats:
     unresolved: int = 0  # no alternative could be planned; left to the executive
     reobservations: int = 0  # fresh looks asked of the belief when nothing could be planned
     reuses: int = 0  # plans taken from the library for an exact (initial, goal) pair
+    escalated: str = ""  # why the monitor replans to the goal for the rest of the run ("" = it does not)
+    hierarchical_goal: str = ""  # why the goal is planned at the strategy's levels ("" = flat)
+    loops_dropped: int = 0  # actions cut from composed repairs that returned to a state passed before
     stored: int = 0
     estimated_cost: float = 0.0  # sum of the chosen repairs' accounted costs
     planning_s: float = 0.0  # CPU seconds the monitor spent planning (also in the run's metrics)
@@ -192,6 +200,9 @@ class MonitorStats:
             "unresolved": self.unresolved,
             "reobservations": self.reobservations,
             "reuses": self.reuses,
+            "escalated": self.escalated,
+            "hierarchical_goal": self.hierarchical_goal,
+            "loops_dropped": self.loops_dropped,
             "stored": self.stored,
             "estimated_cost": round(self.estimated_cost, 6),
             "planning_s": round(self.planning_s, 6),

@@ -78,6 +78,28 @@ def simulate(domain: Domain, state: State, actions: Sequence[Action]) -> list[St
     return states
 
 
+def drop_loops(states: Sequence[State], actions: Sequence[Action]) -> list[Action]:
+    """``actions`` without every stretch that returns to a state it passed through before.
+
+    ``states`` is ``simulate``'s ``[s0, …, sn]`` for ``actions``.  A composed repair (plan
+    back to the expected model, then the rest of the old plan) often undoes itself: it puts a
+    package down where it was expected and the old plan's next step picks it up again.  From
+    the first visit of a state the actions after its last visit apply (the state is the same),
+    so cutting the stretch in between keeps the plan valid and reaching the same end.
+    """
+    last = {s: i for i, s in enumerate(states)}
+    out: list[Action] = []
+    i = 0
+    while i < len(actions):
+        j = last[states[i]]
+        if j > i:
+            i = j
+            continue
+        out.append(actions[i])
+        i += 1
+    return out
+
+
 def plan_from_actions(
     domain: Domain, actions: Sequence[Action], goal: Goal, levels: LevelMap | None = None
 ) -> Plan | None:

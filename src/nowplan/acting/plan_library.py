@@ -28,6 +28,8 @@ from nowplan.core.operators import Action
 from nowplan.core.state import State
 from nowplan.errors import StoreError
 
+Rank = tuple[float, float, int]  # how the monitor breaks ties between equally close states
+
 log = logging.getLogger(__name__)
 
 SCHEMA_VERSION = "1"
@@ -232,3 +234,30 @@ class PlanLibrary:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def state_index(
+    plans: list[StoredPlan],
+    domain: Domain,
+    into: dict[State, tuple[Rank, StoredPlan, int]] | None = None,
+) -> dict[State, tuple[Rank, StoredPlan, int]]:
+    """Distinct states -> (tie-break rank, plan, index).
+
+    Among states equally close to the observed one the monitor goes to the one with the
+    cheapest stored path to the goal (seed 003 keeps intermediate states "known to have the
+    best path from where they are to the final state"), then the one later in its plan, then
+    the lower plan id.  Preferring position alone re-entered repair plans that had detours in
+    them: under faults the library fills with such plans and the runs grew 10x longer.
+    """
+    out = {} if into is None else into
+    for sp in plans:
+        costs = [a.cost() for a in sp.rebuild(domain)]
+        remaining = sum(costs)
+        for j, st in enumerate(sp.states):
+            rank = (remaining, -j / max(len(sp.states), 1), sp.id)
+            if j < len(costs):
+                remaining -= costs[j]
+            old = out.get(st)
+            if old is None or rank < old[0]:
+                out[st] = (rank, sp, j)
+    return out
