@@ -123,7 +123,9 @@ def main(args: argparse.Namespace) -> int:
     if not args.json:  # say what runs before it runs (a run may take a while)
         where = f"domain {args.domain}, scenario {args.scenario or get_domain(args.domain).default_scenario}" \
             if not args.pddl else f"domain file {args.pddl[0]}"
-        print(f"nowplan run: {episode.description} ({where}); strategy {strategy.name}, seed {args.seed}",
+        faults = "".join(f", {name} p={p:g}" for name, p in (("failure", args.failure_prob),
+                                                             ("exogenous", args.exogenous_prob)) if p is not None)
+        print(f"nowplan run: {episode.description}{faults} ({where}); strategy {strategy.name}, seed {args.seed}",
               flush=True)
         goal = str(episode.problem.goal)
         print(f"goal: {goal if len(goal) <= 300 else goal[:297] + '...'}\n", flush=True)

@@ -94,5 +94,6 @@ def episode(size_name: str, seed: int, failure_prob: float = 0.0, exogenous_prob
         DOMAIN, prob.init, seed=seed + 1, failure_prob=failure_prob,
         exogenous=partial(move_a_package, packages), exogenous_prob=exogenous_prob,
     )
-    desc = f"{size_name} logistics, failure p={failure_prob:g}, exogenous p={exogenous_prob:g}"
+    faults = [f"{name} p={p:g}" for name, p in (("failure", failure_prob), ("exogenous", exogenous_prob)) if p]
+    desc = ", ".join([f"{size_name} logistics", *faults])
     return Episode(prob, world, SymbolicBelief(prob.init), desc)
