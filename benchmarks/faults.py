@@ -144,6 +144,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--domains", default=",".join(SCENARIOS), help="domains joined by ','")
     ap.add_argument("--strategies", help="strategies joined by ',' (default: the matrix's, or --quick's five)")
     ap.add_argument("--seeds", help="seeds (default 0-19, --quick 0-1)")
+    ap.add_argument("--levels", help="fault levels joined by ',' as in the table ('none', 'failure=0.5', "
+                    "'failure=0.5&exogenous=0.5'; default: every level)")
     ap.add_argument("--time-limit", type=float, help="seconds per run (default 60, --quick 30)")
     ap.add_argument("--jobs", type=int, default=1, help="runs at a time (default 1: the machine is shared)")
     ap.add_argument("--store", type=Path, help="SQLite store (default results/faults.sqlite, --quick faults_quick.sqlite)")
@@ -159,11 +161,18 @@ def main(argv: list[str] | None = None) -> int:
     store_path = args.store or (RESULTS / ("faults_quick.sqlite" if quick else "faults.sqlite"))
     store = Store(store_path)
     domains = [d.strip() for d in args.domains.split(",") if d.strip()]
+    known = {lv.label() or "none" for lv in FULL_LEVELS + QUICK_LEVELS}
+    unknown = [w for w in (args.levels or "").split(",") if w.strip() and w.strip() not in known]
+    if unknown:
+        ap.error(f"--levels: unknown level(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}")
     wanted_keys: set[str] = set()
     backend = make_backend("local", args.jobs)
     for dom in domains:
         scen = SCENARIOS.get(dom) or get_domain(dom).default_scenario
         levels = levels_for(dom, scen, QUICK_LEVELS if quick else FULL_LEVELS)
+        if args.levels:
+            wanted = {w.strip() for w in args.levels.split(",") if w.strip()}
+            levels = [lv for lv in levels if (lv.label() or "none") in wanted]
         names = args.strategies.split(",") if args.strategies else list(QUICK_STRATEGIES if quick else matrix_strategies())
         strategies = []
         for st in names:

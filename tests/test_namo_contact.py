@@ -60,3 +60,40 @@ def test_the_contact_lapses_where_the_motion_does_not_reach_it_or_the_object_mov
     est.mean = est.mean + np.array([-1.0, 1.0])  # the box was moved away (e.g. picked and placed)
     belief.version += 1
     assert belief.clear(region, frozenset(), eps)
+
+
+def _dragging_into_a_wall() -> tuple[NamoWorld, NamoBelief, Action]:
+    """The robot drags a box along a wall's end: the box meets the wall, the robot's disc never does."""
+    from nowplan.domains.namo.geometry import Manip
+
+    geom = MapGeometry(6.0, 4.0, ((3.9, 0.0, 4.1, 2.5),))
+    home, release = Pt(3.0, 3.3), Pt(3.8, 3.3)
+    box = Box(3.0, 2.6, 0.4, 0.4)
+    world = NamoWorld(geom, home, [TrueObject("box", box)], seed=0)
+    world.held, world.grip = "box", np.array([0.0, -0.7])
+    m = Manip("box", home, home, box.center, Pt(3.8, 2.6), release, (home,), (home, release), (release, home))
+    belief = NamoBelief(geom, np.array([home.x, home.y]), robot_sym=home)
+    belief._detect("box", 0.0, -0.7, 0.005, (box.w, box.h))
+    belief.held, belief.held_manip, belief.grip = "box", m, (np.array([0.0, -0.7]), np.eye(2) * 1e-4)
+    place = build_domain().operator_map["Place"]
+    region = Region(home, release, geom.robot_radius)
+    args = ("box", region, frozenset(), frozenset({"box"}), m, home, home, Box(3.8, 2.6, 0.4, 0.4), region,
+            frozenset({"box"}), region, ())
+    return world, belief, Action(place, args)
+
+
+def test_a_drag_the_wall_stops_leaves_no_bump_where_the_robot_can_stand() -> None:
+    """Only the robot's own disc meeting a wall marks a cell it cannot stand on (domain 1, seed 2, failure and
+    exogenous 0.5: the drag's bump made a free cell impassable and the goal unreachable)."""
+    world, belief, action = _dragging_into_a_wall()
+    obs = world.execute(action)
+    assert not obs.success and obs.info["reason"] == "dragging box blocked by wall"
+    assert "bump" not in obs.data
+    belief.update(action, obs)
+    assert not belief.bumps
+    # the robot's own disc meeting the wall still leaves a bump
+    move = build_domain().operator_map["Move"]
+    here = belief.pose
+    into = Pt(here.x, 3.95)  # the map's border
+    obs = world.execute(Action(move, (here, into, Region(here, into, 0.25))))
+    assert not obs.success and obs.info["reason"] == "move blocked by wall" and "bump" in obs.data
