@@ -97,3 +97,47 @@ def test_a_drag_the_wall_stops_leaves_no_bump_where_the_robot_can_stand() -> Non
     into = Pt(here.x, 3.95)  # the map's border
     obs = world.execute(Action(move, (here, into, Region(here, into, 0.25))))
     assert not obs.success and obs.info["reason"] == "move blocked by wall" and "bump" in obs.data
+
+
+def test_a_drag_a_wall_stopped_makes_later_drags_of_that_object_keep_more_room() -> None:
+    """The object met the wall: it sits further toward it than believed, so its next drags keep away from
+    walls by DRAG_MARGIN more (domain 1, seed 2, sensor noise 0.1/m, hpn+flexible+serendipity+selective
+    +foresight: the same diagonal drag out of the door's corner, planned again after each stop, until the
+    progress guard gave up after 119 actions)."""
+    from nowplan.domains.namo.belief import DRAG_MARGIN
+    from nowplan.domains.namo.geometry import shapely
+    from nowplan.domains.namo.placement import manip_options
+
+    world, belief, action = _dragging_into_a_wall()
+    obs = world.execute(action)
+    assert obs.data.get("load_bump") is True
+    belief.update(action, obs)
+    assert belief.drag_margin == {"box": DRAG_MARGIN}
+    est = belief.objects["box"]
+    opts = manip_options(belief, "box", belief.pose, (), (), n=5)
+    assert opts
+    sh = shapely()
+    for m in opts:  # every planned drag keeps the learnt room from the walls once under way
+        dx, dy = m.obj_at.x - m.pick_conf.x, m.obj_at.y - m.pick_conf.y
+        for p in m.carry_path[1:]:
+            box = est.box.moved(Pt(p.x + dx, p.y + dy))
+            assert sh.box(*box.bounds).distance(belief.geom.wall_shape) >= DRAG_MARGIN - 0.02 - 1e-6
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("scenario, strategy", [
+    ("domain1?failure=0.5&exogenous=0.5", "hpn+foresight"),
+    ("domain1?sigma_per_m=0.1", "hpn+flexible+serendipity+selective+foresight"),
+])
+def test_the_fault_benchmark_runs_that_drags_into_walls_broke_reach_the_goal(scenario: str, strategy: str) -> None:
+    from nowplan.acting.metrics import Outcome
+    from nowplan.acting.run import run_episode
+    from nowplan.acting.strategy import parse_strategy
+    from nowplan.domains.registry import get_domain
+    from nowplan.experiments.faults import apply_faults, split_scenario
+
+    base, faults = split_scenario(scenario)
+    ep = get_domain("namo").scenario(base)(2)
+    apply_faults(ep, faults)
+    m = run_episode(ep, parse_strategy(strategy, max_actions=200, time_limit=120.0), seed=2)
+    assert m.outcome is Outcome.REACHED, m.reason

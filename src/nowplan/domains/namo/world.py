@@ -321,8 +321,11 @@ class NamoWorld:
             exo.extend(self._nudge())
         # the bumper felt where the robot's own disc met a wall (not the object it drags: the robot
         # itself can stand where a dragged object was stopped)
-        if self._hit_at is not None and not self._hit_load and reason.endswith("by wall"):
-            data["bump"] = (self._hit_at[0] - self.robot[0], self._hit_at[1] - self.robot[1])
+        if self._hit_at is not None and reason.endswith("by wall"):
+            if self._hit_load:  # the drag felt the object meet a wall
+                data["load_bump"] = True
+            else:
+                data["bump"] = (self._hit_at[0] - self.robot[0], self._hit_at[1] - self.robot[1])
         near = self.sense(None, 2 * math.pi, self.sensor.near_range)
         for k in ("visible", "detections"):
             data[k] = list(data.get(k, [])) + near[k]
