@@ -6,4 +6,4 @@ case $which in
   base) src=/tmp/fnp/base/src;; after) src=/work/wt-faultsnp/src;; main) src=/work/main/src;; mainfix) src=/tmp/fnp/mainfix/src;;
 esac
 cd /work/wt-faultsnp && PYTHONPATH=$src timeout 590 /work/main/.venv/bin/python benchmarks/faults.py --domains $dom \
-  --levels "$levels" --strategies "$strategies" --seeds "$seeds" --store bench/$which.sqlite --out bench/$which
+  --levels "$levels" --strategies "$strategies" --seeds "$seeds" --store bench/$which${TAG:+-$TAG}.sqlite --out bench/$which${TAG:+-$TAG}
