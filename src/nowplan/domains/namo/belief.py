@@ -387,8 +387,12 @@ class NamoBelief:
             if data.get("missed") and est is not None:  # it is not where we thought: look again
                 est.cov = np.eye(2) * max(est.sigma, 0.15) ** 2
                 self.percept += 1
-            if data.get("returned"):
-                self._drive(tuple(reversed(m.pick_path)), polyline_length(m.pick_path))
+            # the way back is dead-reckoned by its odometry: a return that stopped early moved the
+            # robot too (before, only a completed return was, and the pose estimate drifted from the
+            # truth by up to the pick path's length per miss, while its variance said it was known)
+            back = data.get("back", polyline_length(m.pick_path) if data.get("returned") else 0.0)
+            if back:
+                self._drive(tuple(reversed(m.pick_path)), float(back))
             self.robot_sym = m.home if self.at(m.home) else self.geom.grid.snap(self.pose)
 
     def _update_place(self, action: Action, data: dict[str, Any]) -> None:

@@ -401,6 +401,7 @@ class NamoWorld:
         if reason:
             back, hit2, done2 = self._follow(tuple(reversed(m.pick_path)))
             data["returned"] = done2
+            data["back"] = back  # odometry of the way back, also when it stopped early
             return False, data, reason
         assert box is not None
         self.held = obj
