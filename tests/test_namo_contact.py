@@ -146,23 +146,6 @@ def test_fault_benchmark_runs_that_drags_and_grasps_broke_reach_the_goal(scenari
     assert m.outcome is Outcome.REACHED, m.reason
 
 
-@pytest.mark.slow
-def test_backtracking_across_levels_is_not_cut_by_the_move_generators_loop_bound() -> None:
-    """domain 1, seed 6, sensor noise 0.1/m, hpn+foresight: the move through the door cannot be refined, the
-    executive backtracks to the top, and the top-level replan needs more move requests (on one belief) than
-    the former bound of 1 500 allowed: 'no plan for the goal' after 6 actions."""
-    from nowplan.acting.metrics import Outcome
-    from nowplan.acting.run import run_episode
-    from nowplan.acting.strategy import parse_strategy
-    from nowplan.domains.registry import get_domain
-    from nowplan.experiments.faults import apply_faults, split_scenario
-
-    base, faults = split_scenario("domain1?sigma_per_m=0.1")
-    ep = get_domain("namo").scenario(base)(6)
-    apply_faults(ep, faults)
-    m = run_episode(ep, parse_strategy("hpn+foresight", max_actions=200, time_limit=300.0), seed=6)
-    assert m.outcome is Outcome.REACHED, m.reason
-
 
 def test_a_way_back_from_a_missed_grasp_that_stops_early_is_dead_reckoned() -> None:
     """A grasp that misses drives back along the pick path; when that return stops early (move failures),

@@ -35,12 +35,7 @@ from nowplan.worlds.base import Observation
 
 log = logging.getLogger(__name__)
 
-# move-generator calls without a belief update that signal a planning loop.  The executive bounds its
-# own re-planning (refinements per step, nogoods, consecutive failures, the planning budget); this bound
-# only stops a loop those miss.  At 1 500 it ended legitimate backtracking across levels (domain 1,
-# seed 6, sensor noise 0.1/m, hpn+foresight: "no plan for the goal" after 6 actions; domain 2, seed 0,
-# hpn+flexible, docs/namo.md) and flat searches that move an object (online policy, ~8 000 calls).
-LOOP_LIMIT = 6000
+LOOP_LIMIT = 1500  # move-generator calls without a belief update that signal a planning loop
 # A move stopped by a contact: the robot's centre could not go on to a point at most this far ahead
 # along the commanded path (the controller checks its path in steps of about this length) ...
 CONTACT_AHEAD = 0.05
