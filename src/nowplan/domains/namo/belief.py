@@ -43,6 +43,11 @@ CONTACT_AHEAD = 0.05
 # (unless the object has since moved by more than CONTACT_MOVED)
 CONTACT_REACH = 0.08
 CONTACT_MOVED = 0.1
+# A drag stopped because the dragged object met a wall: the object sits further toward that wall than
+# believed (its grasp offset is off by more than the planner allowed for), so later drags of it keep
+# this much more room from the walls, up to DRAG_MARGIN_MAX (placement.py)
+DRAG_MARGIN = 0.05
+DRAG_MARGIN_MAX = 0.2
 
 
 @lru_cache(maxsize=64)
@@ -98,6 +103,8 @@ class NamoBelief:
     # object -> (point the robot's centre was stopped from reaching by it, its estimated centre then):
     # a blocked move is an observation that the object occupies the way there (see in_contact_way)
     touched: dict[str, list[tuple[Pt, Pt]]] = field(default_factory=dict)
+    # object -> extra room (m) its drags keep from the walls, learnt from drags a wall stopped
+    drag_margin: dict[str, float] = field(default_factory=dict)
     _cache: dict[Any, Any] = field(default_factory=dict, repr=False)
     _cache_version: int = -1
     _cells: dict[Region, np.ndarray] = field(default_factory=dict, repr=False)
@@ -375,8 +382,12 @@ class NamoBelief:
             if data.get("missed") and est is not None:  # it is not where we thought: look again
                 est.cov = np.eye(2) * max(est.sigma, 0.15) ** 2
                 self.percept += 1
-            if data.get("returned"):
-                self._drive(tuple(reversed(m.pick_path)), polyline_length(m.pick_path))
+            # the way back is dead-reckoned by its odometry: a return that stopped early moved the
+            # robot too (before, only a completed return was, and the pose estimate drifted from the
+            # truth by up to the pick path's length per miss, while its variance said it was known)
+            back = data.get("back", polyline_length(m.pick_path) if data.get("returned") else 0.0)
+            if back:
+                self._drive(tuple(reversed(m.pick_path)), float(back))
             self.robot_sym = m.home if self.at(m.home) else self.geom.grid.snap(self.pose)
 
     def _update_place(self, action: Action, data: dict[str, Any]) -> None:
@@ -392,6 +403,8 @@ class NamoBelief:
             est.cov = cov + np.eye(2) * (self.robot_var + 0.0001)
         self.grip = None
         self.held, self.held_manip = None, None
+        if data.get("load_bump"):
+            self.drag_margin[o] = min(self.drag_margin.get(o, 0.0) + DRAG_MARGIN, DRAG_MARGIN_MAX)
         if carried >= polyline_length(m.carry_path) - 1e-3 or data.get("home"):
             # the return starts at the release configuration only if the drag got there: a drag
             # stopped early leaves the robot where it stopped (not at the return path's start)

@@ -54,6 +54,7 @@ def fingerprint(b: NamoBelief) -> Hashable:
         tuple((o.name, q_pt(o.center), q_sigma(o.sigma)) for o in b.free_objects()),
         int(np.count_nonzero(b.observed)),
         frozenset(b.bumps),
+        frozenset(b.drag_margin.items()),
         frozenset((n, q_pt(h)) for n, hits in sorted(b.touched.items()) for h, _ in hits),
         frozenset(n for n in b.unmovable if b.stuck(n)),
         frozenset(k for k, v in b.futile_looks.items() if v == b.percept),

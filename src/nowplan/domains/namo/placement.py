@@ -142,8 +142,10 @@ def _dilate_box(grid: Grid, mask: np.ndarray, hw: float, hh: float) -> np.ndarra
     return out.reshape(-1)
 
 
-def _carry_check(geom: MapGeometry, box: Box, offset: tuple[float, float]) -> Callable[[Pt, Pt], bool]:
-    """Exact test of a straight drag: the robot and the swept object box stay off the walls."""
+def _carry_check(
+    geom: MapGeometry, box: Box, offset: tuple[float, float], margin: float = 0.0,
+) -> Callable[[Pt, Pt], bool]:
+    """Exact test of a straight drag: the robot and the swept object box (``margin`` more) stay off the walls."""
     sh = shapely()
     hw, hh = box.w / 2, box.h / 2
 
@@ -152,7 +154,7 @@ def _carry_check(geom: MapGeometry, box: Box, offset: tuple[float, float]) -> Ca
             return False
         corners = [(p.x + offset[0] + sx * hw, p.y + offset[1] + sy * hh)
                    for p in (a, b) for sx in (-1, 1) for sy in (-1, 1)]
-        return bool(sh.MultiPoint(corners).convex_hull.distance(geom.wall_shape) >= 0.03)
+        return bool(sh.MultiPoint(corners).convex_hull.distance(geom.wall_shape) >= 0.03 + margin)
 
     return ok
 
@@ -282,6 +284,7 @@ def _build_core(
     r = geom.robot_radius
     est = belief.objects[name]
     obox = est.box if held_at is None else est.box.moved(held_at[0])
+    margin = belief.drag_margin.get(name, 0.0)  # learnt from drags of it a wall stopped
     k = k_of(params.eps_clear)
     others = np.zeros(g.n, dtype=bool)
     if not through:
@@ -322,7 +325,8 @@ def _build_core(
         di = int(round((obox.cx - pcp.x) / g.res))
         dj = int(round((obox.cy - pcp.y) / g.res))
         offset = (obox.cx - pcp.x, obox.cy - pcp.y)
-        carry_free = base & _shift_cells(g, obj_ok, di, dj, False) & _box_off_walls(geom, obox.w, obox.h, *offset)
+        carry_free = base & _shift_cells(g, obj_ok, di, dj, False) & _box_off_walls(
+            geom, obox.w + 2 * margin, obox.h + 2 * margin, *offset)
         carry_free[pc] = True
         dist_c, par_c = dijkstra(g, carry_free, pc)
         dc = np.asarray(dist_c)
@@ -424,7 +428,8 @@ def _manip_options(
                 place=box.center, release=rel, survey=survey,
                 pick_path=tuple(pick_path),
                 carry_path=tuple(smooth_cells(g, carry.carry_free, carry_cells,
-                                              _carry_check(geom, obox, carry.offset))),
+                                              _carry_check(geom, obox, carry.offset,
+                                                           belief.drag_margin.get(name, 0.0)))),
                 return_path=tuple(ret_path),
             )
             results.append((float(score[i]), m))

@@ -72,6 +72,7 @@ class NamoWorld:
         self.held: str | None = None
         self.grip: np.ndarray = np.zeros(2)
         self._hit_at: tuple[float, float] | None = None  # where the last motion touched something
+        self._hit_load = False  # ... and whether the dragged object, not the robot, touched it
         self.actions = 0
         self.failures = 0
         self.contacts = 0
@@ -156,6 +157,7 @@ class NamoWorld:
         """
         sh = shapely()
         first, what = len(xs), None
+        self._hit_load = False
         if not len(xs):
             return first, what
         pts = sh.points(np.stack([xs, ys], axis=1))
@@ -178,6 +180,7 @@ class NamoWorld:
                 hit = np.nonzero(sh.intersects(geom, boxes))[0]
                 if hit.size and hit[0] < first:
                     first, what = int(hit[0]), name
+                    self._hit_load = True
         return first, what
 
     def robot_hits(self, x: float, y: float) -> str | None:
@@ -316,8 +319,13 @@ class NamoWorld:
         ok, data, reason = handler(*action.args)
         if self.exogenous_prob and self.rng.random() < self.exogenous_prob:
             exo.extend(self._nudge())
-        if self._hit_at is not None and reason.endswith("by wall"):  # the bumper felt where
-            data["bump"] = (self._hit_at[0] - self.robot[0], self._hit_at[1] - self.robot[1])
+        # the bumper felt where the robot's own disc met a wall (not the object it drags: the robot
+        # itself can stand where a dragged object was stopped)
+        if self._hit_at is not None and reason.endswith("by wall"):
+            if self._hit_load:  # the drag felt the object meet a wall
+                data["load_bump"] = True
+            else:
+                data["bump"] = (self._hit_at[0] - self.robot[0], self._hit_at[1] - self.robot[1])
         near = self.sense(None, 2 * math.pi, self.sensor.near_range)
         for k in ("visible", "detections"):
             data[k] = list(data.get(k, [])) + near[k]
@@ -393,6 +401,7 @@ class NamoWorld:
         if reason:
             back, hit2, done2 = self._follow(tuple(reversed(m.pick_path)))
             data["returned"] = done2
+            data["back"] = back  # odometry of the way back, also when it stopped early
             return False, data, reason
         assert box is not None
         self.held = obj
