@@ -38,7 +38,14 @@ from __future__ import annotations
 from collections import deque
 
 from nowplan.planning.axioms import relaxed_task
-from nowplan.planning.lm_orders import Mutex, disjunctive_landmarks, first_achievers as possible_first, reasonable_orders
+from nowplan.planning.lm_orders import (
+    Mutex,
+    disjunctive_landmarks,
+    first_achievers as possible_first,
+    prime_first_achievers,
+    reasonable_orders,
+    relaxed_order,
+)
 from nowplan.planning.task import Task
 
 
@@ -49,26 +56,7 @@ def landmark_sets(task: Task) -> list[frozenset[int] | None]:
     for f in task.init:
         lm[f] = frozenset((f,))
     pre, add, by_pre = task.pre, task.add, task.by_pre
-    missing = [len(p) for p in pre]
-    # first pass, breadth first: what the relaxation reaches (an action fires once all its
-    # preconditions are reached), and the order in which actions become applicable
-    order = [a for a, m in enumerate(missing) if m == 0]
-    reached = set(task.init)
-    frontier = sorted(task.init)
-    i = 0
-    while frontier or i < len(order):
-        while i < len(order):
-            for e in add[order[i]]:
-                if e not in reached:
-                    reached.add(e)
-                    frontier.append(e)
-            i += 1
-        nxt, frontier = frontier, []
-        for f in nxt:
-            for a in by_pre.get(f, ()):
-                missing[a] -= 1
-                if missing[a] == 0:
-                    order.append(a)
+    order = relaxed_order(task)  # breadth first: the order in which actions become applicable
     # fixpoint: shrink each fact's set by every achiever's union, re-examining dependants on change;
     # in that order most sets are final the first time (the fixpoint does not depend on the order)
     work = deque(order)
@@ -176,7 +164,11 @@ class LandmarkCount:
         """Disjunctive landmarks and reasonable orderings (:mod:`nowplan.planning.lm_orders`)."""
         index = {next(iter(d)): i for i, d in enumerate(self.sets)}
         of_set: dict[frozenset[int], int] = {}
-        for d, lm in disjunctive_landmarks(task, self.landmarks, lm_sets):
+        found = disjunctive_landmarks(task, self.landmarks, lm_sets)
+        # the sets whose first achievers need an exploration: one propagation for them all
+        prime_first_achievers(task, [d for d, _ in found] + [frozenset((f,)) for f in self.landmarks
+                                                             if f in task.init], lm_sets)
+        for d, lm in found:
             if d in of_set:
                 self.before.setdefault(of_set[d], []).append(index[lm])
                 continue
