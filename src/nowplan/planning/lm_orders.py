@@ -37,7 +37,7 @@ from __future__ import annotations
 from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
 
-from nowplan.planning.task import Task
+from nowplan.planning.task import FactMutex, Task
 
 MAX_DISJUNCTION = 4  # facts of one disjunctive landmark
 
@@ -259,6 +259,11 @@ def reasonable_orders(task: Task, sets: Sequence[frozenset[int]], before: Mappin
             hit = achievers[i] = first_achievers(task, sets[i], lm)
         return hit
 
+    def isolated(f: int) -> bool:
+        if mutex is None:
+            return True
+        return isinstance(mutex, FactMutex) and mutex.isolated(f)
+
     def mutex_sets(x: frozenset[int], f: int) -> bool:
         return mutex is not None and all(mutex(g, f) for g in x)
 
@@ -266,6 +271,9 @@ def reasonable_orders(task: Task, sets: Sequence[frozenset[int]], before: Mappin
         (fb,) = sets[b]
         if fb in sets[a]:
             return False
+        if isolated(fb):  # no fact is mutex with fb: only the deletes of the first achievers count
+            acts = achievers_of(a)
+            return bool(acts) and all(fb in task.dele[x] for x in acts)
         if mutex_sets(sets[a], fb):
             return True
         acts = achievers_of(a)
