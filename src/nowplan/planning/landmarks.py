@@ -30,7 +30,11 @@ plans within 10 % of lama-first's cost on 64 of 65 instances against 62
 against 45), wall-time ratio to lama-first 1.08x against 1.00x (geometric
 mean).  An earlier try with overlapping disjunctive landmarks and no
 reasonable orderings was worse (floortile p04 16,410 expansions against
-10,088 without; 3,984 now).
+10,088 without; 3,984 now).  The first achievers of the disjunctive
+landmarks come from one labelled propagation for all of them
+(:func:`nowplan.planning.lm_orders.prime_first_achievers`), not one relaxed
+exploration each: on a 2,560-action logistics task the graph takes ~40 ms
+instead of ~150 ms (benchmarks/results/classical_lmspeed).
 """
 
 from __future__ import annotations
