@@ -395,26 +395,33 @@ def build_task(
     task.index_preconditions()
     keyed = [c for c in domain.rules.conflicts if isinstance(c, KeyedRule)]
     if keyed:
-        task.memo["mutex"] = _mutex(facts, keyed)
+        task.memo["mutex"] = FactMutex(facts, keyed)
     return task
 
 
-def _mutex(facts: list[Atom], keyed: list[KeyedRule]) -> Any:
+class FactMutex:
     """``mutex(f, g)``: the conflict rules (inferred invariants) exclude facts ``f`` and ``g`` together."""
-    memo: dict[int, frozenset[Any]] = {}
 
-    def keys(f: int) -> frozenset[Any]:
-        hit = memo.get(f)
+    def __init__(self, facts: list[Atom], keyed: list[KeyedRule]) -> None:
+        self._facts = facts
+        self._keyed = keyed
+        self._memo: dict[int, frozenset[Any]] = {}
+
+    def keys(self, f: int) -> frozenset[Any]:
+        """The (rule, group) pairs of fact ``f``: two facts sharing one are mutex."""
+        hit = self._memo.get(f)
         if hit is None:
-            a = facts[f]
-            hit = memo[f] = frozenset((i, k) for i, r in enumerate(keyed) for k in r.group_keys(a)) \
+            a = self._facts[f]
+            hit = self._memo[f] = frozenset((i, k) for i, r in enumerate(self._keyed) for k in r.group_keys(a)) \
                 if a.value is True else frozenset()
         return hit
 
-    def mutex(f: int, g: int) -> bool:
-        return f != g and bool(keys(f) & keys(g))
+    def isolated(self, f: int) -> bool:
+        """No fact is mutex with ``f`` (it is in no group)."""
+        return not self.keys(f)
 
-    return mutex
+    def __call__(self, f: int, g: int) -> bool:
+        return f != g and bool(self.keys(f) & self.keys(g))
 
 
 def _axiom_names(domain: Domain) -> frozenset[str]:
