@@ -39,6 +39,7 @@ class FactTable:
         self.keyed = tuple(c for c in rules.conflicts if isinstance(c, KeyedRule))
         self.plain = tuple(c for c in rules.conflicts if not isinstance(c, KeyedRule))
         self.ids: dict[Atom, int] = {}
+        self.by_key: dict[tuple[str, tuple[Term, ...], Any], int] = {}  # (predicate, args, value) -> id
         self.atoms: list[Atom] = []
         self.fluent: list[int] = []
         self.fluent_ids: dict[FluentKey, int] = {}
@@ -61,9 +62,17 @@ class FactTable:
             f = self._add(a)
         return f
 
+    def id_of(self, predicate: str, args: tuple[Term, ...], value: Any) -> int:
+        """The id of ``Atom(predicate, args, value)``, without making the atom when it is known."""
+        f = self.by_key.get((predicate, args, value))
+        if f is None:
+            f = self.id(Atom(predicate, args, value))
+        return f
+
     def _add(self, a: Atom) -> int:
         f = len(self.atoms)
         self.ids[a] = f
+        self.by_key[(a.predicate, a.args, a.value)] = f
         self.atoms.append(a)
         key = (a.predicate, a.args)
         fl = self.fluent_ids.get(key)

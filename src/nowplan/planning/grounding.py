@@ -74,6 +74,7 @@ class Grounder:
         self._static_cache: dict[Atom, bool] = {}
         self._by_type: dict[str | None, list[str]] = {}
         self._facts_ok = isinstance(belief, ListsFacts)
+        self._fill_plans: dict[int, _FillPlan] = {}
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
         self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
         self.signature: Hashable = None  # the objects and static facts (with a belief that lists facts)
@@ -296,13 +297,39 @@ class Grounder:
 
         yield from rec(0, b)
 
+    def _fill_plan(self, op: Operator) -> _FillPlan:
+        """What :meth:`_fill` needs of ``op``, worked out once per operator."""
+        plan = self._fill_plans.get(id(op))
+        if plan is None or plan.op is not op:
+            statics = tuple(
+                p.atom for p in op.preconditions if self.is_static(p.atom) and _is_plain(self.domain, p.atom)
+            )
+            # statics the join does not check itself (negative ones, or every one without listed facts)
+            # (and those of a predicate whose listed facts may carry values other than True)
+            later = tuple(s for s in statics if not self._facts_ok or s.value is not True
+                          or not self.domain.predicates[s.predicate].boolean)
+            # per parameter: the objects of its type (a set) when a bound value must be type-checked
+            allobj = frozenset(self.objects_of(None))
+            typed: list[tuple[Var, frozenset[str]]] = []
+            if op.param_types:
+                outs = {v for g in op.generators for v in g.outputs}
+                for v, t in zip(op.params, op.param_types, strict=True):
+                    if t is not None and v not in outs:
+                        typed.append((v, frozenset(self.objects_of(t))))
+            plan = self._fill_plans[id(op)] = _FillPlan(op, statics, later, allobj, tuple(typed))
+        return plan
+
     def _fill(self, op: Operator, b: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
-        statics = [
-            p.atom for p in op.preconditions if self.is_static(p.atom) and _is_plain(self.domain, p.atom)
-        ]
+        """Complete ``b`` by joining static preconditions with listed facts, then typed objects.
+
+        Statics the join matched are not checked again; the values the join or ``b``
+        bound are type-checked (those taken from typed objects are typed already).
+        """
+        plan = self._fill_plan(op)
+        statics, later = plan.statics, plan.later
 
         def check(bind: dict[Var, Any]) -> bool:
-            for s in statics:
+            for s in later:
                 g = s.bind(bind)
                 if g.ground and not self.static_holds(g):
                     return False
@@ -335,13 +362,27 @@ class Grounder:
                 if ok and len(args) == len(s.args):
                     yield from join(i + 1, nxt)
 
+        allobj, typed = plan.allobj, plan.typed
         for jb in join(0, b):
+            # a value bound before the product that names an object of another type: not an instance
+            bad = False
+            for v, ok_objs in typed:
+                val = jb.get(v, _UNSET)
+                if val is not _UNSET and isinstance(val, str) and val in allobj and val not in ok_objs:
+                    bad = True
+                    break
+            if bad:
+                continue
             free = [v for v in op.params if v not in jb]
+            if not free:
+                if not later or check(jb):
+                    yield dict(jb)
+                continue
             domains = [self.objects_of(op.type_of(v)) for v in free]
             for combo in itertools.product(*domains):
                 full = dict(jb)
                 full.update(zip(free, combo, strict=True))
-                if not self._typed_ok(op, full) or not check(full):
+                if later and not check(full):
                     continue
                 yield full
 
@@ -356,6 +397,22 @@ class Grounder:
                 if val not in self.objects_of(t):
                     return False
         return True
+
+
+class _FillPlan:
+    """An operator's static preconditions and typed parameters, as :meth:`Grounder._fill` uses them."""
+
+    __slots__ = ("op", "statics", "later", "allobj", "typed")
+
+    def __init__(
+        self, op: Operator, statics: tuple[Atom, ...], later: tuple[Atom, ...], allobj: frozenset[str],
+        typed: tuple[tuple[Var, frozenset[str]], ...],
+    ) -> None:
+        self.op = op
+        self.statics = statics
+        self.later = later
+        self.allobj = allobj
+        self.typed = typed
 
 
 def _is_plain(domain: Domain, a: Atom) -> bool:

@@ -33,7 +33,8 @@ from dataclasses import dataclass, field
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.grounding import Grounder
-from nowplan.planning.heuristics import GroundTask, ground_task
+from nowplan.planning.ground_task import GroundTask
+from nowplan.planning.heuristics import ground_task
 
 _Pre = tuple[tuple[int, int], ...]
 
@@ -108,7 +109,7 @@ class HaddMemo:
 
 
 def _memo(task: GroundTask, top: int) -> HaddMemo:
-    if any(c is None for c in task.fixed_cost):
+    if not task.all_fixed:
         return HaddMemo()  # costs read the belief: nothing carries over to another call
     hit = task.memo.get(("hadd", top))
     if not isinstance(hit, HaddMemo):
@@ -205,7 +206,7 @@ class RelevantHadd:
         for k in acts:
             n = 0
             c = fixed[k]
-            tk = self.cost(task.acts[k].action) if c is None else c
+            tk = self.cost(task.action(k)) if c is None else c
             for g, t in self._pre(k):
                 if g in facts:
                     waiting.setdefault(g, []).append(k)
