@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 
+from nowplan.core.atoms import Atom, Goal
 from nowplan.core.levels import flat_levels
 from nowplan.core.operators import Action
 from nowplan.io.pddl_read import load_pddl
@@ -80,3 +81,31 @@ def test_fill_is_every_typed_binding_whose_statics_hold(dom, prob):
                 want.add(combo)
         got = [tuple(b[v] for v in op.params) for b in g._fill(op, {})]
         assert len(got) == len(set(got)) and set(got) == want, op.name
+
+
+@pytest.mark.parametrize("dom,prob", CASES, ids=lambda p: p.parent.name + "/" + p.name)
+def test_achievers_read_off_the_task_equal_the_grounders(dom, prob):
+    """Same achievers in the same order as unifying and completing each operator (the grounder without memo)."""
+    p = load_pddl(dom, prob)
+    srch = _Search(p.domain, p.objects, p.init, flat_levels(), PlannerConfig(engine="regression"), None)
+    task = ground_task(srch.grounder, srch.drop)
+    fast = Grounder(p.domain, p.objects, p.init)
+    fast.use_task(task)
+    T = p.domain.facts
+    atoms = {T.atoms[e] for effs in task.effects for e in effs}
+    atoms |= {a.negate() for a in list(atoms)}
+    some = sorted(atoms)[:3]
+    atoms |= {Atom(a.predicate, tuple("no-such-object" for _ in a.args), a.value) for a in some}  # not an object
+    Grounder.memo = False
+    try:
+        slow = Grounder(p.domain, p.objects, p.init)
+        read = 0
+        for a in sorted(atoms):
+            for i, _op, effs in fast._by_pred.get(a.predicate, ()):
+                read += fast._task_achievers(i, effs, a) is not None
+            want = [x.key for x in slow.achievers(a, Goal(frozenset({a})))]
+            got = [x.key for x in fast.achievers(a, Goal(frozenset({a})))]
+            assert got == want, a
+        assert read > len(atoms) // 4  # the task answered most questions
+    finally:
+        Grounder.memo = True

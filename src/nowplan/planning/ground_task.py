@@ -77,6 +77,7 @@ class GroundTask:
     def __init__(self, table: FactTable, operators: Sequence[Operator], fills: Sequence[tuple[int, list[_Args]]],
                  drop: frozenset[str]) -> None:
         self.table = table
+        self.drop = drop
         self.operators = tuple(operators)
         self.op: list[int] = []
         self.args: list[_Args] = []

@@ -14,13 +14,16 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nowplan.core.atoms import Atom, Goal, Var
 from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
+
+if TYPE_CHECKING:
+    from nowplan.planning.ground_task import GroundTask
 
 
 def unify_effect(effect: Atom, target: Atom, domain: Domain) -> dict[Var, Any] | None:
@@ -75,6 +78,8 @@ class Grounder:
         self._by_type: dict[str | None, list[str]] = {}
         self._facts_ok = isinstance(belief, ListsFacts)
         self._fill_plans: dict[int, _FillPlan] = {}
+        self._task: GroundTask | None = None
+        self._allobj: frozenset[Any] | None = None
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
         self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
         self.signature: Hashable = None  # the objects and static facts (with a belief that lists facts)
@@ -161,7 +166,10 @@ class Grounder:
             if self.memo and not op.generators:
                 acts = self._op_cache.get((i, target))
                 if acts is None:
-                    acts = self._op_cache[(i, target)] = list(self._op_achievers(i, op, effs, target, goal))
+                    acts = self._task_achievers(i, effs, target)
+                    if acts is None:
+                        acts = list(self._op_achievers(i, op, effs, target, goal))
+                    self._op_cache[(i, target)] = acts
                 found: Iterable[Action] = acts
             else:
                 found = self._op_achievers(i, op, effs, target, goal)
@@ -177,6 +185,40 @@ class Grounder:
         else:
             self.kept = False
         return out
+
+    def use_task(self, task: GroundTask) -> None:
+        """Answer generator-free achievers from ``task`` (this problem's ground task, same static facts)."""
+        self._task = task
+
+    def _task_achievers(self, i: int, effs: tuple[Atom, ...], target: Atom) -> list[Action] | None:
+        """Operator ``i``'s achievers of ``target`` read off the ground task, or ``None`` where it cannot answer.
+
+        The task holds every instance ``_fill(op, {})`` makes, in its order, and
+        ``_fill(op, b)`` makes those that agree with ``b`` in the same order; so
+        where one effect of ``op`` can unify with ``target``, its value rule is
+        equality and every argument names an object (a value that is no object
+        passes the type check in ``_fill`` but is in no instance of the task),
+        the instances adding ``target``'s fact are the achievers, in order.
+        """
+        task = self._task
+        if task is None:
+            return None
+        T = self.domain.facts
+        f = T.by_key.get((target.predicate, target.args, target.value))
+        if f is None or not T.equality[f] or not isinstance(target.value, bool):
+            return None
+        if sum(1 for e in effs if isinstance(e.value, Var) or e.value == target.value) != 1:
+            return None
+        allobj = self._all_objects()
+        if not all(isinstance(a, str) and a in allobj for a in target.args):
+            return None
+        op_of = task.op
+        return [task.action(k) for k in task.adders().get(f, ()) if op_of[k] == i]
+
+    def _all_objects(self) -> frozenset[Any]:
+        if self._allobj is None:
+            self._allobj = frozenset(self.objects_of(None))
+        return self._allobj
 
     def _readings(
         self, gen_entries: Sequence[tuple[int, Operator, tuple[Atom, ...]]], target: Atom, goal: Goal

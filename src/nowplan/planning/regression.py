@@ -28,6 +28,7 @@ from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.context import PlanningContext
+from nowplan.planning.ground_task import GroundTask
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.hadd_relevant import RelevantHadd
 from nowplan.planning.heuristics import relax_unsupported
@@ -206,6 +207,7 @@ class _Search:
         self._can_relax = self._no_relax is None
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
         self._ground_hadd: RelevantHadd | None = None
+        self._task: GroundTask | None = None
         self._ctx: tuple[frozenset[int], Goal] | None = None
         self._templates: dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] = {}
         for name in (config.heuristic, config.shortcut_heuristic or config.heuristic):
@@ -231,6 +233,8 @@ class _Search:
         elif self._can_relax:
             if self._ground_hadd is None:
                 self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost)
+                self._task = self._ground_hadd.task
+                self.grounder.use_task(self._task)  # generator-free achievers read off the ground task
             self.hadd = self._ground_hadd
         else:
             _log_fallback(self.grounder.domain.name, name, str(self._no_relax))
@@ -313,7 +317,8 @@ class _Search:
         if hit is not None and hit[0] is acts:
             return hit[1]
         levels, drop, T = self.levels, self.drop, self.table
-        out = [(act, action_facts(T, act, levels.level(act), drop), self.cost(act)) for act in acts]
+        task = self._task
+        out = [(act, action_facts(T, act, levels.level(act), drop, task), self.cost(act)) for act in acts]
         if self.grounder.kept:
             self._templates[id(acts)] = (acts, out)
         return out
