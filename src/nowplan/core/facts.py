@@ -52,6 +52,8 @@ class FactTable:
         self.actions: dict[tuple[int, tuple[Any, ...]], Action] = {}
         # grounding answers shared by the planner calls of one problem (planning.grounding)
         self.grounding: dict[Hashable, Any] = {}
+        # tables derived from the domain alone (e.g. the grounder's effects per predicate)
+        self.derived: dict[str, Any] = {}
 
     def __len__(self) -> int:
         return len(self.atoms)

@@ -67,6 +67,7 @@ class Grounder:
         belief: Any,
         context: PlanningContext | None = None,
         max_generator_values: int = 8,
+        lists_facts: bool | None = None,
     ) -> None:
         self.domain = domain
         self.objects = dict(objects)
@@ -76,7 +77,8 @@ class Grounder:
         self._cache: dict[Atom, list[Action]] = {}
         self._static_cache: dict[Atom, bool] = {}
         self._by_type: dict[str | None, list[str]] = {}
-        self._facts_ok = isinstance(belief, ListsFacts)
+        # does the belief list its facts (``lists_facts``: the caller has asked already)?
+        self._facts_ok = isinstance(belief, ListsFacts) if lists_facts is None else lists_facts
         self._fill_plans: dict[int, _FillPlan] = {}
         self._task: GroundTask | None = None
         self._allobj: frozenset[Any] | None = None
@@ -91,13 +93,7 @@ class Grounder:
             shared = _shared(domain, self.signature)
             self._op_cache, self._fills = shared.op_cache, shared.fills
         # per predicate: the operators (in order) with an effect of it, and those effects
-        self._by_pred: dict[str, list[tuple[int, Operator, tuple[Atom, ...]]]] = {}
-        for i, op in enumerate(domain.operators):
-            per: dict[str, list[Atom]] = {}
-            for e in op.effects:
-                per.setdefault(e.predicate, []).append(e)
-            for pred, effs in per.items():
-                self._by_pred.setdefault(pred, []).append((i, op, tuple(effs)))
+        self._by_pred = _effects_by_predicate(domain)
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
         self._unify_cache: dict[tuple[int, Atom], list[dict[Var, Any]]] = {}
         self._gen_by_pred = {
@@ -114,6 +110,11 @@ class Grounder:
         preds = sorted(n for n in self.domain.static_predicates if self.domain.predicates[n].test is None)
         facts = tuple((n, frozenset(map(tuple, self.belief.facts(n)))) for n in preds)
         return (frozenset(self.objects.items()), facts)
+
+    @property
+    def lists_facts(self) -> bool:
+        """Does the belief list its facts (``facts``/``atoms``)?"""
+        return self._facts_ok
 
     # -- helpers -------------------------------------------------------------
     def objects_of(self, t: str | None) -> list[str]:
@@ -465,6 +466,24 @@ def _is_plain(domain: Domain, a: Atom) -> bool:
 
 
 _UNSET = object()
+
+_ByPred = dict[str, list[tuple[int, Operator, tuple[Atom, ...]]]]
+
+
+def _effects_by_predicate(domain: Domain) -> _ByPred:
+    """Per predicate the operators (in order) with an effect of it, and those effects (kept per domain)."""
+    hit = domain.facts.derived.get("effects by predicate")
+    if hit is not None and hit[0] is domain.operators:
+        return hit[1]  # type: ignore[no-any-return]
+    out: _ByPred = {}
+    for i, op in enumerate(domain.operators):
+        per: dict[str, list[Atom]] = {}
+        for e in op.effects:
+            per.setdefault(e.predicate, []).append(e)
+        for pred, effs in per.items():
+            out.setdefault(pred, []).append((i, op, tuple(effs)))
+    domain.facts.derived["effects by predicate"] = (domain.operators, out)
+    return out
 
 
 class _Shared:

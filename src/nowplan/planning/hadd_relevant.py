@@ -121,7 +121,8 @@ class RelevantHadd:
     """h_add values of fact ids, explored backward-relevantly from the facts asked for."""
 
     def __init__(
-        self, grounder: Grounder, levels: LevelMap, drop: frozenset[str], cost: Callable[[Action], float]
+        self, grounder: Grounder, levels: LevelMap, drop: frozenset[str], cost: Callable[[Action], float],
+        true_now: frozenset[int] | None = None,
     ) -> None:
         self.task = task = ground_task(grounder, drop)
         self.adders = task.adders()
@@ -132,7 +133,8 @@ class RelevantHadd:
             k = task.index.get(key)
             if k is not None and lv != top:
                 self.over[k] = tuple((f, t) for f, c, t in task.pre[k] if c > lv)
-        self.true_now = frozenset(grounder.domain.facts.ids_of(grounder.belief.atoms()))
+        # the facts the belief lists (``true_now``: the caller's ids of them)
+        self.true_now = true_now if true_now is not None else grounder.domain.facts.ids_of(grounder.belief.atoms())
         self.cost = cost
         self.memo = _memo(task, top)
         self.values = self.memo.values

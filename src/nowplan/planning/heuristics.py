@@ -35,7 +35,7 @@ from nowplan.planning.grounding import Grounder
 def relax_unsupported(grounder: Grounder, belief: Any) -> str | None:
     """Why the ground relaxed exploration (h_add, h_max, h_FF) cannot run here, or ``None`` if it can."""
     dom = grounder.domain
-    if not isinstance(belief, ListsFacts):
+    if not (grounder.lists_facts if grounder.belief is belief else isinstance(belief, ListsFacts)):
         return f"the belief {type(belief).__name__} does not list its facts (no facts()/atoms())"
     for op in dom.operators:
         if op.generators:

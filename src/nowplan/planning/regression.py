@@ -127,9 +127,9 @@ def _log_fallback(domain: str, heuristic: str, why: str) -> None:
         )
 
 
-def static_drop(domain: Domain, belief: Any) -> frozenset[str]:
+def static_drop(domain: Domain, belief: Any, lists_facts: bool | None = None) -> frozenset[str]:
     """Static predicates checked at grounding and kept out of pre-images (when the belief lists facts)."""
-    if not isinstance(belief, ListsFacts):
+    if not (isinstance(belief, ListsFacts) if lists_facts is None else lists_facts):
         return frozenset()
     return frozenset(n for n in domain.static_predicates if domain.predicates[n].test is None)
 
@@ -183,8 +183,9 @@ class _Search:
         self.now = _clock(config)
         self.deadline = self.now() + config.time_limit
         self.table = domain.facts
-        self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values)
-        self.drop = static_drop(domain, belief)
+        lists = isinstance(belief, ListsFacts)
+        self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values, lists)
+        self.drop = static_drop(domain, belief, lists)
         self._holds: dict[Atom, bool] = {}
         self._fholds: dict[int, bool] = {}
         self._hv: dict[int, float] = {}
@@ -205,6 +206,10 @@ class _Search:
             context.extras.get("forbidden_first", ()) if context is not None else ())
         self._no_relax = relax_unsupported(self.grounder, belief)
         self._can_relax = self._no_relax is None
+        # with a belief that lists its facts and boolean predicates without tests, truth is membership
+        self._true_ids: frozenset[int] | None = None
+        if self._can_relax:
+            self.true_ids()
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
         self._ground_hadd: RelevantHadd | None = None
         self._task: GroundTask | None = None
@@ -232,7 +237,7 @@ class _Search:
             self.relaxed = r
         elif self._can_relax:
             if self._ground_hadd is None:
-                self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost)
+                self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost, self.true_ids())
                 self._task = self._ground_hadd.task
                 self.grounder.use_task(self._task)  # generator-free achievers read off the ground task
             self.hadd = self._ground_hadd
@@ -270,8 +275,20 @@ class _Search:
     def fholds(self, f: int) -> bool:
         r = self._fholds.get(f)
         if r is None:
-            r = self._fholds[f] = self.holds(self.table.atoms[f])
+            true = self._true_ids
+            if true is None:
+                r = self.holds(self.table.atoms[f])
+            else:  # boolean predicates without tests: a lookup in the belief's facts
+                a = self.table.atoms[f]
+                r = f in true if a.value is not False else self.table.by_key.get((a.predicate, a.args, True)) not in true
+            self._fholds[f] = r
         return r
+
+    def true_ids(self) -> frozenset[int]:
+        """The ids of the facts the belief lists (it does: only asked where the relaxation can run)."""
+        if self._true_ids is None:
+            self._true_ids = self.table.ids_of(self.belief.atoms())
+        return self._true_ids
 
     def satisfied(self, fs: frozenset[int]) -> bool:
         return all(self.fholds(f) for f in fs)
@@ -283,6 +300,10 @@ class _Search:
             return self.relaxed.estimate(fs)
         if self.hadd is not None:
             hv = self._hv
+            try:
+                return sum(map(hv.__getitem__, fs))  # every fact valued (0 if it holds) in this call
+            except KeyError:
+                pass
             ask = [f for f in fs if f not in hv and not self.fholds(f)]
             if ask:
                 self.hadd.extend(ask)  # one exploration for the facts new to the closure
