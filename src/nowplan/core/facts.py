@@ -90,11 +90,11 @@ class FactTable:
         return f
 
     def ids_of(self, atoms: Iterable[Atom]) -> frozenset[int]:
-        get = self.ids.get
+        get = self.by_key.get  # a tuple key hashes in C (an atom's dataclass hash runs Python code)
         out = []
         for a in atoms:
-            f = get(a)
-            out.append(self._add(a) if f is None else f)
+            f = get((a.predicate, a.args, a.value))
+            out.append(self.id(a) if f is None else f)
         return frozenset(out)
 
     def goal(self, fs: Iterable[int]) -> Goal:

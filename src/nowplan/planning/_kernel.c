@@ -1,7 +1,8 @@
 /* The forward engine's compiled kernel: h_FF / h_add / h_max with preferred
  * operators, the successor generator, lazy GBFS, LAMA's first iteration
  * (_kernel_lama.h) and the bounded weighted A* of the anytime improvement
- * (_kernel_wastar.h) over bitset states.
+ * (_kernel_wastar.h) over bitset states; every fact's relaxed cost for the
+ * regression search's h_add (_kernel_costs.h).
  *
  * It mirrors nowplan/planning/hff.py, forward.py, lama.py and anytime.py (the reference: both
  * paths must give the same h, the same preferred operators, the same plan
@@ -17,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define KERNEL_API 5
+#define KERNEL_API 6
 #define BIT(b, f) (((b)[(f) >> 6] >> ((f) & 63)) & 1u)
 #define SETBIT(b, f) ((b)[(f) >> 6] |= (uint64_t)1 << ((f) & 63))
 #define CLRBIT(b, f) ((b)[(f) >> 6] &= ~((uint64_t)1 << ((f) & 63)))
@@ -469,6 +470,7 @@ static PyObject *Kernel_applicable(Kernel *k, PyObject *state) {
 #include "_kernel_gbfs.h"
 #include "_kernel_lama.h"
 #include "_kernel_wastar.h"
+#include "_kernel_costs.h"
 
 static PyMethodDef Kernel_methods[] = {
     {"evaluate", (PyCFunction)Kernel_evaluate, METH_O,
@@ -478,6 +480,8 @@ static PyMethodDef Kernel_methods[] = {
      "gbfs(init, max_nodes, out_of_time) -> (status, plan action ids or None, expanded, generated, evaluations)"},
     {"lama", (PyCFunction)(void (*)(void))Kernel_lama, METH_VARARGS | METH_KEYWORDS,
      "lama(init, max_nodes, landmarks, before, out_of_time, boost, unreachable) -> as gbfs (h_FF evaluations)"},
+    {"costs", (PyCFunction)Kernel_costs, METH_VARARGS,
+     "costs(state, overrides=()) -> the relaxed cost of every fact (inf: not reached); overrides = [(action, facts)]"},
     {"bounded_wastar", (PyCFunction)(void (*)(void))Kernel_bounded_wastar, METH_VARARGS | METH_KEYWORDS,
      "bounded_wastar(init, cost, weight, bound, stop) -> a plan (action ids) cheaper than bound, or None"},
     {NULL, NULL, 0, NULL},

@@ -30,8 +30,9 @@ from nowplan.core.operators import Action
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.ground_task import GroundTask
 from nowplan.planning.grounding import Grounder
+from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
 from nowplan.planning.hadd_relevant import RelevantHadd
-from nowplan.planning.heuristics import relax_unsupported
+from nowplan.planning.heuristics import ground_task, relax_unsupported
 from nowplan.planning.relaxed import LazyRelaxed, Supporter
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.subgoals import ActionFacts, NodeIndex, action_facts, regress
@@ -196,7 +197,7 @@ class _Search:
             (float(o.cost) for o in domain.operators if not callable(o.cost)), default=1.0
         )
         self.min_cost = max(self.min_cost, 0.0)
-        self.hadd: RelevantHadd | None = None  # ground h_add by fact id, explored from the facts asked for
+        self.hadd: RelevantHadd | KernelHadd | None = None  # ground h_add by fact id, explored from the facts asked for
         self.relaxed: LazyRelaxed | None = None
         # a domain's own estimate, fn(goal, belief, holds) -> cost, passed as context.extras["heuristic"]
         self.domain_h = context.extras.get("heuristic") if context is not None else None
@@ -211,7 +212,7 @@ class _Search:
         if self._can_relax:
             self.true_ids()
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
-        self._ground_hadd: RelevantHadd | None = None
+        self._ground_hadd: RelevantHadd | KernelHadd | None = None
         self._task: GroundTask | None = None
         self._ctx: tuple[frozenset[int], Goal] | None = None
         self._templates: dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] = {}
@@ -237,9 +238,13 @@ class _Search:
             self.relaxed = r
         elif self._can_relax:
             if self._ground_hadd is None:
-                self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost, self.true_ids())
-                self._task = self._ground_hadd.task
-                self.grounder.use_task(self._task)  # generator-free achievers read off the ground task
+                task = ground_task(self.grounder, self.drop)
+                if kernel_hadd(task, self.levels.top):  # one compiled exploration of every action
+                    self._ground_hadd = KernelHadd(task, self.levels, self.true_ids())
+                else:
+                    self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost, self.true_ids())
+                self._task = task
+                self.grounder.use_task(task)  # generator-free achievers read off the ground task
             self.hadd = self._ground_hadd
         else:
             _log_fallback(self.grounder.domain.name, name, str(self._no_relax))
@@ -299,6 +304,11 @@ class _Search:
         if self.relaxed is not None:
             return self.relaxed.estimate(fs)
         if self.hadd is not None:
+            if isinstance(self.hadd, KernelHadd):
+                try:  # every fact valued, 0 where it holds (see hadd_kernel)
+                    return sum(map(self.hadd.values.__getitem__, fs))
+                except IndexError:
+                    pass  # a fact newer than the task: asked one by one
             hv = self._hv
             try:
                 return sum(map(hv.__getitem__, fs))  # every fact valued (0 if it holds) in this call
