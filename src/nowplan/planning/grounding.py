@@ -85,6 +85,7 @@ class Grounder:
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
         self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
         self.signature: Hashable = None  # the objects and static facts (with a belief that lists facts)
+        self._shared_answers: dict[Atom, list[Action]] | None = None  # generator-free achievers, per problem
         if self._facts_ok:
             self.signature = self._signature()
         if self.memo and self._facts_ok:
@@ -92,6 +93,7 @@ class Grounder:
             # of one problem (the executive plans many times with the same static facts)
             shared = _shared(domain, self.signature)
             self._op_cache, self._fills = shared.op_cache, shared.fills
+            self._shared_answers = shared.answers
         # per predicate: the operators (in order) with an effect of it, and those effects
         self._by_pred = _effects_by_predicate(domain)
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
@@ -99,6 +101,7 @@ class Grounder:
         self._gen_by_pred = {
             pred: tuple(e for e in entries if e[1].generators) for pred, entries in self._by_pred.items()
         }
+        self._gen_by_pred_nonempty = frozenset(p for p, e in self._gen_by_pred.items() if e)
         self._goal_free: dict[Atom, bool] = {}
         self._read_plans: dict[Atom, Any] = {}
         self.kept = False  # was the last answer of achievers() kept (the same list object next time)?
@@ -148,6 +151,12 @@ class Grounder:
         cached = self._cache.get(target)
         if cached is not None:
             return cached
+        if self._shared_answers is not None and target.predicate not in self._gen_by_pred_nonempty:
+            # no generator achieves this predicate: the answer depends on the static facts only
+            cached = self._shared_answers.get(target)
+            if cached is not None:
+                self._cache[target] = cached
+                return cached
         entries = self._by_pred.get(target.predicate, ())
         gen_entries = self._gen_by_pred.get(target.predicate, ())
         key: tuple[Atom, Hashable] | None = None
@@ -181,6 +190,8 @@ class Grounder:
         # generators see the goal: keep the answer per atom only when none that reads it takes part
         if not gen_entries or free and self.memo:
             self._cache[target] = out
+            if not gen_entries and self._shared_answers is not None:
+                self._shared_answers[target] = out
         elif key is not None:
             self._gen_cache[key] = out
         else:
@@ -208,7 +219,10 @@ class Grounder:
         f = T.by_key.get((target.predicate, target.args, target.value))
         if f is None or not T.equality[f] or not isinstance(target.value, bool):
             return None
-        if sum(1 for e in effs if isinstance(e.value, Var) or e.value == target.value) != 1:
+        n = sum(1 for e in effs if isinstance(e.value, Var) or e.value == target.value)
+        if n == 0:
+            return []  # no effect of the operator has the value (equality): nothing to unify
+        if n != 1:
             return None
         allobj = self._all_objects()
         if not all(isinstance(a, str) and a in allobj for a in target.args):
@@ -492,6 +506,7 @@ class _Shared:
     def __init__(self) -> None:
         self.op_cache: dict[tuple[int, Atom], list[Action]] = {}
         self.fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+        self.answers: dict[Atom, list[Action]] = {}  # achievers of atoms no generator achieves
 
 
 _SHARED_PER_DOMAIN = 4

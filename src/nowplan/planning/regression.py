@@ -214,6 +214,7 @@ class _Search:
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
         self._ground_hadd: RelevantHadd | KernelHadd | None = None
         self._task: GroundTask | None = None
+        self._over_keys = frozenset(k for k, lv in levels.overrides if lv != levels.top)
         self._ctx: tuple[frozenset[int], Goal] | None = None
         self._templates: dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] = {}
         for name in (config.heuristic, config.shortcut_heuristic or config.heuristic):
@@ -292,7 +293,12 @@ class _Search:
     def true_ids(self) -> frozenset[int]:
         """The ids of the facts the belief lists (it does: only asked where the relaxation can run)."""
         if self._true_ids is None:
-            self._true_ids = self.table.ids_of(self.belief.atoms())
+            if self._can_relax:  # boolean predicates: each listed fact is true
+                id_of = self.table.id_of
+                self._true_ids = frozenset(
+                    [id_of(p, args, True) for p in self.domain.predicates for args in self.belief.facts(p)])
+            else:
+                self._true_ids = self.table.ids_of(self.belief.atoms())
         return self._true_ids
 
     def satisfied(self, fs: frozenset[int]) -> bool:
@@ -347,12 +353,34 @@ class _Search:
         hit = self._templates.get(id(acts))
         if hit is not None and hit[0] is acts:
             return hit[1]
+        shared = self._shared_templates()
+        if shared is not None and self.grounder.kept:
+            # kept between the calls of one problem at one top level (numeric costs): valid here
+            # unless this call's level map puts one of the actions at another level
+            over = self._over_keys
+            hit = shared.get(id(acts))
+            if hit is not None and hit[0] is acts and not (over and any(a.key in over for a in acts)):
+                self._templates[id(acts)] = hit
+                return hit[1]
         levels, drop, T = self.levels, self.drop, self.table
         task = self._task
         out = [(act, action_facts(T, act, levels.level(act), drop, task), self.cost(act)) for act in acts]
         if self.grounder.kept:
             self._templates[id(acts)] = (acts, out)
+            if shared is not None and not (self._over_keys and any(a.key in self._over_keys for a in acts)):
+                shared[id(acts)] = (acts, out)
         return out
+
+    def _shared_templates(self) -> dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] | None:
+        """The successor templates kept in the ground task for this call's top level (numeric costs only)."""
+        task = self._task
+        if task is None or not task.all_fixed or task.drop != self.drop:
+            return None
+        key = ("successor templates", self.levels.top)
+        store = task.memo.get(key)
+        if not isinstance(store, dict):
+            store = task.memo[key] = {}
+        return store
 
     def run(
         self,
@@ -389,8 +417,10 @@ class _Search:
             fs, focus = node
             if order_ids is not None:
                 # shift the focus down once the non-focused part already holds
-                while focus > 0 and all(self.fholds(f) for f in fs if f not in hidden[focus]):
-                    focus -= 1
+                if focus > 0:
+                    unmet = [f for f in fs if not self.fholds(f)]
+                    while focus > 0 and hidden[focus].issuperset(unmet):
+                        focus -= 1
             if self.satisfied(fs):
                 return PlanStatus.SOLVED, self._path(node, parent), ""
             exp += 1
@@ -486,6 +516,10 @@ class _GoalOf:
         return self.goal
 
 
+def _atom_order(a: Atom) -> tuple[Any, ...]:
+    return (a.predicate, a.args, a.value)
+
+
 def _clock(config: PlannerConfig) -> Callable[[], float]:
     if config.clock not in ("wall", "cpu"):
         from nowplan.errors import UsageError
@@ -527,7 +561,7 @@ def plan(
     method = "full"
     unmet = [a for a in goal.atoms if not search.holds(a)]
     if config.serialization and len(goal) > 1:
-        order = sorted(goal.atoms)
+        order = sorted(goal.atoms, key=_atom_order)  # the atoms' own order, compared in C
         rng.shuffle(order)
         search.use(config.shortcut_heuristic or config.heuristic)
         result = search.run(goal, config.shortcut_nodes, order=order)
