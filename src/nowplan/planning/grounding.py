@@ -198,6 +198,10 @@ class Grounder:
             self.kept = False
         return out
 
+    def shares_answer(self, target: Atom) -> bool:
+        """Is ``target``'s answer the one every call of this problem gets (no generator achieves it)?"""
+        return self._shared_answers is not None and target.predicate not in self._gen_by_pred_nonempty
+
     def use_task(self, task: GroundTask) -> None:
         """Answer generator-free achievers from ``task`` (this problem's ground task, same static facts)."""
         self._task = task

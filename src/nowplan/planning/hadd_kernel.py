@@ -53,11 +53,13 @@ class _Compiled:
 
 
 def _compiled(task: GroundTask, top: int) -> _Compiled | None:
-    cls = kernel_class()
-    if cls is None or not task.all_fixed:
+    if not task.all_fixed:
         return None
     key = ("kernel hadd", top)
     hit = task.memo.get(key)
+    cls = kernel_class()
+    if cls is None:
+        return None
     if isinstance(hit, _Compiled):
         return hit
     kept, waiting = task.kept(top)

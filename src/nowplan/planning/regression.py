@@ -349,11 +349,17 @@ class _Search:
         Kept per achiever list (the grounder keeps one list per atom, or per atom and
         what generators read of the goal); the lists are held, so their ids stay theirs.
         """
+        shared = self._shared_templates()
+        by_fact = shared is not None and self.grounder.shares_answer(self.table.atoms[target])
+        if by_fact and shared is not None:
+            # the same achievers in every call of this problem: their templates kept by fact id
+            hit = shared.get(-1 - target)
+            if hit is not None and not (self._over_keys and any(a.key in self._over_keys for a in hit[0])):
+                return hit[1]
         acts = self.grounder.achievers(self.table.atoms[target], goal_of)
         hit = self._templates.get(id(acts))
         if hit is not None and hit[0] is acts:
             return hit[1]
-        shared = self._shared_templates()
         if shared is not None and self.grounder.kept:
             # kept between the calls of one problem at one top level (numeric costs): valid here
             # unless this call's level map puts one of the actions at another level
@@ -369,6 +375,8 @@ class _Search:
             self._templates[id(acts)] = (acts, out)
             if shared is not None and not (self._over_keys and any(a.key in self._over_keys for a in acts)):
                 shared[id(acts)] = (acts, out)
+                if by_fact:
+                    shared[-1 - target] = (acts, out)
         return out
 
     def _shared_templates(self) -> dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] | None:
@@ -559,7 +567,7 @@ def plan(
         "",
     )
     method = "full"
-    unmet = [a for a in goal.atoms if not search.holds(a)]
+    unmet = [a for a in goal.atoms if not search.fholds(search.table.id(a))]
     if config.serialization and len(goal) > 1:
         order = sorted(goal.atoms, key=_atom_order)  # the atoms' own order, compared in C
         rng.shuffle(order)
