@@ -216,6 +216,8 @@ class _Search:
         self._ground_hadd: RelevantHadd | KernelHadd | None = None
         self._task: GroundTask | None = None
         self._over_keys = frozenset(k for k, lv in levels.overrides if lv != levels.top)
+        self._by_fact: dict[int, list[tuple[Action, ActionFacts, float]]] = {}  # this call's successor templates
+        self._shared_store: Any = False  # not looked up yet (see _shared)
         self._ctx: tuple[frozenset[int], Goal] | None = None
         self._templates: dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] = {}
         for name in (config.heuristic, config.shortcut_heuristic or config.heuristic):
@@ -349,47 +351,54 @@ class _Search:
 
         Kept per achiever list (the grounder keeps one list per atom, or per atom and
         what generators read of the goal); the lists are held, so their ids stay theirs.
+        Where every call of the problem gets the same achievers (no generator), the
+        list is kept in the ground task by fact id with the facts at the top level, and
+        a call that puts one of the actions at another level gets that entry redone.
         """
-        shared = self._shared_templates()
-        by_fact = shared is not None and self.grounder.shares_answer(self.table.atoms[target])
-        if by_fact and shared is not None:
-            # the same achievers in every call of this problem: their templates kept by fact id
+        local = self._by_fact.get(target)
+        if local is not None:
+            return local
+        shared = self._shared
+        atom = self.table.atoms[target]
+        if shared is not None and self.grounder.shares_answer(atom):
             hit = shared.get(-1 - target)
-            if hit is not None and not (self._over_keys and any(a.key in self._over_keys for a in hit[0])):
-                return hit[1]
-        acts = self.grounder.achievers(self.table.atoms[target], goal_of)
+            if hit is None:
+                acts = self.grounder.achievers(atom, goal_of)
+                T, top, drop, task = self.table, self.levels.top, self.drop, self._task
+                hit = shared[-1 - target] = (
+                    acts, [(act, action_facts(T, act, top, drop, task), self.cost(act)) for act in acts])
+            out = hit[1]
+            over = self._over_keys
+            if over and any(e[0].key in over for e in out):
+                T, levels, drop, task = self.table, self.levels, self.drop, self._task
+                out = [(a, action_facts(T, a, levels.level(a), drop, task), c) if a.key in over else (a, i, c)
+                       for a, i, c in out]
+            self._by_fact[target] = out
+            return out
+        acts = self.grounder.achievers(atom, goal_of)
         hit = self._templates.get(id(acts))
         if hit is not None and hit[0] is acts:
             return hit[1]
-        if shared is not None and self.grounder.kept:
-            # kept between the calls of one problem at one top level (numeric costs): valid here
-            # unless this call's level map puts one of the actions at another level
-            over = self._over_keys
-            hit = shared.get(id(acts))
-            if hit is not None and hit[0] is acts and not (over and any(a.key in over for a in acts)):
-                self._templates[id(acts)] = hit
-                return hit[1]
         levels, drop, T = self.levels, self.drop, self.table
         task = self._task
         out = [(act, action_facts(T, act, levels.level(act), drop, task), self.cost(act)) for act in acts]
         if self.grounder.kept:
             self._templates[id(acts)] = (acts, out)
-            if shared is not None and not (self._over_keys and any(a.key in self._over_keys for a in acts)):
-                shared[id(acts)] = (acts, out)
-                if by_fact:
-                    shared[-1 - target] = (acts, out)
         return out
 
-    def _shared_templates(self) -> dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] | None:
+    @property
+    def _shared(self) -> dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] | None:
         """The successor templates kept in the ground task for this call's top level (numeric costs only)."""
-        task = self._task
-        if task is None or not task.all_fixed or task.drop != self.drop:
-            return None
-        key = ("successor templates", self.levels.top)
-        store = task.memo.get(key)
-        if not isinstance(store, dict):
-            store = task.memo[key] = {}
-        return store
+        if self._shared_store is False:
+            task = self._task
+            store: Any = None
+            if task is not None and task.all_fixed and task.drop == self.drop:
+                key = ("successor templates", self.levels.top)
+                store = task.memo.get(key)
+                if not isinstance(store, dict):
+                    store = task.memo[key] = {}
+            self._shared_store = store
+        return self._shared_store  # type: ignore[no-any-return]
 
     def run(
         self,
@@ -417,6 +426,7 @@ class _Search:
         parent: dict[Node, tuple[Node, Action] | None] = {start: None}
         closed: set[Node] = set()
         levels, drop, weight = self.levels, self.drop, self.config.weight
+        hvals = self.hadd.values.__getitem__ if isinstance(self.hadd, KernelHadd) and not callable(self.domain_h) else None
         exp = 0
         while frontier:
             _, _, _, node = heapq.heappop(frontier)
@@ -468,7 +478,13 @@ class _Search:
                     best_g[child] = ng
                     parent[child] = (node, act)
                     self.generated += 1
-                    hh = self.h(pre)
+                    if hvals is not None:
+                        try:  # the kernel's values: every fact valued, 0 where it holds
+                            hh = sum(map(hvals, pre))
+                        except IndexError:
+                            hh = self.h(pre)
+                    else:
+                        hh = self.h(pre)
                     if hh == math.inf:
                         continue  # an atom of the pre-image is unreachable
                     heapq.heappush(frontier, (ng + weight * hh, hh, next(counter), child))
