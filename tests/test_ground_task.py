@@ -13,6 +13,7 @@ from nowplan.core.levels import flat_levels
 from nowplan.core.operators import Action
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning.grounding import Grounder
+from nowplan.planning.ground_task import instances
 from nowplan.planning.heuristics import ground_all, ground_task
 from nowplan.planning.regression import PlannerConfig, _Search
 
@@ -109,3 +110,12 @@ def test_achievers_read_off_the_task_equal_the_grounders(dom, prob):
         assert read > len(atoms) // 4  # the task answered most questions
     finally:
         Grounder.memo = True
+
+
+@pytest.mark.parametrize("dom,prob", CASES, ids=lambda p: p.parent.name + "/" + p.name)
+def test_instances_are_fills_in_order(dom, prob):
+    """The array-based enumeration of the task's instances gives ``_fill(op, {})``'s, in its order."""
+    p = load_pddl(dom, prob)
+    g = Grounder(p.domain, p.objects, p.init)
+    for op in p.domain.operators:
+        assert instances(g, op) == [tuple(b[v] for v in op.params) for b in g._fill(op, {})], op.name

@@ -23,12 +23,16 @@ from __future__ import annotations
 
 from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass
+import itertools
 from operator import itemgetter
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nowplan.core.atoms import Atom, Term, Var
 from nowplan.core.facts import FactTable
 from nowplan.core.operators import Action, Operator
+
+if TYPE_CHECKING:
+    from nowplan.planning.grounding import Grounder
 
 _Args = tuple[Term, ...]
 
@@ -69,6 +73,92 @@ def _column(table: FactTable, pred: str, mk: Callable[[_Args], _Args], value: An
     if None in ids:
         ids = [table.id_of(*k) if f is None else f for f, k in zip(ids, keys, strict=True)]
     return ids, ground  # type: ignore[return-value]
+
+
+def instances(grounder: Grounder, op: Operator) -> list[_Args]:
+    """The argument tuples of ``op``'s instances, those of ``grounder._fill(op, {})`` in its order.
+
+    The same join of the static preconditions with the listed facts, then the product
+    of typed objects, over an array of values by variable position instead of a
+    binding dictionary per step (``tests/test_ground_task.py`` compares the two).
+    """
+    plan = grounder._fill_plan(op)
+    names: list[Var] = list(op.params)
+    for s_ in plan.statics:
+        for a in s_.args:
+            if isinstance(a, Var) and a not in names:
+                names.append(a)  # a variable of a static precondition that is no parameter
+    pos = {v: j for j, v in enumerate(names)}
+    specs = [tuple(pos[a] if isinstance(a, Var) else -1 for a in s_.args) for s_ in plan.statics]
+    consts = [tuple(s_.args) for s_ in plan.statics]
+    later = [(s_.predicate, tuple(pos[a] if isinstance(a, Var) else -1 for a in s_.args), tuple(s_.args), s_.value)
+             for s_ in plan.later]
+    typed = [(pos[v], ok) for v, ok in plan.typed]
+    allobj = plan.allobj
+    n = len(op.params)
+    domains = [grounder.objects_of(op.type_of(v)) for v in op.params]
+    unset = object()
+    cur: list[Any] = [unset] * len(names)
+    out: list[_Args] = []
+    facts_ok = grounder.lists_facts
+    holds = grounder.static_holds
+
+    def ground(spec: tuple[int, ...], args: tuple[Any, ...]) -> tuple[Any, ...] | None:
+        vals = tuple(cur[j] if j >= 0 else c for j, c in zip(spec, args, strict=True))
+        return None if any(v is unset for v in vals) else vals
+
+    def emit() -> None:
+        for j, ok in typed:
+            v = cur[j]
+            if v is not unset and isinstance(v, str) and v in allobj and v not in ok:
+                return
+        free = [j for j in range(n) if cur[j] is unset]
+        for combo in itertools.product(*[domains[j] for j in free]):
+            for j, v in zip(free, combo, strict=True):
+                cur[j] = v
+            if all((g := ground(spec, args)) is None or holds(Atom(pred, g, value))
+                   for pred, spec, args, value in later):
+                out.append(tuple(cur[:n]))
+        for j in free:
+            cur[j] = unset
+
+    def join(i: int) -> None:
+        if i == len(specs):
+            emit()
+            return
+        s_, spec = plan.statics[i], specs[i]
+        g = ground(spec, consts[i])
+        if g is not None:
+            if holds(Atom(s_.predicate, g, s_.value)):
+                join(i + 1)
+            return
+        if not facts_ok or s_.value is not True:
+            join(i + 1)
+            return
+        m = len(spec)
+        for fact in grounder.belief.facts(s_.predicate):
+            if len(fact) != m:
+                continue
+            bound: list[int] = []
+            ok = True
+            for j, c, v in zip(spec, consts[i], fact, strict=True):
+                if j < 0:
+                    if c != v:
+                        ok = False
+                        break
+                elif cur[j] is unset:
+                    cur[j] = v
+                    bound.append(j)
+                elif cur[j] != v:
+                    ok = False
+                    break
+            if ok:
+                join(i + 1)
+            for j in bound:
+                cur[j] = unset
+
+    join(0)
+    return out
 
 
 class GroundTask:

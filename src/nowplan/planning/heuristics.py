@@ -28,7 +28,7 @@ from nowplan.core.atoms import Atom
 from nowplan.belief.protocols import ListsFacts
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
-from nowplan.planning.ground_task import GroundAction, GroundTask
+from nowplan.planning.ground_task import GroundAction, GroundTask, instances
 from nowplan.planning.grounding import Grounder
 
 
@@ -90,8 +90,7 @@ def ground_task(grounder: Grounder, drop: frozenset[str]) -> GroundTask:
     key = ("task", grounder.signature, drop)
     hit = store.get(key)
     if not isinstance(hit, GroundTask):
-        fills = [(i, [tuple([b[v] for v in op.params]) for b in grounder._fill(op, {})])
-                 for i, op in enumerate(dom.operators)]
+        fills = [(i, instances(grounder, op)) for i, op in enumerate(dom.operators)]
         hit = store[key] = GroundTask(dom.facts, dom.operators, fills, drop)
     return hit
 
