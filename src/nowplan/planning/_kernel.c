@@ -481,7 +481,7 @@ static PyMethodDef Kernel_methods[] = {
     {"lama", (PyCFunction)(void (*)(void))Kernel_lama, METH_VARARGS | METH_KEYWORDS,
      "lama(init, max_nodes, landmarks, before, out_of_time, boost, unreachable) -> as gbfs (h_FF evaluations)"},
     {"costs", (PyCFunction)Kernel_costs, METH_VARARGS,
-     "costs(state, overrides=()) -> the relaxed cost of every fact (inf: not reached); overrides = [(action, facts)]"},
+     "costs(state, overrides=(), off=()) -> the relaxed cost of every fact from state minus off (inf: not reached); overrides = [(action, facts)]"},
     {"bounded_wastar", (PyCFunction)(void (*)(void))Kernel_bounded_wastar, METH_VARARGS | METH_KEYWORDS,
      "bounded_wastar(init, cost, weight, bound, stop) -> a plan (action ids) cheaper than bound, or None"},
     {NULL, NULL, 0, NULL},

@@ -1,7 +1,8 @@
 /* The relaxed cost of every fact from a state, for the regression search's h_add
  * (nowplan/planning/hadd_kernel.py; the Python reference is heuristics.hadd_ids).
  *
- * costs(state, overrides=()) explores every action once, as evaluate_core does but
+ * costs(state, overrides=(), off=()) explores every action once from the facts of state
+ * that are not in off, as evaluate_core does but
  * without goals (no early stop), and returns the cost of each fact (inf where the
  * relaxation does not reach it; 0 for the state's facts).  h_add sums a reached
  * action's precondition costs, h_max takes their maximum (the kernel's kind).
@@ -9,11 +10,25 @@
  * this call (an action at another abstraction level than the task's). */
 
 static PyObject *Kernel_costs(Kernel *k, PyObject *args) {
-    PyObject *state, *over = NULL;
-    if (!PyArg_ParseTuple(args, "O|O", &state, &over)) return NULL;
+    PyObject *state, *over = NULL, *off = NULL;
+    if (!PyArg_ParseTuple(args, "O|OO", &state, &over, &off)) return NULL;
     int32_t ns = load_state(k, state);
     if (ns < 0) return NULL;
     int32_t nf = k->nf, na = k->na;
+    if (off != NULL && off != Py_None) {  /* facts taken out of the state again */
+        PyObject *it = PyObject_GetIter(off), *item;
+        if (it == NULL) return NULL;
+        while ((item = PyIter_Next(it)) != NULL) {
+            int32_t f;
+            int bad = as_index(item, nf, "fact", &f);
+            Py_DECREF(item);
+            if (bad) { Py_DECREF(it); return NULL; }
+            CLRBIT(k->bits, f);
+        }
+        Py_DECREF(it);
+        if (PyErr_Occurred()) return NULL;
+        ns = facts_of(k->bits, k->words, k->sf);
+    }
     PyObject *ofast = NULL, *out = NULL;
     uint8_t *repl = NULL;
     int32_t *xhead = NULL, *xact = NULL, *xnext = NULL, *ovact = NULL, *ovn = NULL;

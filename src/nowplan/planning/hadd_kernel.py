@@ -22,6 +22,7 @@ costed per call) and when the kernel is built; :func:`kernel_hadd` says whether.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
@@ -40,16 +41,15 @@ class _Compiled:
     def __init__(self, kernel: Kernel, nfacts: int, negatives: tuple[tuple[int, int], ...]) -> None:
         self.kernel = kernel
         self.nfacts = nfacts
-        self.negatives = frozenset(f for f, _ in negatives)
+        self.negatives = [f for f, _ in negatives]
         self.negative_of = {t: f for f, t in negatives if t >= 0}  # positive fact -> its negation
 
-    def state(self, true_now: frozenset[int]) -> frozenset[int]:
-        """The facts that hold, below ``nfacts``: the true ones and the negations of the others."""
-        neg = self.negative_of
+    def costs(self, true_now: frozenset[int], over: list[tuple[int, list[int]]]) -> list[float]:
+        """Every fact's value from the facts that hold: the true ones and the negations of the others."""
+        neg, n = self.negative_of, self.nfacts
         off = [neg[f] for f in true_now if f in neg]
-        n = self.nfacts
-        true = true_now if all(f < n for f in true_now) else frozenset(f for f in true_now if f < n)
-        return self.negatives.difference(off).union(true)
+        true: Iterable[int] = true_now if all(f < n for f in true_now) else [f for f in true_now if f < n]
+        return self.kernel.costs(itertools.chain(self.negatives, true), over, off)
 
 
 def _compiled(task: GroundTask, top: int) -> _Compiled | None:
@@ -98,7 +98,7 @@ class KernelHadd:
             k = task.index.get(key)
             if k is not None and lv != top:
                 over.append((k, [f for f, c, _ in task.pre[k] if c > lv]))
-        self.values = comp.kernel.costs(comp.state(true_now), over)  # 0 for every fact below nfacts that holds
+        self.values = comp.costs(true_now, over)  # 0 for every fact below nfacts that holds
         self.nfacts = comp.nfacts
 
     def get(self, f: int) -> float:
