@@ -37,15 +37,24 @@ def relax_unsupported(grounder: Grounder, belief: Any) -> str | None:
     dom = grounder.domain
     if not (grounder.lists_facts if grounder.belief is belief else isinstance(belief, ListsFacts)):
         return f"the belief {type(belief).__name__} does not list its facts (no facts()/atoms())"
+    hit = dom.facts.derived.get("relax unsupported")
+    if hit is not None and hit[0] is dom.operators and hit[1] is dom.predicates:
+        return hit[2]  # type: ignore[no-any-return]
+    why: str | None = None
     for op in dom.operators:
         if op.generators:
-            return f"operator {op.name} has generators"
-    for p in dom.predicates.values():
-        if p.test is not None:
-            return f"predicate {p.name} has a test"
-        if not p.boolean:
-            return f"predicate {p.name} is not boolean"
-    return None
+            why = f"operator {op.name} has generators"
+            break
+    if why is None:
+        for p in dom.predicates.values():
+            if p.test is not None:
+                why = f"predicate {p.name} has a test"
+                break
+            if not p.boolean:
+                why = f"predicate {p.name} is not boolean"
+                break
+    dom.facts.derived["relax unsupported"] = (dom.operators, dom.predicates, why)
+    return why
 
 
 def can_relax(grounder: Grounder, belief: Any) -> bool:

@@ -98,12 +98,8 @@ class NodeIndex:
         self.fs = fs
         fl = table.fluent
         gk = table.gkeys
-        self.by_fluent = {fl[f]: f for f in fs}
-        by_key: dict[Hashable, int] = {}
-        for f in fs:
-            for k in gk[f]:
-                by_key[k] = f
-        self.by_key = by_key
+        self.by_fluent = dict(zip(map(fl.__getitem__, fs), fs))
+        self.by_key: dict[Hashable, int] = {k: f for f in fs for k in gk[f]} if table.keyed else {}
 
 
 def regress(table: FactTable, node: NodeIndex, info: ActionFacts) -> frozenset[int] | None:
