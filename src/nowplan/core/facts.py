@@ -38,6 +38,7 @@ class FactTable:
         self.rules = rules
         self.keyed = tuple(c for c in rules.conflicts if isinstance(c, KeyedRule))
         self.plain = tuple(c for c in rules.conflicts if not isinstance(c, KeyedRule))
+        self.has_conflicts = bool(self.keyed or self.plain)
         self.ids: dict[Atom, int] = {}
         self.by_key: dict[tuple[str, tuple[Term, ...], Any], int] = {}  # (predicate, args, value) -> id
         self.atoms: list[Atom] = []

@@ -113,7 +113,7 @@ def regress(table: FactTable, node: NodeIndex, info: ActionFacts) -> frozenset[i
             if o != e and not table.entails(e, o):
                 return None
             removed.add(o)
-    conflicts = bool(table.keyed or table.plain)
+    conflicts = table.has_conflicts
     if conflicts and len(fs) > len(removed):
         if info.self_clash:
             return None
@@ -178,7 +178,4 @@ def regress(table: FactTable, node: NodeIndex, info: ActionFacts) -> frozenset[i
                 for b in news[i + 1 :]:
                     if table.plain_conflict(n, b):
                         return None
-    out = set(fs)
-    out.difference_update(removed)
-    out.update(new.values())
-    return frozenset(out)
+    return (fs.difference(removed) if removed else fs).union(new.values())
