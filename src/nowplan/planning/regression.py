@@ -285,10 +285,10 @@ class _Search:
         r = self._fholds.get(f)
         if r is None:
             true = self._true_ids
-            if true is None:
-                r = self.holds(self.table.atoms[f])
+            a = self.table.atoms[f]
+            if true is None or a.predicate not in self.domain.predicates:
+                r = self.holds(a)
             else:  # boolean predicates without tests: a lookup in the belief's facts
-                a = self.table.atoms[f]
                 r = f in true if a.value is not False else self.table.by_key.get((a.predicate, a.args, True)) not in true
             self._fholds[f] = r
         return r
