@@ -36,7 +36,8 @@ from nowplan.planning.hadd_relevant import RelevantHadd
 from nowplan.planning.heuristics import ground_task, relax_unsupported
 from nowplan.planning.relaxed import LazyRelaxed, Supporter
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
-from nowplan.planning.subgoals import ActionFacts, NodeIndex, action_facts, regress
+from nowplan.planning.subgoals import NodeIndex, action_facts, regress
+from nowplan.planning.successors import Successors
 
 log = logging.getLogger(__name__)
 
@@ -215,11 +216,8 @@ class _Search:
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
         self._ground_hadd: RelevantHadd | KernelHadd | None = None
         self._task: GroundTask | None = None
-        self._over_keys = frozenset(k for k, lv in levels.overrides if lv != levels.top)
-        self._by_fact: dict[int, list[tuple[Action, ActionFacts, float]]] = {}  # this call's successor templates
-        self._shared_store: Any = False  # not looked up yet (see _shared)
         self._ctx: tuple[frozenset[int], Goal] | None = None
-        self._templates: dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] = {}
+        self._successors = Successors(self.table, self.grounder, levels, self.drop, self.cost)
         for name in (config.heuristic, config.shortcut_heuristic or config.heuristic):
             if name not in (*_RELAXED, "count"):
                 from nowplan.errors import UsageError
@@ -248,6 +246,7 @@ class _Search:
                 else:
                     self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost, self.true_ids())
                 self._task = task
+                self._successors.task = task
                 self.grounder.use_task(task)  # generator-free achievers read off the ground task
             self.hadd = self._ground_hadd
         else:
@@ -345,60 +344,6 @@ class _Search:
             c = act.cost(self.belief)
             self._costs[act.key] = c
         return c
-
-    def _successors(self, target: int, goal_of: Callable[[], Goal]) -> list[tuple[Action, ActionFacts, float]]:
-        """The achievers of fact ``target`` with their facts at their level and their cost.
-
-        Kept per achiever list (the grounder keeps one list per atom, or per atom and
-        what generators read of the goal); the lists are held, so their ids stay theirs.
-        Where every call of the problem gets the same achievers (no generator), the
-        list is kept in the ground task by fact id with the facts at the top level, and
-        a call that puts one of the actions at another level gets that entry redone.
-        """
-        local = self._by_fact.get(target)
-        if local is not None:
-            return local
-        shared = self._shared
-        atom = self.table.atoms[target]
-        if shared is not None and self.grounder.shares_answer(atom):
-            hit = shared.get(-1 - target)
-            if hit is None:
-                acts = self.grounder.achievers(atom, goal_of)
-                T, top, drop, task = self.table, self.levels.top, self.drop, self._task
-                hit = shared[-1 - target] = (
-                    acts, [(act, action_facts(T, act, top, drop, task), self.cost(act)) for act in acts])
-            out = hit[1]
-            over = self._over_keys
-            if over and any(e[0].key in over for e in out):
-                T, levels, drop, task = self.table, self.levels, self.drop, self._task
-                out = [(a, action_facts(T, a, levels.level(a), drop, task), c) if a.key in over else (a, i, c)
-                       for a, i, c in out]
-            self._by_fact[target] = out
-            return out
-        acts = self.grounder.achievers(atom, goal_of)
-        hit = self._templates.get(id(acts))
-        if hit is not None and hit[0] is acts:
-            return hit[1]
-        levels, drop, T = self.levels, self.drop, self.table
-        task = self._task
-        out = [(act, action_facts(T, act, levels.level(act), drop, task), self.cost(act)) for act in acts]
-        if self.grounder.kept:
-            self._templates[id(acts)] = (acts, out)
-        return out
-
-    @property
-    def _shared(self) -> dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] | None:
-        """The successor templates kept in the ground task for this call's top level (numeric costs only)."""
-        if self._shared_store is False:
-            task = self._task
-            store: Any = None
-            if task is not None and task.all_fixed and task.drop == self.drop:
-                key = ("successor templates", self.levels.top)
-                store = task.memo.get(key)
-                if not isinstance(store, dict):
-                    store = task.memo[key] = {}
-            self._shared_store = store
-        return self._shared_store  # type: ignore[no-any-return]
 
     def run(
         self,
