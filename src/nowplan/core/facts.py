@@ -45,6 +45,7 @@ class FactTable:
         self.fluent: list[int] = []
         self.fluent_ids: dict[FluentKey, int] = {}
         self.equality: list[bool] = []  # the predicate's value rule is equality
+        self._equality: dict[str, bool] = {}  # the same per predicate
         self.gkeys: list[tuple[Hashable, ...]] = []
         self.sort_key: list[tuple[str, tuple[Term, ...]]] = []
         self._pairs: dict[tuple[int, int], bool] = {}
@@ -82,11 +83,17 @@ class FactTable:
         if fl is None:
             fl = self.fluent_ids[key] = len(self.fluent_ids)
         self.fluent.append(fl)
-        self.equality.append(self.rules.rule(a.predicate) is EQUALITY)
-        keys: list[Hashable] = []
-        for rule in self.keyed:
-            keys.extend(rule.group_keys(a))
-        self.gkeys.append(tuple(keys))
+        eq = self._equality.get(a.predicate)
+        if eq is None:
+            eq = self._equality[a.predicate] = self.rules.rule(a.predicate) is EQUALITY
+        self.equality.append(eq)
+        if self.keyed:
+            keys: list[Hashable] = []
+            for rule in self.keyed:
+                keys.extend(rule.group_keys(a))
+            self.gkeys.append(tuple(keys))
+        else:
+            self.gkeys.append(())
         self.sort_key.append(key)
         return f
 

@@ -95,13 +95,9 @@ class Grounder:
             self._op_cache, self._fills = shared.op_cache, shared.fills
             self._shared_answers = shared.answers
         # per predicate: the operators (in order) with an effect of it, and those effects
-        self._by_pred = _effects_by_predicate(domain)
+        self._by_pred, self._gen_by_pred, self._gen_by_pred_nonempty = _effects_by_predicate(domain)
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
         self._unify_cache: dict[tuple[int, Atom], list[dict[Var, Any]]] = {}
-        self._gen_by_pred = {
-            pred: tuple(e for e in entries if e[1].generators) for pred, entries in self._by_pred.items()
-        }
-        self._gen_by_pred_nonempty = frozenset(p for p, e in self._gen_by_pred.items() if e)
         self._goal_free: dict[Atom, bool] = {}
         self._read_plans: dict[Atom, Any] = {}
         self.kept = False  # was the last answer of achievers() kept (the same list object next time)?
@@ -488,8 +484,11 @@ _UNSET = object()
 _ByPred = dict[str, list[tuple[int, Operator, tuple[Atom, ...]]]]
 
 
-def _effects_by_predicate(domain: Domain) -> _ByPred:
-    """Per predicate the operators (in order) with an effect of it, and those effects (kept per domain)."""
+def _effects_by_predicate(
+    domain: Domain,
+) -> tuple[_ByPred, dict[str, tuple[tuple[int, Operator, tuple[Atom, ...]], ...]], frozenset[str]]:
+    """Per predicate the operators (in order) with an effect of it, and those effects; the same for
+    operators with generators; the predicates such an operator achieves (kept per domain)."""
     hit = domain.facts.derived.get("effects by predicate")
     if hit is not None and hit[0] is domain.operators:
         return hit[1]  # type: ignore[no-any-return]
@@ -500,8 +499,10 @@ def _effects_by_predicate(domain: Domain) -> _ByPred:
             per.setdefault(e.predicate, []).append(e)
         for pred, effs in per.items():
             out.setdefault(pred, []).append((i, op, tuple(effs)))
-    domain.facts.derived["effects by predicate"] = (domain.operators, out)
-    return out
+    gen = {pred: tuple(e for e in entries if e[1].generators) for pred, entries in out.items()}
+    answer = (out, gen, frozenset(p for p, e in gen.items() if e))
+    domain.facts.derived["effects by predicate"] = (domain.operators, answer)
+    return answer
 
 
 class _Shared:

@@ -62,10 +62,13 @@ def _compiled(task: GroundTask, top: int) -> _Compiled | None:
         return None
     if isinstance(hit, _Compiled):
         return hit
-    kept, waiting = task.kept(top)
     nf = len(task.table)
-    pre = [[f for f, _ in p] for p in kept]
-    by_pre = [waiting.get(f, ()) for f in range(nf)]
+    pre = [[f for f, c, _ in p if c > top] for p in task.pre]  # kept at the top level
+    rows: list[list[int]] = [[] for _ in range(nf)]
+    for k, p in enumerate(pre):
+        for f in p:
+            rows[f].append(k)
+    by_pre = rows
     no_pre = [k for k, p in enumerate(pre) if not p]
     cost = [float(c) for c in task.fixed_cost if c is not None]
     empty: list[list[int]] = [[] for _ in pre]

@@ -296,9 +296,12 @@ class _Search:
         """The ids of the facts the belief lists (it does: only asked where the relaxation can run)."""
         if self._true_ids is None:
             if self._can_relax:  # boolean predicates: each listed fact is true
-                id_of = self.table.id_of
-                self._true_ids = frozenset(
-                    [id_of(p, args, True) for p in self.domain.predicates for args in self.belief.facts(p)])
+                get, id_of = self.table.by_key.get, self.table.id_of
+                keys = [(p, args, True) for p in self.domain.predicates for args in self.belief.facts(p)]
+                ids = list(map(get, keys))
+                if None in ids:
+                    ids = [id_of(*k) if f is None else f for f, k in zip(ids, keys, strict=True)]
+                self._true_ids = frozenset(ids)  # type: ignore[arg-type]
             else:
                 self._true_ids = self.table.ids_of(self.belief.atoms())
         return self._true_ids
