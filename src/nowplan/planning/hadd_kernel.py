@@ -91,7 +91,9 @@ class KernelHadd:
     """h_add of fact ids from one compiled exploration of every ground action (see the module docstring)."""
 
     def __init__(self, task: GroundTask, levels: LevelMap, true_now: frozenset[int]) -> None:
-        comp = _compiled(task, levels.top)
+        comp = task.memo.get(("kernel hadd", levels.top))  # made by kernel_hadd
+        if not isinstance(comp, _Compiled):
+            comp = _compiled(task, levels.top)
         if comp is None:
             raise ValueError("KernelHadd needs the compiled kernel and numeric action costs (see kernel_hadd)")
         self.task = task
