@@ -70,7 +70,7 @@ class FactTable:
         """The id of ``Atom(predicate, args, value)``, without making the atom when it is known."""
         f = self.by_key.get((predicate, args, value))
         if f is None:
-            f = self.id(Atom(predicate, args, value))
+            f = self._add(Atom(predicate, args, value))  # by_key and ids know the same atoms
         return f
 
     def _add(self, a: Atom) -> int:
