@@ -376,6 +376,7 @@ class _Search:
         levels, drop, weight = self.levels, self.drop, self.config.weight
         hvals = self.hadd.values.__getitem__ if isinstance(self.hadd, KernelHadd) and not callable(self.domain_h) else None
         exp = 0
+        regress_, forbidden, inf, push = regress, self.forbidden_first, math.inf, heapq.heappush
         while frontier:
             _, _, _, node = heapq.heappop(frontier)
             if node in closed:
@@ -411,17 +412,17 @@ class _Search:
                     if guard and any(guard.get(fluent[e], e) != e for e in info.all_effs):
                         continue
                     if not legacy:
-                        pre = regress(T, index, info)
+                        pre = regress_(T, index, info)
                     else:
                         g = preimage(goal_of(), act, levels.level(act), self.domain, drop)
                         pre = None if g is None else T.ids_of(g.atoms)
                     if pre is None:
                         continue
-                    if self.forbidden_first and act.key in self.forbidden_first and self.satisfied(pre):
+                    if forbidden and act.key in forbidden and self.satisfied(pre):
                         continue  # it would be the plan's first step: learnt not to be refinable from here
                     child = (pre, focus)
                     ng = gcost + cost
-                    if child in closed or ng >= best_g.get(child, math.inf):
+                    if child in closed or ng >= best_g.get(child, inf):
                         continue
                     best_g[child] = ng
                     parent[child] = (node, act)
@@ -433,9 +434,9 @@ class _Search:
                             hh = self.h(pre)
                     else:
                         hh = self.h(pre)
-                    if hh == math.inf:
+                    if hh == inf:
                         continue  # an atom of the pre-image is unreachable
-                    heapq.heappush(frontier, (ng + weight * hh, hh, next(counter), child))
+                    push(frontier, (ng + weight * hh, hh, next(counter), child))
         return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
 
     def _path(
