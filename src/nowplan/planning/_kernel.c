@@ -45,6 +45,7 @@ typedef struct {
     size_t nbuckets;
     BEnt *bpool;
     uint64_t *bits;
+    uint64_t *base;   /* facts costs() adds to every state (set_base), or NULL */
     long long evaluations;
 } Kernel;
 
@@ -122,7 +123,7 @@ static void Kernel_dealloc(Kernel *k) {
     CSR *csrs[] = {&k->pre, &k->add, &k->del, &k->bypre, &k->trig};
     for (size_t i = 0; i < sizeof csrs / sizeof *csrs; i++) free_csr(csrs[i]);
     void *arrs[] = {k->nopre, k->goal, k->npre, k->chosen, k->stack, k->sf, k->isgoal, k->marked, k->chmark,
-                    k->acost, k->fcost, k->acc, k->sup, k->unsat, k->heap, k->bhead, k->bpool, k->bits};
+                    k->acost, k->fcost, k->acc, k->sup, k->unsat, k->heap, k->bhead, k->bpool, k->bits, k->base};
     for (size_t i = 0; i < sizeof arrs / sizeof *arrs; i++) PyMem_Free(arrs[i]);
     Py_TYPE(k)->tp_free((PyObject *)k);
 }
@@ -480,6 +481,8 @@ static PyMethodDef Kernel_methods[] = {
      "gbfs(init, max_nodes, out_of_time) -> (status, plan action ids or None, expanded, generated, evaluations)"},
     {"lama", (PyCFunction)(void (*)(void))Kernel_lama, METH_VARARGS | METH_KEYWORDS,
      "lama(init, max_nodes, landmarks, before, out_of_time, boost, unreachable) -> as gbfs (h_FF evaluations)"},
+    {"set_base", (PyCFunction)Kernel_set_base, METH_O,
+     "set_base(facts): facts that costs() adds to every state it is given"},
     {"costs", (PyCFunction)Kernel_costs, METH_VARARGS,
      "costs(state, overrides=(), off=()) -> the relaxed cost of every fact from state minus off (inf: not reached); overrides = [(action, facts)]"},
     {"bounded_wastar", (PyCFunction)(void (*)(void))Kernel_bounded_wastar, METH_VARARGS | METH_KEYWORDS,

@@ -2,12 +2,46 @@
  * (nowplan/planning/hadd_kernel.py; the Python reference is heuristics.hadd_ids).
  *
  * costs(state, overrides=(), off=()) explores every action once from the facts of state
- * that are not in off, as evaluate_core does but
+ * and of the base (set_base) that are not in off, as evaluate_core does but
  * without goals (no early stop), and returns the cost of each fact (inf where the
  * relaxation does not reach it; 0 for the state's facts).  h_add sums a reached
  * action's precondition costs, h_max takes their maximum (the kernel's kind).
  * overrides = [(action, [facts]), ...] replaces those actions' preconditions for
  * this call (an action at another abstraction level than the task's). */
+
+/* Facts added to every state costs() is given (e.g. the negations that hold unless their atom does). */
+static PyObject *Kernel_set_base(Kernel *k, PyObject *facts) {
+    uint64_t *base = xcalloc((size_t)k->words, sizeof(uint64_t));
+    if (base == NULL) return NULL;
+    PyObject *it = PyObject_GetIter(facts), *item;
+    if (it == NULL) { PyMem_Free(base); return NULL; }
+    while ((item = PyIter_Next(it)) != NULL) {
+        int32_t f;
+        int bad = as_index(item, k->nf, "fact", &f);
+        Py_DECREF(item);
+        if (bad) { Py_DECREF(it); PyMem_Free(base); return NULL; }
+        SETBIT(base, f);
+    }
+    Py_DECREF(it);
+    if (PyErr_Occurred()) { PyMem_Free(base); return NULL; }
+    PyMem_Free(k->base);
+    k->base = base;
+    Py_RETURN_NONE;
+}
+
+/* Float objects for the small integer costs (and inf), shared by every costs() answer. */
+#define SMALL_COSTS 4096
+static PyObject *small_cost[SMALL_COSTS + 1];
+
+static PyObject *cost_object(double c) {
+    Py_ssize_t i = -1;
+    if (c == INFINITY) i = SMALL_COSTS;
+    else if (c >= 0.0 && c < SMALL_COSTS && c == floor(c)) i = (Py_ssize_t)c;
+    if (i < 0) return PyFloat_FromDouble(c);
+    if (small_cost[i] == NULL && (small_cost[i] = PyFloat_FromDouble(c)) == NULL) return NULL;
+    Py_INCREF(small_cost[i]);
+    return small_cost[i];
+}
 
 static PyObject *Kernel_costs(Kernel *k, PyObject *args) {
     PyObject *state, *over = NULL, *off = NULL;
@@ -15,6 +49,10 @@ static PyObject *Kernel_costs(Kernel *k, PyObject *args) {
     int32_t ns = load_state(k, state);
     if (ns < 0) return NULL;
     int32_t nf = k->nf, na = k->na;
+    if (k->base != NULL) {
+        for (int32_t w = 0; w < k->words; w++) k->bits[w] |= k->base[w];
+        ns = facts_of(k->bits, k->words, k->sf);
+    }
     if (off != NULL && off != Py_None) {  /* facts taken out of the state again */
         PyObject *it = PyObject_GetIter(off), *item;
         if (it == NULL) return NULL;
@@ -116,7 +154,7 @@ static PyObject *Kernel_costs(Kernel *k, PyObject *args) {
     if (err) goto done;
     if (!(out = PyList_New(nf))) goto done;
     for (int32_t g = 0; g < nf; g++) {
-        PyObject *v = PyFloat_FromDouble(fcost[g]);
+        PyObject *v = cost_object(fcost[g]);
         if (v == NULL) { Py_CLEAR(out); goto done; }
         PyList_SET_ITEM(out, g, v);
     }

@@ -22,7 +22,6 @@ costed per call) and when the kernel is built; :func:`kernel_hadd` says whether.
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
@@ -41,7 +40,7 @@ class _Compiled:
     def __init__(self, kernel: Kernel, nfacts: int, negatives: tuple[tuple[int, int], ...]) -> None:
         self.kernel = kernel
         self.nfacts = nfacts
-        self.negatives = [f for f, _ in negatives]
+        kernel.set_base([f for f, _ in negatives])  # every negation holds, but for those of true facts
         self.negative_of = {t: f for f, t in negatives if t >= 0}  # positive fact -> its negation
 
     def costs(self, true_now: frozenset[int], over: list[tuple[int, list[int]]]) -> list[float]:
@@ -49,7 +48,7 @@ class _Compiled:
         neg, n = self.negative_of, self.nfacts
         off = [neg[f] for f in true_now if f in neg]
         true: Iterable[int] = true_now if all(f < n for f in true_now) else [f for f in true_now if f < n]
-        return self.kernel.costs(itertools.chain(self.negatives, true), over, off)
+        return self.kernel.costs(true, over, off)
 
 
 def _compiled(task: GroundTask, top: int) -> _Compiled | None:
