@@ -443,18 +443,6 @@ class Grounder:
                     continue
                 yield full
 
-    def _typed_ok(self, op: Operator, full: Mapping[Var, Any]) -> bool:
-        if not op.param_types:
-            return True
-        for v, t in zip(op.params, op.param_types, strict=True):
-            if t is None or op.generators and any(v in g.outputs for g in op.generators):
-                continue
-            val = full[v]
-            if isinstance(val, str) and val in self.objects_of(None):
-                if val not in self.objects_of(t):
-                    return False
-        return True
-
 
 class _FillPlan:
     """An operator's static preconditions and typed parameters, as :meth:`Grounder._fill` uses them."""
