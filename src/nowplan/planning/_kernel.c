@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define KERNEL_API 6
+#define KERNEL_API 7
 #define BIT(b, f) (((b)[(f) >> 6] >> ((f) & 63)) & 1u)
 #define SETBIT(b, f) ((b)[(f) >> 6] |= (uint64_t)1 << ((f) & 63))
 #define CLRBIT(b, f) ((b)[(f) >> 6] &= ~((uint64_t)1 << ((f) & 63)))
