@@ -11,7 +11,9 @@ import pytest
 from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.state import State
 from nowplan.io.pddl_read import load_pddl
+from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
 from nowplan.planning.hadd_relevant import RelevantHadd
+from nowplan.planning.native import kernel_class
 from nowplan.planning.heuristics import ground_task, hadd_ids
 from nowplan.planning.regression import PlannerConfig, _Search
 
@@ -85,12 +87,49 @@ def test_two_calls_alive_at_once_each_get_their_own_values():
     assert compared > 0 and s1 != s2
 
 
-def test_regression_plans_with_the_relevant_hadd():
-    """The regression search's h_add is the relevant one, and it solves a logistics problem."""
+def test_regression_plans_with_the_relevant_hadd(monkeypatch):
+    """Without the kernel the regression search's h_add is the relevant one; with it, the kernel's."""
     d = DATA / "logistics"
     prob = load_pddl(d / "domain.pddl", d / "p02.pddl")
     srch = _Search(prob.domain, prob.objects, prob.init, flat_levels(), PlannerConfig(heuristic="hadd"), None)
+    assert isinstance(srch.hadd, KernelHadd if kernel_class() is not None else RelevantHadd)
+    monkeypatch.setenv("NOWPLAN_PURE_PYTHON", "1")
+    srch = _Search(prob.domain, prob.objects, prob.init, flat_levels(), PlannerConfig(heuristic="hadd"), None)
     assert isinstance(srch.hadd, RelevantHadd)
+
+
+@pytest.mark.skipif(kernel_class() is None, reason="the compiled kernel is not built")
+@pytest.mark.parametrize("domain,problem,crit", CASES)
+def test_kernel_hadd_equals_the_full_exploration_along_a_walk(domain, problem, crit):
+    """The kernel's values equal hadd_ids' for every fact that does not hold, and are 0 for those that do."""
+    d = DATA / domain
+    prob = load_pddl(d / "domain.pddl", d / f"{problem}.pddl", d / "logistics.crit" if crit else None)
+    rng = random.Random(11)
+    tops = sorted({flat_levels().top, prob.domain.top_level})
+    compared = overridden = 0
+    for s in _walk(prob, 12, rng):
+        for top in tops:
+            srch = _Search(prob.domain, prob.objects, s, LevelMap(top), PlannerConfig(), None)
+            task = ground_task(srch.grounder, srch.drop)
+            over = LevelMap(top)
+            if top > flat_levels().top:
+                over = LevelMap(top).next_level(rng.choice(task.acts).action)
+                overridden += 1
+            for levels in (LevelMap(top), over):
+                srch = _Search(prob.domain, prob.objects, s, levels, PlannerConfig(), None)
+                assert kernel_hadd(task, top)
+                full = hadd_ids(srch.grounder, levels, srch.drop, srch.cost)
+                kh = KernelHadd(task, levels, srch.true_ids())
+                for f in range(len(srch.table.atoms)):
+                    a = srch.table.atoms[f]
+                    if a.predicate in srch.drop:
+                        continue
+                    if srch.fholds(f):
+                        assert f >= kh.nfacts or kh.values[f] == 0.0, a
+                    else:
+                        assert kh.get(f) == full.get(f, math.inf), (a, levels)
+                        compared += 1
+    assert compared > 0 and (overridden > 0 or not crit)
 
 
 def test_lmcut_cuts_kept_across_new_explorations_equal_fresh_ones():

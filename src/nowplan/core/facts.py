@@ -38,11 +38,14 @@ class FactTable:
         self.rules = rules
         self.keyed = tuple(c for c in rules.conflicts if isinstance(c, KeyedRule))
         self.plain = tuple(c for c in rules.conflicts if not isinstance(c, KeyedRule))
+        self.has_conflicts = bool(self.keyed or self.plain)
         self.ids: dict[Atom, int] = {}
+        self.by_key: dict[tuple[str, tuple[Term, ...], Any], int] = {}  # (predicate, args, value) -> id
         self.atoms: list[Atom] = []
         self.fluent: list[int] = []
         self.fluent_ids: dict[FluentKey, int] = {}
         self.equality: list[bool] = []  # the predicate's value rule is equality
+        self._equality: dict[str, bool] = {}  # the same per predicate
         self.gkeys: list[tuple[Hashable, ...]] = []
         self.sort_key: list[tuple[str, tuple[Term, ...]]] = []
         self._pairs: dict[tuple[int, int], bool] = {}
@@ -51,6 +54,8 @@ class FactTable:
         self.actions: dict[tuple[int, tuple[Any, ...]], Action] = {}
         # grounding answers shared by the planner calls of one problem (planning.grounding)
         self.grounding: dict[Hashable, Any] = {}
+        # tables derived from the domain alone (e.g. the grounder's effects per predicate)
+        self.derived: dict[str, Any] = {}
 
     def __len__(self) -> int:
         return len(self.atoms)
@@ -61,29 +66,43 @@ class FactTable:
             f = self._add(a)
         return f
 
+    def id_of(self, predicate: str, args: tuple[Term, ...], value: Any) -> int:
+        """The id of ``Atom(predicate, args, value)``, without making the atom when it is known."""
+        f = self.by_key.get((predicate, args, value))
+        if f is None:
+            f = self._add(Atom(predicate, args, value))  # by_key and ids know the same atoms
+        return f
+
     def _add(self, a: Atom) -> int:
         f = len(self.atoms)
         self.ids[a] = f
+        self.by_key[(a.predicate, a.args, a.value)] = f
         self.atoms.append(a)
         key = (a.predicate, a.args)
         fl = self.fluent_ids.get(key)
         if fl is None:
             fl = self.fluent_ids[key] = len(self.fluent_ids)
         self.fluent.append(fl)
-        self.equality.append(self.rules.rule(a.predicate) is EQUALITY)
-        keys: list[Hashable] = []
-        for rule in self.keyed:
-            keys.extend(rule.group_keys(a))
-        self.gkeys.append(tuple(keys))
+        eq = self._equality.get(a.predicate)
+        if eq is None:
+            eq = self._equality[a.predicate] = self.rules.rule(a.predicate) is EQUALITY
+        self.equality.append(eq)
+        if self.keyed:
+            keys: list[Hashable] = []
+            for rule in self.keyed:
+                keys.extend(rule.group_keys(a))
+            self.gkeys.append(tuple(keys))
+        else:
+            self.gkeys.append(())
         self.sort_key.append(key)
         return f
 
     def ids_of(self, atoms: Iterable[Atom]) -> frozenset[int]:
-        get = self.ids.get
+        get = self.by_key.get  # a tuple key hashes in C (an atom's dataclass hash runs Python code)
         out = []
         for a in atoms:
-            f = get(a)
-            out.append(self._add(a) if f is None else f)
+            f = get((a.predicate, a.args, a.value))
+            out.append(self.id(a) if f is None else f)
         return frozenset(out)
 
     def goal(self, fs: Iterable[int]) -> Goal:

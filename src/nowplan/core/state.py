@@ -20,7 +20,7 @@ Key = tuple[str, tuple[Term, ...]]
 class State:
     """An immutable assignment of values to fluents (closed world for booleans)."""
 
-    __slots__ = ("_map", "_hash", "_by_pred")
+    __slots__ = ("_map", "_hash", "_by_pred", "_atoms")
 
     def __init__(self, values: Mapping[Key, Any] | Iterable[Atom] = ()) -> None:
         if isinstance(values, Mapping):
@@ -30,6 +30,7 @@ class State:
         self._map: dict[Key, Any] = m
         self._hash: int | None = None
         self._by_pred: dict[str, list[tuple[Term, ...]]] | None = None
+        self._atoms: tuple[Atom, ...] | None = None
 
     # -- queries -------------------------------------------------------------
     def value(self, key: Key) -> Any:
@@ -54,8 +55,11 @@ class State:
         return len({k for k, _ in sym})
 
     def atoms(self) -> Iterator[Atom]:
-        for (p, args), v in sorted(self._map.items(), key=lambda kv: (kv[0][0], repr(kv[0][1]))):
-            yield Atom(p, args, v)
+        """The true fluents as atoms, sorted by predicate and arguments (made once: a state is immutable)."""
+        if self._atoms is None:
+            self._atoms = tuple(Atom(p, args, v) for (p, args), v in
+                                sorted(self._map.items(), key=lambda kv: (kv[0][0], repr(kv[0][1]))))
+        return iter(self._atoms)
 
     # -- updates -------------------------------------------------------------
     def apply(self, effects: Iterable[Atom]) -> State:

@@ -1,8 +1,9 @@
 /* The forward engine's compiled kernel: h_FF / h_add / h_max with preferred
  * operators, the successor generator, lazy GBFS, LAMA's first iteration
  * (_kernel_lama.h) and the bounded weighted A* of the anytime improvement
- * (_kernel_wastar.h) over bitset states, and the stratified evaluation of the
- * rules of derived predicates after every action (_kernel_axioms.h, axioms.py).
+ * (_kernel_wastar.h) over bitset states, the stratified evaluation of the
+ * rules of derived predicates after every action (_kernel_axioms.h, axioms.py),
+ * and every fact's relaxed cost for the regression search's h_add (_kernel_costs.h).
  *
  * It mirrors nowplan/planning/hff.py, forward.py, lama.py and anytime.py (the reference: both
  * paths must give the same h, the same preferred operators, the same plan
@@ -18,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define KERNEL_API 6
+#define KERNEL_API 7
 #define BIT(b, f) (((b)[(f) >> 6] >> ((f) & 63)) & 1u)
 #define SETBIT(b, f) ((b)[(f) >> 6] |= (uint64_t)1 << ((f) & 63))
 #define CLRBIT(b, f) ((b)[(f) >> 6] &= ~((uint64_t)1 << ((f) & 63)))
@@ -45,6 +46,7 @@ typedef struct {
     size_t nbuckets;
     BEnt *bpool;
     uint64_t *bits;
+    uint64_t *base;   /* facts costs() adds to every state (set_base), or NULL */
     long long evaluations;
     int32_t nact;     /* actions [0, nact) are applicable; the others are rules, relaxed only */
     int32_t nax, nlayers;  /* the rules of derived predicates (axioms) and their layers */
@@ -128,7 +130,7 @@ static void Kernel_dealloc(Kernel *k) {
     for (size_t i = 0; i < sizeof csrs / sizeof *csrs; i++) free_csr(csrs[i]);
     void *arrs[] = {k->nopre, k->goal, k->npre, k->chosen, k->stack, k->sf, k->isgoal, k->marked, k->chmark,
                     k->acost, k->fcost, k->acc, k->sup, k->unsat, k->heap, k->bhead, k->bpool, k->bits,
-                    k->axhead, k->axnbody, k->axunsat, k->axqueue, k->laylo, k->layhi, k->dmask};
+                    k->axhead, k->axnbody, k->axunsat, k->axqueue, k->laylo, k->layhi, k->dmask, k->base};
     for (size_t i = 0; i < sizeof arrs / sizeof *arrs; i++) PyMem_Free(arrs[i]);
     Py_TYPE(k)->tp_free((PyObject *)k);
 }
@@ -489,6 +491,7 @@ static PyObject *Kernel_close(Kernel *k, PyObject *state) {
 #include "_kernel_gbfs.h"
 #include "_kernel_lama.h"
 #include "_kernel_wastar.h"
+#include "_kernel_costs.h"
 
 static PyMethodDef Kernel_methods[] = {
     {"evaluate", (PyCFunction)Kernel_evaluate, METH_O,
@@ -500,6 +503,10 @@ static PyMethodDef Kernel_methods[] = {
      "gbfs(init, max_nodes, out_of_time) -> (status, plan action ids or None, expanded, generated, evaluations)"},
     {"lama", (PyCFunction)(void (*)(void))Kernel_lama, METH_VARARGS | METH_KEYWORDS,
      "lama(init, max_nodes, landmarks, before, out_of_time, boost, unreachable) -> as gbfs (h_FF evaluations)"},
+    {"set_base", (PyCFunction)Kernel_set_base, METH_O,
+     "set_base(facts): facts that costs() adds to every state it is given"},
+    {"costs", (PyCFunction)Kernel_costs, METH_VARARGS,
+     "costs(state, overrides=(), off=()) -> the relaxed cost of every fact from state minus off (inf: not reached); overrides = [(action, facts)]"},
     {"bounded_wastar", (PyCFunction)(void (*)(void))Kernel_bounded_wastar, METH_VARARGS | METH_KEYWORDS,
      "bounded_wastar(init, cost, weight, bound, stop) -> a plan (action ids) cheaper than bound, or None"},
     {NULL, NULL, 0, NULL},

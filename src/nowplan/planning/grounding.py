@@ -14,13 +14,16 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nowplan.core.atoms import Atom, Goal, Var
 from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
+
+if TYPE_CHECKING:
+    from nowplan.planning.ground_task import GroundTask
 
 
 def unify_effect(effect: Atom, target: Atom, domain: Domain) -> dict[Var, Any] | None:
@@ -64,6 +67,7 @@ class Grounder:
         belief: Any,
         context: PlanningContext | None = None,
         max_generator_values: int = 8,
+        lists_facts: bool | None = None,
     ) -> None:
         self.domain = domain
         self.objects = dict(objects)
@@ -73,10 +77,15 @@ class Grounder:
         self._cache: dict[Atom, list[Action]] = {}
         self._static_cache: dict[Atom, bool] = {}
         self._by_type: dict[str | None, list[str]] = {}
-        self._facts_ok = isinstance(belief, ListsFacts)
+        # does the belief list its facts (``lists_facts``: the caller has asked already)?
+        self._facts_ok = isinstance(belief, ListsFacts) if lists_facts is None else lists_facts
+        self._fill_plans: dict[int, _FillPlan] = {}
+        self._task: GroundTask | None = None
+        self._allobj: frozenset[Any] | None = None
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
         self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
         self.signature: Hashable = None  # the objects and static facts (with a belief that lists facts)
+        self._shared_answers: dict[Atom, list[Action]] | None = None  # generator-free achievers, per problem
         if self._facts_ok:
             self.signature = self._signature()
         if self.memo and self._facts_ok:
@@ -84,19 +93,11 @@ class Grounder:
             # of one problem (the executive plans many times with the same static facts)
             shared = _shared(domain, self.signature)
             self._op_cache, self._fills = shared.op_cache, shared.fills
+            self._shared_answers = shared.answers
         # per predicate: the operators (in order) with an effect of it, and those effects
-        self._by_pred: dict[str, list[tuple[int, Operator, tuple[Atom, ...]]]] = {}
-        for i, op in enumerate(domain.operators):
-            per: dict[str, list[Atom]] = {}
-            for e in op.effects:
-                per.setdefault(e.predicate, []).append(e)
-            for pred, effs in per.items():
-                self._by_pred.setdefault(pred, []).append((i, op, tuple(effs)))
+        self._by_pred, self._gen_by_pred, self._gen_by_pred_nonempty = _effects_by_predicate(domain)
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
         self._unify_cache: dict[tuple[int, Atom], list[dict[Var, Any]]] = {}
-        self._gen_by_pred = {
-            pred: tuple(e for e in entries if e[1].generators) for pred, entries in self._by_pred.items()
-        }
         self._goal_free: dict[Atom, bool] = {}
         self._read_plans: dict[Atom, Any] = {}
         self.kept = False  # was the last answer of achievers() kept (the same list object next time)?
@@ -108,6 +109,11 @@ class Grounder:
         preds = sorted(n for n in self.domain.static_predicates if self.domain.predicates[n].test is None)
         facts = tuple((n, frozenset(map(tuple, self.belief.facts(n)))) for n in preds)
         return (frozenset(self.objects.items()), facts)
+
+    @property
+    def lists_facts(self) -> bool:
+        """Does the belief list its facts (``facts``/``atoms``)?"""
+        return self._facts_ok
 
     # -- helpers -------------------------------------------------------------
     def objects_of(self, t: str | None) -> list[str]:
@@ -141,6 +147,12 @@ class Grounder:
         cached = self._cache.get(target)
         if cached is not None:
             return cached
+        if self._shared_answers is not None and target.predicate not in self._gen_by_pred_nonempty:
+            # no generator achieves this predicate: the answer depends on the static facts only
+            cached = self._shared_answers.get(target)
+            if cached is not None:
+                self._cache[target] = cached
+                return cached
         entries = self._by_pred.get(target.predicate, ())
         gen_entries = self._gen_by_pred.get(target.predicate, ())
         key: tuple[Atom, Hashable] | None = None
@@ -160,7 +172,10 @@ class Grounder:
             if self.memo and not op.generators:
                 acts = self._op_cache.get((i, target))
                 if acts is None:
-                    acts = self._op_cache[(i, target)] = list(self._op_achievers(i, op, effs, target, goal))
+                    acts = self._task_achievers(i, effs, target)
+                    if acts is None:
+                        acts = list(self._op_achievers(i, op, effs, target, goal))
+                    self._op_cache[(i, target)] = acts
                 found: Iterable[Action] = acts
             else:
                 found = self._op_achievers(i, op, effs, target, goal)
@@ -171,11 +186,54 @@ class Grounder:
         # generators see the goal: keep the answer per atom only when none that reads it takes part
         if not gen_entries or free and self.memo:
             self._cache[target] = out
+            if not gen_entries and self._shared_answers is not None:
+                self._shared_answers[target] = out
         elif key is not None:
             self._gen_cache[key] = out
         else:
             self.kept = False
         return out
+
+    def shares_answer(self, target: Atom) -> bool:
+        """Is ``target``'s answer the one every call of this problem gets (no generator achieves it)?"""
+        return self._shared_answers is not None and target.predicate not in self._gen_by_pred_nonempty
+
+    def use_task(self, task: GroundTask) -> None:
+        """Answer generator-free achievers from ``task`` (this problem's ground task, same static facts)."""
+        self._task = task
+
+    def _task_achievers(self, i: int, effs: tuple[Atom, ...], target: Atom) -> list[Action] | None:
+        """Operator ``i``'s achievers of ``target`` read off the ground task, or ``None`` where it cannot answer.
+
+        The task holds every instance ``_fill(op, {})`` makes, in its order, and
+        ``_fill(op, b)`` makes those that agree with ``b`` in the same order; so
+        where one effect of ``op`` can unify with ``target``, its value rule is
+        equality and every argument names an object (a value that is no object
+        passes the type check in ``_fill`` but is in no instance of the task),
+        the instances adding ``target``'s fact are the achievers, in order.
+        """
+        task = self._task
+        if task is None:
+            return None
+        T = self.domain.facts
+        f = T.by_key.get((target.predicate, target.args, target.value))
+        if f is None or not T.equality[f] or not isinstance(target.value, bool):
+            return None
+        n = sum(1 for e in effs if isinstance(e.value, Var) or e.value == target.value)
+        if n == 0:
+            return []  # no effect of the operator has the value (equality): nothing to unify
+        if n != 1:
+            return None
+        allobj = self._all_objects()
+        if not all(isinstance(a, str) and a in allobj for a in target.args):
+            return None
+        op_of = task.op
+        return [task.action(k) for k in task.adders().get(f, ()) if op_of[k] == i]
+
+    def _all_objects(self) -> frozenset[Any]:
+        if self._allobj is None:
+            self._allobj = frozenset(self.objects_of(None))
+        return self._allobj
 
     def _readings(
         self, gen_entries: Sequence[tuple[int, Operator, tuple[Atom, ...]]], target: Atom, goal: Goal
@@ -296,13 +354,39 @@ class Grounder:
 
         yield from rec(0, b)
 
+    def _fill_plan(self, op: Operator) -> _FillPlan:
+        """What :meth:`_fill` needs of ``op``, worked out once per operator."""
+        plan = self._fill_plans.get(id(op))
+        if plan is None or plan.op is not op:
+            statics = tuple(
+                p.atom for p in op.preconditions if self.is_static(p.atom) and _is_plain(self.domain, p.atom)
+            )
+            # statics the join does not check itself (negative ones, or every one without listed facts)
+            # (and those of a predicate whose listed facts may carry values other than True)
+            later = tuple(s for s in statics if not self._facts_ok or s.value is not True
+                          or not self.domain.predicates[s.predicate].boolean)
+            # per parameter: the objects of its type (a set) when a bound value must be type-checked
+            allobj = frozenset(self.objects_of(None))
+            typed: list[tuple[Var, frozenset[str]]] = []
+            if op.param_types:
+                outs = {v for g in op.generators for v in g.outputs}
+                for v, t in zip(op.params, op.param_types, strict=True):
+                    if t is not None and v not in outs:
+                        typed.append((v, frozenset(self.objects_of(t))))
+            plan = self._fill_plans[id(op)] = _FillPlan(op, statics, later, allobj, tuple(typed))
+        return plan
+
     def _fill(self, op: Operator, b: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
-        statics = [
-            p.atom for p in op.preconditions if self.is_static(p.atom) and _is_plain(self.domain, p.atom)
-        ]
+        """Complete ``b`` by joining static preconditions with listed facts, then typed objects.
+
+        Statics the join matched are not checked again; the values the join or ``b``
+        bound are type-checked (those taken from typed objects are typed already).
+        """
+        plan = self._fill_plan(op)
+        statics, later = plan.statics, plan.later
 
         def check(bind: dict[Var, Any]) -> bool:
-            for s in statics:
+            for s in later:
                 g = s.bind(bind)
                 if g.ground and not self.static_holds(g):
                     return False
@@ -335,27 +419,45 @@ class Grounder:
                 if ok and len(args) == len(s.args):
                     yield from join(i + 1, nxt)
 
+        allobj, typed = plan.allobj, plan.typed
         for jb in join(0, b):
+            # a value bound before the product that names an object of another type: not an instance
+            bad = False
+            for v, ok_objs in typed:
+                val = jb.get(v, _UNSET)
+                if val is not _UNSET and isinstance(val, str) and val in allobj and val not in ok_objs:
+                    bad = True
+                    break
+            if bad:
+                continue
             free = [v for v in op.params if v not in jb]
+            if not free:
+                if not later or check(jb):
+                    yield dict(jb)
+                continue
             domains = [self.objects_of(op.type_of(v)) for v in free]
             for combo in itertools.product(*domains):
                 full = dict(jb)
                 full.update(zip(free, combo, strict=True))
-                if not self._typed_ok(op, full) or not check(full):
+                if later and not check(full):
                     continue
                 yield full
 
-    def _typed_ok(self, op: Operator, full: Mapping[Var, Any]) -> bool:
-        if not op.param_types:
-            return True
-        for v, t in zip(op.params, op.param_types, strict=True):
-            if t is None or op.generators and any(v in g.outputs for g in op.generators):
-                continue
-            val = full[v]
-            if isinstance(val, str) and val in self.objects_of(None):
-                if val not in self.objects_of(t):
-                    return False
-        return True
+
+class _FillPlan:
+    """An operator's static preconditions and typed parameters, as :meth:`Grounder._fill` uses them."""
+
+    __slots__ = ("op", "statics", "later", "allobj", "typed")
+
+    def __init__(
+        self, op: Operator, statics: tuple[Atom, ...], later: tuple[Atom, ...], allobj: frozenset[str],
+        typed: tuple[tuple[Var, frozenset[str]], ...],
+    ) -> None:
+        self.op = op
+        self.statics = statics
+        self.later = later
+        self.allobj = allobj
+        self.typed = typed
 
 
 def _is_plain(domain: Domain, a: Atom) -> bool:
@@ -367,6 +469,29 @@ def _is_plain(domain: Domain, a: Atom) -> bool:
 
 _UNSET = object()
 
+_ByPred = dict[str, list[tuple[int, Operator, tuple[Atom, ...]]]]
+
+
+def _effects_by_predicate(
+    domain: Domain,
+) -> tuple[_ByPred, dict[str, tuple[tuple[int, Operator, tuple[Atom, ...]], ...]], frozenset[str]]:
+    """Per predicate the operators (in order) with an effect of it, and those effects; the same for
+    operators with generators; the predicates such an operator achieves (kept per domain)."""
+    hit = domain.facts.derived.get("effects by predicate")
+    if hit is not None and hit[0] is domain.operators:
+        return hit[1]  # type: ignore[no-any-return]
+    out: _ByPred = {}
+    for i, op in enumerate(domain.operators):
+        per: dict[str, list[Atom]] = {}
+        for e in op.effects:
+            per.setdefault(e.predicate, []).append(e)
+        for pred, effs in per.items():
+            out.setdefault(pred, []).append((i, op, tuple(effs)))
+    gen = {pred: tuple(e for e in entries if e[1].generators) for pred, entries in out.items()}
+    answer = (out, gen, frozenset(p for p, e in gen.items() if e))
+    domain.facts.derived["effects by predicate"] = (domain.operators, answer)
+    return answer
+
 
 class _Shared:
     """Grounding answers that depend only on a problem's objects and static facts."""
@@ -374,6 +499,7 @@ class _Shared:
     def __init__(self) -> None:
         self.op_cache: dict[tuple[int, Atom], list[Action]] = {}
         self.fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+        self.answers: dict[Atom, list[Action]] = {}  # achievers of atoms no generator achieves
 
 
 _SHARED_PER_DOMAIN = 4

@@ -33,7 +33,8 @@ from dataclasses import dataclass, field
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.grounding import Grounder
-from nowplan.planning.heuristics import GroundTask, ground_task
+from nowplan.planning.ground_task import GroundTask
+from nowplan.planning.heuristics import ground_task
 
 _Pre = tuple[tuple[int, int], ...]
 
@@ -108,7 +109,7 @@ class HaddMemo:
 
 
 def _memo(task: GroundTask, top: int) -> HaddMemo:
-    if any(c is None for c in task.fixed_cost):
+    if not task.all_fixed:
         return HaddMemo()  # costs read the belief: nothing carries over to another call
     hit = task.memo.get(("hadd", top))
     if not isinstance(hit, HaddMemo):
@@ -120,7 +121,8 @@ class RelevantHadd:
     """h_add values of fact ids, explored backward-relevantly from the facts asked for."""
 
     def __init__(
-        self, grounder: Grounder, levels: LevelMap, drop: frozenset[str], cost: Callable[[Action], float]
+        self, grounder: Grounder, levels: LevelMap, drop: frozenset[str], cost: Callable[[Action], float],
+        true_now: frozenset[int] | None = None,
     ) -> None:
         self.task = task = ground_task(grounder, drop)
         self.adders = task.adders()
@@ -131,7 +133,8 @@ class RelevantHadd:
             k = task.index.get(key)
             if k is not None and lv != top:
                 self.over[k] = tuple((f, t) for f, c, t in task.pre[k] if c > lv)
-        self.true_now = frozenset(grounder.domain.facts.ids_of(grounder.belief.atoms()))
+        # the facts the belief lists (``true_now``: the caller's ids of them)
+        self.true_now = true_now if true_now is not None else grounder.domain.facts.ids_of(grounder.belief.atoms())
         self.cost = cost
         self.memo = _memo(task, top)
         self.values = self.memo.values
@@ -205,7 +208,7 @@ class RelevantHadd:
         for k in acts:
             n = 0
             c = fixed[k]
-            tk = self.cost(task.acts[k].action) if c is None else c
+            tk = self.cost(task.action(k)) if c is None else c
             for g, t in self._pre(k):
                 if g in facts:
                     waiting.setdefault(g, []).append(k)

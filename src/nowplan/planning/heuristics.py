@@ -21,43 +21,44 @@ from __future__ import annotations
 
 import heapq
 import math
-from collections.abc import Callable, Hashable
-from dataclasses import dataclass
+from collections.abc import Callable
 from typing import Any
 
-from nowplan.core.atoms import Atom, Goal
+from nowplan.core.atoms import Atom
 from nowplan.belief.protocols import ListsFacts
-from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
+from nowplan.planning.ground_task import GroundAction, GroundTask, instances
 from nowplan.planning.grounding import Grounder
 
 
 def relax_unsupported(grounder: Grounder, belief: Any) -> str | None:
     """Why the ground relaxed exploration (h_add, h_max, h_FF) cannot run here, or ``None`` if it can."""
     dom = grounder.domain
-    if not isinstance(belief, ListsFacts):
+    if not (grounder.lists_facts if grounder.belief is belief else isinstance(belief, ListsFacts)):
         return f"the belief {type(belief).__name__} does not list its facts (no facts()/atoms())"
+    hit = dom.facts.derived.get("relax unsupported")
+    if hit is not None and hit[0] is dom.operators and hit[1] is dom.predicates:
+        return hit[2]  # type: ignore[no-any-return]
+    why: str | None = None
     for op in dom.operators:
         if op.generators:
-            return f"operator {op.name} has generators"
-    for p in dom.predicates.values():
-        if p.test is not None:
-            return f"predicate {p.name} has a test"
-        if not p.boolean:
-            return f"predicate {p.name} is not boolean"
-    return None
+            why = f"operator {op.name} has generators"
+            break
+    if why is None:
+        for p in dom.predicates.values():
+            if p.test is not None:
+                why = f"predicate {p.name} has a test"
+                break
+            if not p.boolean:
+                why = f"predicate {p.name} is not boolean"
+                break
+    dom.facts.derived["relax unsupported"] = (dom.operators, dom.predicates, why)
+    return why
 
 
 def can_relax(grounder: Grounder, belief: Any) -> bool:
     return relax_unsupported(grounder, belief) is None
-
-
-@dataclass(frozen=True)
-class GroundAction:
-    action: Action
-    pre: tuple[tuple[Atom, int], ...]  # (atom, criticality), statics left out
-    effects: tuple[Atom, ...]
 
 
 _CACHE: dict[Any, tuple[GroundAction, ...]] = {}
@@ -65,7 +66,10 @@ _CACHE_SIZE = 16
 
 
 def ground_all(grounder: Grounder, drop: frozenset[str]) -> tuple[GroundAction, ...]:
-    """Every ground action of the problem (static preconditions checked), cached."""
+    """Every ground action of the problem (static preconditions checked), instantiated and bound one by one.
+
+    The reference that :class:`GroundTask`'s bulk build is tested against (cached).
+    """
     dom = grounder.domain
     statics = tuple(sorted((p, tuple(sorted(map(repr, grounder.belief.facts(p))))) for p in drop))
     # operators compare without their costs: two domains equal but for costs must not share actions
@@ -88,57 +92,15 @@ def ground_all(grounder: Grounder, drop: frozenset[str]) -> tuple[GroundAction, 
     return _CACHE[key]
 
 
-class GroundTask:
-    """The ground actions of a problem as fact ids, for one relaxed exploration per planner call."""
-
-    def __init__(self, table: FactTable, acts: tuple[GroundAction, ...]) -> None:
-        self.acts = acts
-        self.index = {ga.action.key: k for k, ga in enumerate(acts)}
-        self.pre: list[tuple[tuple[int, int, int], ...]] = []  # (fact, criticality, positive twin or -1)
-        self.effects: list[tuple[int, ...]] = []
-        self.fixed_cost: list[float | None] = []
-        for ga in acts:
-            pre = []
-            for a, crit in ga.pre:
-                twin = table.id(Atom(a.predicate, a.args, True)) if a.value is False else -1
-                pre.append((table.id(a), crit, twin))
-            self.pre.append(tuple(pre))
-            self.effects.append(tuple(table.id(e) for e in ga.effects))
-            c = ga.action.operator.cost
-            self.fixed_cost.append(None if callable(c) else float(c))
-        self._kept: dict[int, tuple[list[tuple[tuple[int, int], ...]], dict[int, list[int]]]] = {}
-        self._adders: dict[int, list[int]] | None = None
-        self.memo: dict[Hashable, object] = {}  # what explorations keep between calls (hadd_relevant)
-
-    def adders(self) -> dict[int, list[int]]:
-        """Per fact id the actions (indices into ``acts``) that add it."""
-        if self._adders is None:
-            self._adders = {}
-            for k, effs in enumerate(self.effects):
-                for e in effs:
-                    self._adders.setdefault(e, []).append(k)
-        return self._adders
-
-    def kept(self, level: int) -> tuple[list[tuple[tuple[int, int], ...]], dict[int, list[int]]]:
-        """Per action the (fact, twin) preconditions kept at ``level``; per fact the actions waiting for it."""
-        hit = self._kept.get(level)
-        if hit is None:
-            kept = [tuple((f, t) for f, c, t in pre if c > level) for pre in self.pre]
-            waiting: dict[int, list[int]] = {}
-            for k, pre in enumerate(kept):
-                for f, _ in pre:
-                    waiting.setdefault(f, []).append(k)
-            hit = self._kept[level] = (kept, waiting)
-        return hit
-
-
 def ground_task(grounder: Grounder, drop: frozenset[str]) -> GroundTask:
-    """:func:`ground_all` as fact ids, kept with the problem's shared grounding answers."""
-    store = grounder.domain.facts.grounding
+    """The problem's ground actions as fact ids, kept with the problem's shared grounding answers."""
+    dom = grounder.domain
+    store = dom.facts.grounding
     key = ("task", grounder.signature, drop)
     hit = store.get(key)
     if not isinstance(hit, GroundTask):
-        hit = store[key] = GroundTask(grounder.domain.facts, ground_all(grounder, drop))
+        fills = [(i, instances(grounder, op)) for i, op in enumerate(dom.operators)]
+        hit = store[key] = GroundTask(dom.facts, dom.operators, fills, drop)
     return hit
 
 
@@ -166,7 +128,7 @@ def hadd_ids(
             for f, t in p:
                 if t >= 0 and t not in true_now:
                     settled.add(f)  # already false
-    n = len(task.acts)
+    n = task.n
     missing = [len(p) for p in kept]
     for k, p in over.items():
         missing[k] = len(p)
@@ -176,10 +138,9 @@ def hadd_ids(
             extra.setdefault(f, []).append(k)
     total = [0.0] * n
     fixed = task.fixed_cost
-    acts = task.acts
     for k in range(n):
         c = fixed[k]
-        total[k] = cost(acts[k].action) if c is None else c
+        total[k] = cost(task.action(k)) if c is None else c
     table: dict[int, float] = {}
     queue: list[tuple[float, int, int]] = []
     tick = 0

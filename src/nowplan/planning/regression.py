@@ -11,6 +11,7 @@ backward search.  Limits end the search with a typed :class:`PlanResult`.
 
 from __future__ import annotations
 
+import gc
 import heapq
 import math
 import itertools
@@ -28,12 +29,15 @@ from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.context import PlanningContext
+from nowplan.planning.ground_task import GroundTask
 from nowplan.planning.grounding import Grounder
+from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
 from nowplan.planning.hadd_relevant import RelevantHadd
-from nowplan.planning.heuristics import relax_unsupported
+from nowplan.planning.heuristics import ground_task, relax_unsupported
 from nowplan.planning.relaxed import LazyRelaxed, Supporter
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
-from nowplan.planning.subgoals import ActionFacts, NodeIndex, action_facts, regress
+from nowplan.planning.subgoals import NodeIndex, action_facts, regress
+from nowplan.planning.successors import Successors
 
 log = logging.getLogger(__name__)
 
@@ -126,9 +130,9 @@ def _log_fallback(domain: str, heuristic: str, why: str) -> None:
         )
 
 
-def static_drop(domain: Domain, belief: Any) -> frozenset[str]:
+def static_drop(domain: Domain, belief: Any, lists_facts: bool | None = None) -> frozenset[str]:
     """Static predicates checked at grounding and kept out of pre-images (when the belief lists facts)."""
-    if not isinstance(belief, ListsFacts):
+    if not (isinstance(belief, ListsFacts) if lists_facts is None else lists_facts):
         return frozenset()
     return frozenset(n for n in domain.static_predicates if domain.predicates[n].test is None)
 
@@ -182,8 +186,9 @@ class _Search:
         self.now = _clock(config)
         self.deadline = self.now() + config.time_limit
         self.table = domain.facts
-        self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values)
-        self.drop = static_drop(domain, belief)
+        lists = isinstance(belief, ListsFacts)
+        self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values, lists)
+        self.drop = static_drop(domain, belief, lists)
         self._holds: dict[Atom, bool] = {}
         self._fholds: dict[int, bool] = {}
         self._hv: dict[int, float] = {}
@@ -194,7 +199,7 @@ class _Search:
             (float(o.cost) for o in domain.operators if not callable(o.cost)), default=1.0
         )
         self.min_cost = max(self.min_cost, 0.0)
-        self.hadd: RelevantHadd | None = None  # ground h_add by fact id, explored from the facts asked for
+        self.hadd: RelevantHadd | KernelHadd | None = None  # ground h_add by fact id, explored from the facts asked for
         self.relaxed: LazyRelaxed | None = None
         # a domain's own estimate, fn(goal, belief, holds) -> cost, passed as context.extras["heuristic"]
         self.domain_h = context.extras.get("heuristic") if context is not None else None
@@ -204,10 +209,15 @@ class _Search:
             context.extras.get("forbidden_first", ()) if context is not None else ())
         self._no_relax = relax_unsupported(self.grounder, belief)
         self._can_relax = self._no_relax is None
+        # with a belief that lists its facts and boolean predicates without tests, truth is membership
+        self._true_ids: frozenset[int] | None = None
+        if self._can_relax:
+            self.true_ids()
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
-        self._ground_hadd: RelevantHadd | None = None
+        self._ground_hadd: RelevantHadd | KernelHadd | None = None
+        self._task: GroundTask | None = None
         self._ctx: tuple[frozenset[int], Goal] | None = None
-        self._templates: dict[int, tuple[list[Action], list[tuple[Action, ActionFacts, float]]]] = {}
+        self._successors = Successors(self.table, self.grounder, levels, self.drop, self.cost)
         for name in (config.heuristic, config.shortcut_heuristic or config.heuristic):
             if name not in (*_RELAXED, "count"):
                 from nowplan.errors import UsageError
@@ -230,7 +240,14 @@ class _Search:
             self.relaxed = r
         elif self._can_relax:
             if self._ground_hadd is None:
-                self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost)
+                task = ground_task(self.grounder, self.drop)
+                if kernel_hadd(task, self.levels.top):  # one compiled exploration of every action
+                    self._ground_hadd = KernelHadd(task, self.levels, self.true_ids())
+                else:
+                    self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost, self.true_ids())
+                self._task = task
+                self._successors.task = task
+                self.grounder.use_task(task)  # generator-free achievers read off the ground task
             self.hadd = self._ground_hadd
         else:
             _log_fallback(self.grounder.domain.name, name, str(self._no_relax))
@@ -266,8 +283,28 @@ class _Search:
     def fholds(self, f: int) -> bool:
         r = self._fholds.get(f)
         if r is None:
-            r = self._fholds[f] = self.holds(self.table.atoms[f])
+            true = self._true_ids
+            a = self.table.atoms[f]
+            if true is None or a.predicate not in self.domain.predicates:
+                r = self.holds(a)
+            else:  # boolean predicates without tests: a lookup in the belief's facts
+                r = f in true if a.value is not False else self.table.by_key.get((a.predicate, a.args, True)) not in true
+            self._fholds[f] = r
         return r
+
+    def true_ids(self) -> frozenset[int]:
+        """The ids of the facts the belief lists (it does: only asked where the relaxation can run)."""
+        if self._true_ids is None:
+            if self._can_relax:  # boolean predicates: each listed fact is true
+                get, id_of = self.table.by_key.get, self.table.id_of
+                keys = [(p, args, True) for p in self.domain.predicates for args in self.belief.facts(p)]
+                ids = list(map(get, keys))
+                if None in ids:
+                    ids = [id_of(*k) if f is None else f for f, k in zip(ids, keys, strict=True)]
+                self._true_ids = frozenset(ids)  # type: ignore[arg-type]
+            else:
+                self._true_ids = self.table.ids_of(self.belief.atoms())
+        return self._true_ids
 
     def satisfied(self, fs: frozenset[int]) -> bool:
         return all(self.fholds(f) for f in fs)
@@ -278,7 +315,16 @@ class _Search:
         if self.relaxed is not None:
             return self.relaxed.estimate(fs)
         if self.hadd is not None:
+            if isinstance(self.hadd, KernelHadd):
+                try:  # every fact valued, 0 where it holds (see hadd_kernel)
+                    return sum(map(self.hadd.values.__getitem__, fs))
+                except IndexError:
+                    pass  # a fact newer than the task: asked one by one
             hv = self._hv
+            try:
+                return sum(map(hv.__getitem__, fs))  # every fact valued (0 if it holds) in this call
+            except KeyError:
+                pass
             ask = [f for f in fs if f not in hv and not self.fholds(f)]
             if ask:
                 self.hadd.extend(ask)  # one exploration for the facts new to the closure
@@ -301,22 +347,6 @@ class _Search:
             c = act.cost(self.belief)
             self._costs[act.key] = c
         return c
-
-    def _successors(self, target: int, goal_of: Callable[[], Goal]) -> list[tuple[Action, ActionFacts, float]]:
-        """The achievers of fact ``target`` with their facts at their level and their cost.
-
-        Kept per achiever list (the grounder keeps one list per atom, or per atom and
-        what generators read of the goal); the lists are held, so their ids stay theirs.
-        """
-        acts = self.grounder.achievers(self.table.atoms[target], goal_of)
-        hit = self._templates.get(id(acts))
-        if hit is not None and hit[0] is acts:
-            return hit[1]
-        levels, drop, T = self.levels, self.drop, self.table
-        out = [(act, action_facts(T, act, levels.level(act), drop), self.cost(act)) for act in acts]
-        if self.grounder.kept:
-            self._templates[id(acts)] = (acts, out)
-        return out
 
     def run(
         self,
@@ -344,7 +374,9 @@ class _Search:
         parent: dict[Node, tuple[Node, Action] | None] = {start: None}
         closed: set[Node] = set()
         levels, drop, weight = self.levels, self.drop, self.config.weight
+        hvals = self.hadd.values.__getitem__ if isinstance(self.hadd, KernelHadd) and not callable(self.domain_h) else None
         exp = 0
+        regress_, forbidden, inf, push = regress, self.forbidden_first, math.inf, heapq.heappush
         while frontier:
             _, _, _, node = heapq.heappop(frontier)
             if node in closed:
@@ -353,8 +385,10 @@ class _Search:
             fs, focus = node
             if order_ids is not None:
                 # shift the focus down once the non-focused part already holds
-                while focus > 0 and all(self.fholds(f) for f in fs if f not in hidden[focus]):
-                    focus -= 1
+                if focus > 0:
+                    unmet = [f for f in fs if not self.fholds(f)]
+                    while focus > 0 and hidden[focus].issuperset(unmet):
+                        focus -= 1
             if self.satisfied(fs):
                 return PlanStatus.SOLVED, self._path(node, parent), ""
             exp += 1
@@ -378,25 +412,31 @@ class _Search:
                     if guard and any(guard.get(fluent[e], e) != e for e in info.all_effs):
                         continue
                     if not legacy:
-                        pre = regress(T, index, info)
+                        pre = regress_(T, index, info)
                     else:
                         g = preimage(goal_of(), act, levels.level(act), self.domain, drop)
                         pre = None if g is None else T.ids_of(g.atoms)
                     if pre is None:
                         continue
-                    if self.forbidden_first and act.key in self.forbidden_first and self.satisfied(pre):
+                    if forbidden and act.key in forbidden and self.satisfied(pre):
                         continue  # it would be the plan's first step: learnt not to be refinable from here
                     child = (pre, focus)
                     ng = gcost + cost
-                    if child in closed or ng >= best_g.get(child, math.inf):
+                    if child in closed or ng >= best_g.get(child, inf):
                         continue
                     best_g[child] = ng
                     parent[child] = (node, act)
                     self.generated += 1
-                    hh = self.h(pre)
-                    if hh == math.inf:
+                    if hvals is not None:
+                        try:  # the kernel's values: every fact valued, 0 where it holds
+                            hh = sum(map(hvals, pre))
+                        except IndexError:
+                            hh = self.h(pre)
+                    else:
+                        hh = self.h(pre)
+                    if hh == inf:
                         continue  # an atom of the pre-image is unreachable
-                    heapq.heappush(frontier, (ng + weight * hh, hh, next(counter), child))
+                    push(frontier, (ng + weight * hh, hh, next(counter), child))
         return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
 
     def _path(
@@ -460,6 +500,10 @@ class _GoalOf:
         return self.goal
 
 
+def _atom_order(a: Atom) -> tuple[Any, ...]:
+    return (a.predicate, a.args, a.value)
+
+
 def _clock(config: PlannerConfig) -> Callable[[], float]:
     if config.clock not in ("wall", "cpu"):
         from nowplan.errors import UsageError
@@ -478,7 +522,33 @@ def plan(
     context: PlanningContext | None = None,
     rng: random.Random | None = None,
 ) -> PlanResult:
-    """Find ``[(None, g0), (ω1, g1), …, (ωn, γ)]`` with ``belief ∈ g0`` at ``levels``."""
+    """Find ``[(None, g0), (ω1, g1), …, (ωn, γ)]`` with ``belief ∈ g0`` at ``levels``.
+
+    The cyclic garbage collector is paused during the call: a call allocates many
+    small acyclic objects (fact-id sets, tuples), and the collector's passes over
+    the process's heap that they trigger took ~17 % of HPN's planning time on
+    logistics-20; cycles made during the call are collected after it.
+    """
+    paused = gc.isenabled()
+    if paused:
+        gc.disable()
+    try:
+        return _plan(domain, objects, belief, goal, levels, config, context, rng)
+    finally:
+        if paused:
+            gc.enable()
+
+
+def _plan(
+    domain: Domain,
+    objects: Mapping[str, str | None],
+    belief: Any,
+    goal: Goal,
+    levels: LevelMap | None,
+    config: PlannerConfig | None,
+    context: PlanningContext | None,
+    rng: random.Random | None,
+) -> PlanResult:
     config = config or PlannerConfig()
     levels = levels or LevelMap(domain.top_level)
     rng = rng or random.Random(config.seed)
@@ -503,9 +573,9 @@ def plan(
         "",
     )
     method = "full"
-    unmet = [a for a in goal.atoms if not search.holds(a)]
+    unmet = [a for a in goal.atoms if not search.fholds(search.table.id(a))]
     if config.serialization and len(goal) > 1:
-        order = sorted(goal.atoms)
+        order = sorted(goal.atoms, key=_atom_order)  # the atoms' own order, compared in C
         rng.shuffle(order)
         search.use(config.shortcut_heuristic or config.heuristic)
         result = search.run(goal, config.shortcut_nodes, order=order)

@@ -25,9 +25,13 @@ asked once per pair of facts (the table keeps the answer).
 from __future__ import annotations
 
 from collections.abc import Hashable
+from typing import TYPE_CHECKING
 
 from nowplan.core.facts import FactTable
 from nowplan.core.operators import Action
+
+if TYPE_CHECKING:
+    from nowplan.planning.ground_task import GroundTask
 
 
 class ActionFacts:
@@ -36,8 +40,19 @@ class ActionFacts:
     __slots__ = ("all_effs", "effs", "eff_fl", "eff_keys", "self_clash", "pre")
 
     def __init__(self, table: FactTable, act: Action, level: int | None, drop: frozenset[str]) -> None:
+        self._set(table, tuple(table.id(e) for e in act.effects()),
+                  tuple(table.id(p) for p in act.preconditions(level) if p.predicate not in drop))
+
+    @classmethod
+    def of_ids(cls, table: FactTable, effects: tuple[int, ...], pre: tuple[int, ...]) -> ActionFacts:
+        """From the effects' and the kept preconditions' ids (a ground task's, in the operator's order)."""
+        info = cls.__new__(cls)
+        info._set(table, effects, pre)
+        return info
+
+    def _set(self, table: FactTable, effects: tuple[int, ...], pre: tuple[int, ...]) -> None:
         by_fluent: dict[int, int] = {}
-        self.all_effs = tuple(table.id(e) for e in act.effects())
+        self.all_effs = effects
         for f in self.all_effs:
             by_fluent[table.fluent[f]] = f  # a later effect on one fluent wins, as in a dict by key
         self.effs = tuple(by_fluent.values())
@@ -54,14 +69,23 @@ class ActionFacts:
                 keys.append((k, f))
         self.eff_keys = tuple(keys)
         self.self_clash = clash
-        self.pre = tuple(table.id(p) for p in act.preconditions(level) if p.predicate not in drop)
+        self.pre = pre
 
 
-def action_facts(table: FactTable, act: Action, level: int | None, drop: frozenset[str]) -> ActionFacts:
+def action_facts(
+    table: FactTable, act: Action, level: int | None, drop: frozenset[str], task: GroundTask | None = None
+) -> ActionFacts:
+    """``act``'s facts at ``level`` (kept on the action); read off ``task`` (built with ``drop``) when it holds ``act``."""
     key = (table, level, drop)
     info: ActionFacts | None = act.memo.get(key)
     if info is None:
-        info = act.memo[key] = ActionFacts(table, act, level, drop)
+        k = task.index.get(act.key) if task is not None and task.drop == drop else None
+        if k is not None and task is not None and task.operators[task.op[k]] is act.operator:
+            pre = tuple([f for f, c, _ in task.pre[k] if level is None or c > level])
+            info = ActionFacts.of_ids(table, task.effects[k], pre)
+        else:
+            info = ActionFacts(table, act, level, drop)
+        act.memo[key] = info
     return info
 
 
@@ -74,12 +98,8 @@ class NodeIndex:
         self.fs = fs
         fl = table.fluent
         gk = table.gkeys
-        self.by_fluent = {fl[f]: f for f in fs}
-        by_key: dict[Hashable, int] = {}
-        for f in fs:
-            for k in gk[f]:
-                by_key[k] = f
-        self.by_key = by_key
+        self.by_fluent = dict(zip(map(fl.__getitem__, fs), fs))
+        self.by_key: dict[Hashable, int] = {k: f for f in fs for k in gk[f]} if table.keyed else {}
 
 
 def regress(table: FactTable, node: NodeIndex, info: ActionFacts) -> frozenset[int] | None:
@@ -93,7 +113,7 @@ def regress(table: FactTable, node: NodeIndex, info: ActionFacts) -> frozenset[i
             if o != e and not table.entails(e, o):
                 return None
             removed.add(o)
-    conflicts = bool(table.keyed or table.plain)
+    conflicts = table.has_conflicts
     if conflicts and len(fs) > len(removed):
         if info.self_clash:
             return None
@@ -158,7 +178,4 @@ def regress(table: FactTable, node: NodeIndex, info: ActionFacts) -> frozenset[i
                 for b in news[i + 1 :]:
                     if table.plain_conflict(n, b):
                         return None
-    out = set(fs)
-    out.difference_update(removed)
-    out.update(new.values())
-    return frozenset(out)
+    return (fs.difference(removed) if removed else fs).union(new.values())
