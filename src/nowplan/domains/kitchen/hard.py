@@ -1,11 +1,12 @@
 """The hard problem distribution of ``nowplan reproduce 004`` (the default; ``--easy`` is :mod:`tasks`).
 
-Every hard problem has six objects — the green block (the target), three
-tall boxes (sugar, cracker, mustard: too tall for a closed drawer or the
-cabinet), a soup can and a spam tin — in a kitchen with both drawers and a
-**cabinet** (a box with a sliding lid on the left of the counter), and the
-counter between the cabinet and the stove is a 0.54 × 0.28 m strip, so
-set-aside places are few.  Per task (the goals are the paper's):
+Every hard problem has five objects — the green block (the target), two
+tall boxes (sugar, cracker: too tall for a closed drawer or the cabinet), a
+soup can (tall enough to hide the block, short enough for a drawer) and a
+spam tin — in a kitchen with both drawers and a **cabinet** (a box with a
+sliding lid on the left of the counter), and the counter between the cabinet
+and the stove is a 0.54 × 0.28 m strip, so set-aside places are few.  Per
+task (the goals are the paper's):
 
 * **Inspect** — goal: the block in the bottom drawer, bottom drawer closed.
   Prior: uniform over both drawers and the cabinet.  Truth: in the bottom
@@ -13,19 +14,20 @@ set-aside places are few.  Per task (the goals are the paper's):
   (the can's place is known): where the block's belief is densest the can
   has to be moved before the block can be seen.
 * **Stow** — goal: the block in the top drawer, top drawer closed.  Prior for
-  the block: uniform over the counter; the sugar box is in the top drawer
-  (prior uniform over it) and must come out before it closes; the block is
-  hidden behind the cracker box on the counter.
+  the block: uniform over the counter (where it is, at a random spot; the
+  cracker box stands at another and may hide it).  The sugar box and the
+  soup can are in the top drawer (priors uniform over it): the sugar box must
+  come out before the drawer closes, the can stays and takes room.
 * **Swap** — goal and prior as Inspect; the block is in the *top* drawer,
   hidden behind the soup can there, and the spam tin is in the bottom
   drawer (prior uniform over it), where the block must be put.
 * **Cook** — goal: the block cooked, stove off.  Prior: uniform over the
-  counter.  The three tall boxes stand on the counter, one of them always
-  hiding the block, the others at random spots (they may hide more of the
+  counter.  The two tall boxes stand on the counter, one of them always
+  hiding the block, the other at a random spot (it may hide more of the
   counter); the spam tin is in the cabinet (prior over it).
 
-Objects whose prior is not stated are known (on the counter or in the
-cabinet).  Problem ``k`` of a task is drawn from ``random.Random(f"hard/{task}/{seed}/{k}")``
+Objects whose place is not stated above are in the cabinet (the soup can
+and the spam tin) or on the counter (the tall boxes), at known places.  Problem ``k`` of a task is drawn from ``random.Random(f"hard/{task}/{seed}/{k}")``
 alone: positions are rejection-sampled (at most :data:`MAX_DRAWS` draws, then
 :class:`~nowplan.errors.ScenarioError`) until the hiding object hides all
 five of the points the world's detector looks at and no two boxes overlap.
@@ -47,7 +49,7 @@ from nowplan.domains.kitchen.world import KitchenWorld
 from nowplan.domains.registry import Episode
 from nowplan.errors import ScenarioError
 
-OBJECTS = ("green", "sugar", "cracker", "mustard", "soup", "spam")
+OBJECTS = ("green", "sugar", "cracker", "soup", "spam")
 MAX_DRAWS = 2000
 GAP = 0.01  # the least clearance between two boxes (m)
 SEEN_FROM_Y = 0.1  # as in tasks: the front of a tray is behind the drawer's front panel
@@ -141,13 +143,14 @@ def draw(task: str, index: int, seed: int = 0) -> tuple[dict[str, Placement], di
             prior["spam"] = [regs["bottom"]]
         goal = [atom("In", "green", "bottom"), atom("Open", "bottom", value=False)]
     elif task == "stow":
-        truth["sugar"] = _place_free("sugar", regs["top"], rng, truth)
-        prior["sugar"] = [regs["top"]]
-        truth["green"], truth["cracker"] = _place_hidden("green", "cracker", regs["counter"], rng, truth)
+        for o in ("sugar", "soup"):
+            truth[o] = _place_free(o, regs["top"], rng, truth)
+            prior[o] = [regs["top"]]
+        truth["green"] = _place_free("green", regs["counter"], rng, truth)
         prior["green"] = [regs["counter"]]
         goal = [atom("In", "green", "top"), atom("Open", "top", value=False)]
     elif task == "cook":
-        hider = rng.choice(["sugar", "cracker", "mustard"])
+        hider = rng.choice(["sugar", "cracker"])
         truth["green"], truth[hider] = _place_hidden("green", hider, regs["counter"], rng, truth)
         truth["spam"] = _place_free("spam", regs[S.CABINET], rng, truth)
         prior["green"] = [regs["counter"]]
@@ -155,9 +158,9 @@ def draw(task: str, index: int, seed: int = 0) -> tuple[dict[str, Placement], di
         goal = [atom("Cooked", "green"), atom("StoveOn", value=False)]
     else:
         raise ScenarioError(f"unknown kitchen task '{task}'; valid tasks: inspect, stow, swap, cook")
-    for o in OBJECTS:  # the rest: known, on the counter (the soup can, if free, in the cabinet)
+    for o in OBJECTS:  # the rest: known, tall boxes on the counter, the others in the cabinet
         if o not in truth:
-            reg = regs[S.CABINET] if o == "soup" else regs["counter"]
+            reg = regs["counter"] if o in S.TALL else regs[S.CABINET]
             truth[o] = _place_free(o, reg, rng, truth)
     for o, (frame, xy) in truth.items():
         if o not in prior:

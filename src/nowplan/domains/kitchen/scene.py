@@ -187,8 +187,9 @@ def _cabinet(p: Any, c: int, statics: list[int]) -> int:
     boxes = cabinet_boxes(0.0)
     for centre, half in boxes[:-1]:
         # before the pedestal, which stays last (the robot stands on it: collision checks skip it)
-        statics.insert(len(statics) - 1, _box(p, c, tuple(float(v) for v in half),  # type: ignore[arg-type]
-                                              tuple(float(v) for v in centre), colour))
+        h3 = (float(half[0]), float(half[1]), float(half[2]))
+        c3 = (float(centre[0]), float(centre[1]), float(centre[2]))
+        statics.insert(len(statics) - 1, _box(p, c, h3, c3, colour))
     centre, half = boxes[-1]
     col = p.createCollisionShape(p.GEOM_BOX, halfExtents=tuple(half), physicsClientId=c)
     vis = p.createVisualShape(p.GEOM_BOX, halfExtents=tuple(half), rgbaColor=(0.6, 0.5, 0.65, 1), physicsClientId=c)
