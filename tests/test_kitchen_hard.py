@@ -26,7 +26,7 @@ def test_the_generator_is_deterministic_for_a_seed(task: str) -> None:
         assert hard._clear(o, (frame, xy), truth), o
 
 
-@pytest.mark.parametrize("task", ["inspect", "swap", "cook", "stow"])
+@pytest.mark.parametrize("task", ["inspect", "swap", "cook"])
 def test_the_block_starts_hidden_from_the_worlds_camera(task: str) -> None:
     """The analytic test the generator uses agrees with the world's PyBullet rays: with its container
     open, the block is never seen until the object in front of it moves."""
@@ -44,7 +44,7 @@ def test_the_block_starts_hidden_from_the_worlds_camera(task: str) -> None:
 
 def test_easy_keeps_the_original_problems() -> None:
     ep = tasks.make("cook", 0)
-    assert ep.belief.objects == ("green", "cracker", "sugar") or set(ep.belief.objects) == {"green", "sugar", "cracker"}
+    assert set(ep.belief.objects) == {"green", "sugar", "cracker"}
     assert not ep.belief.cabinet and S.CABINET not in ep.world.drawers and ep.world.scene.lid == -1
     assert ep.belief.regions == S.regions()
     # the hard one is a different kitchen
@@ -109,3 +109,19 @@ def test_stored_runs_are_summarised_and_judged(tmp_path: Path) -> None:
     bad = [c.quantity for c in res.comparisons if c.verdict is Verdict.NOT_MET]
     assert "Swap: Both success %" in bad and any(q.startswith("Swap: success %") for q in bad)
     assert any(q.startswith("tasks where Neither") for q in bad)
+
+
+def test_the_cli_passes_easy_and_reads_stored_004_runs(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from nowplan.cli import main as cli_main
+
+    recs = [{**_record(t, 0, v, True, 2.0), "key": repro._key(True, repro.QUICK_CAP_S, t, 0, v)}
+            for t in repro.TASK_NAMES for v in repro.VARIANTS]
+    runs = tmp_path / "runs.jsonl"
+    runs.write_text("\n".join(json.dumps(r) for r in recs) + "\n", encoding="utf-8")
+    assert cli_main(["reproduce", "004", "--easy", "--trials", "1", "--stored", "--runs", str(runs), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert len(doc["rows"]) == 16 and "easy set" in doc["notes"]
+    # the same file read for the hard distribution holds none of its trials: nothing to tabulate
+    assert cli_main(["reproduce", "004", "--trials", "1", "--stored", "--runs", str(runs), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["rows"] == [] and "hard distribution" in doc["notes"]
