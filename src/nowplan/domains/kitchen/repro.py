@@ -1,14 +1,17 @@
 """``nowplan reproduce 004``: Table I's four variants on the four kitchen tasks.
 
 Each trial runs the online policy on one generated problem with a cap on
-total planning time.  The paper allowed 10 minutes per policy on its
-machine with IKFast and PDDLStream; our problems are smaller (two top-down
-grasps, three objects) and our planner is in-process, so the cap is scaled
-down to ``CAP_S`` seconds (``QUICK_CAP_S`` for ``--quick``) — a factor of
-1/20 (1/40 quick) of the paper's 600 s.  Success is the goal belief
-holding within the cap and 40 actions; time is the mean total planning
-time (regression, stream binding and motion planning) over successful
-trials.  ``--quick`` runs problems 0–2 of each task, the full run 0–24.
+total planning time (CPU seconds of the policy's process).  The paper
+allowed 10 minutes per policy on its machine with IKFast and PDDLStream;
+our planner is in-process, so the cap is scaled down to ``HARD_CAP_S``
+seconds for the hard distribution (:mod:`~nowplan.domains.kitchen.hard`, the
+default) and ``CAP_S`` (``QUICK_CAP_S`` quick) for the original problems
+(``--easy``, :mod:`~nowplan.domains.kitchen.tasks`).  Success is the goal
+belief holding within the cap and 40 actions; time is the mean total
+planning time (regression, stream binding, IK and motion planning) over
+successful trials.  The quick run has problems 0–2 of each task, ``--full``
+0–24, ``--trials N`` 0–(N−1); ``--runs FILE`` keeps every trial (JSON lines)
+so that a run can be resumed or done in pieces.
 """
 
 from __future__ import annotations
@@ -163,9 +166,9 @@ def run(options: ReproductionOptions) -> ReproductionResult:
                      for task in TASK_NAMES for v in VARIANTS})
     notes = (
         f"{which}; problems per task: {'/'.join(map(str, counts)) if counts else 0} (asked {n}); per-trial planning "
-        f"cap {cap:g} s, scaled from the paper's {PAPER_CAP_S:g} s by {cap / PAPER_CAP_S:.3g}; times are wall "
-        "seconds of planning (search, stream binding, motion planning) on this machine, not comparable in "
-        "absolute terms. Failure reasons: "
+        f"cap {cap:g} s of CPU time, scaled from the paper's {PAPER_CAP_S:g} s by {cap / PAPER_CAP_S:.3g}; 40 "
+        "actions at most; times are the policy process's CPU seconds of planning (search, stream binding, IK "
+        "and motion planning) on this machine, not comparable in absolute terms. Failure reasons: "
         + "; ".join(sorted({f"{t['task']}/{t['variant']}: {t['reason']}" for t in trials if t['outcome'] != 'reached'}))[:1500]
     )
     from nowplan.experiments.papers import PAPERS
