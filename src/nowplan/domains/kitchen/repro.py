@@ -44,6 +44,7 @@ PAPER_CAP_S = 600.0
 SEARCH_WEIGHT = 10.0
 MAX_NODES = 3000
 GENERATOR_VALUES = 4
+MAX_ACTIONS = 40  # a trial's action budget (the paper has none; ours keeps a lost policy from running on)
 
 
 def kitchen_strategy(switches: str, cap: float, max_actions: int = 40) -> Any:
@@ -65,14 +66,15 @@ def kitchen_strategy(switches: str, cap: float, max_actions: int = 40) -> Any:
     return replace(strategy, planner=planner)
 
 
-def trial(task: str, index: int, variant: str, cap: float, seed: int = 0, easy: bool = False) -> dict[str, Any]:
+def trial(task: str, index: int, variant: str, cap: float, seed: int = 0, easy: bool = False,
+          max_actions: int = MAX_ACTIONS) -> dict[str, Any]:
     """One policy on one problem: the hard distribution (:mod:`~nowplan.domains.kitchen.hard`), or
     with ``easy`` the original one (:mod:`~nowplan.domains.kitchen.tasks`)."""
     from nowplan.acting.online import OnlinePolicy
     from nowplan.domains.kitchen import hard, tasks
 
     ep = (tasks.make if easy else hard.make)(task, index, seed)
-    strategy = kitchen_strategy(VARIANTS[variant], cap)
+    strategy = kitchen_strategy(VARIANTS[variant], cap, max_actions)
     pol = OnlinePolicy(ep.problem, ep.world, ep.belief, strategy, seed=index, reuse_budget=min(3.0, cap / 5))
     try:
         m = pol.run()
