@@ -125,8 +125,10 @@ def test_seed_004_verdicts_check_the_order() -> None:
     rows = [{"task": "Cook", "algorithm": a, "success_pct": p}
             for a, p in (("neither", 100.0), ("constraints", 100.0), ("deferred", 66.7), ("both", 100.0))]
     cs = comparisons(rows, [dict(r) for r in PAPERS["004"].rows])
-    assert [c.verdict for c in cs] == [Verdict.MET, Verdict.NOT_MET]  # Both 100 %, Deferred below Neither
+    # Both >= 95 %; Deferred below Neither; Neither is not 20 points below Both on two tasks
+    assert [c.verdict for c in cs] == [Verdict.MET, Verdict.NOT_MET, Verdict.NOT_MET]
     assert cs[1].ours_text == "100 / 100 / 66.7 / 100" and cs[1].paper_text == "20 / 40 / 56 / 100"
+    assert cs[2].ours == 0.0 and cs[2].paper == 2.0  # the paper: Swap 28 and Cook 80 points
 
 
 def test_printed_tree_shows_a_same_goal_refinement_once() -> None:

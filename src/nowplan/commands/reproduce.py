@@ -33,19 +33,23 @@ def register(sub: Any) -> None:
                       help="the quick set (the default; kept so older commands still run)")
     size.add_argument("--full", action="store_true",
                       help="the paper's setting: many more runs (seed 002: 640 runs, about 17 min on one "
-                           "process at a54fd7a; 004 about an hour)")
+                           "process at a54fd7a; 004: 400 trials, hours on a shared 2-core machine: use "
+                           "--jobs and --runs to resume)")
+    p.add_argument("--easy", action="store_true",
+                   help="seed 004: the original, easy kitchen problems instead of the hard distribution")
     p.add_argument("--out", type=Path,
                    help="write the report, the verdict table (verdicts.md) and plots into this directory")
     p.add_argument("--jobs", type=int, help="worker processes (default 2)")
     p.add_argument("--sizes", type=_sizes,
                    help="seed 002: package counts, e.g. 3-10 or 3,5,7 (default 3,5; --full 3-10); with --sizes "
                         "or --trials each run has the full setting's 600 CPU-s limit (quick set: 120)")
-    p.add_argument("--trials", type=int, help="seed 002: trials per regime and size (default 2; --full 10)")
+    p.add_argument("--trials", type=int, help="seed 002: trials per regime and size (default 2; --full 10); "
+                                              "seed 004: problems per task (default 3; --full 25)")
     p.add_argument("--runs", type=Path, metavar="FILE",
-                   help="seed 002: append every finished run to this JSON-lines file and skip the runs "
+                   help="seeds 002 and 004: append every finished run to this JSON-lines file and skip the runs "
                         "it already holds (resume an interrupted run, or summarise stored runs)")
     p.add_argument("--stored", action="store_true",
-                   help="seed 002: run nothing; summarise the runs already in --runs FILE that the "
+                   help="seeds 002 and 004: run nothing; summarise the runs already in --runs FILE that the "
                         "plan (--full/--sizes/--trials) names (points may then have fewer trials)")
     p.add_argument("--json", action="store_true",
                    help='print one JSON document {"seed", "rows", "paper", "notes", …}')
@@ -87,7 +91,7 @@ def main(args: argparse.Namespace) -> int:
 
     result = reproduce(args.seed, ReproductionOptions(
         quick=not args.full, out_dir=args.out, jobs=args.jobs, sizes=args.sizes, trials=args.trials,
-        runs_file=args.runs, stored_only=args.stored))
+        runs_file=args.runs, stored_only=args.stored, easy=args.easy))
     done = result.status is ReproStatus.DONE
     if args.json:
         print(json.dumps(result.to_json(), indent=2))

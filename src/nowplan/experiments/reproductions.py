@@ -61,12 +61,14 @@ class ReproductionOptions:
     quick: bool = False  # a small version: a few minutes on 2 cores (the CLI's default; --full clears it)
     out_dir: Path | None = None  # write a report (ours beside the paper's) here
     jobs: int | None = None
-    # seed 002 (others ignore these): package counts and trials per point, and a JSON-lines file
+    # seeds 002 and 004 (others ignore these): package counts and trials per point (004: problems per
+    # task), and a JSON-lines file
     # that keeps every finished run and lets a later call skip the runs it already holds
     sizes: tuple[int, ...] | None = None
     trials: int | None = None
     runs_file: Path | None = None
     stored_only: bool = False  # seed 002: summarise the runs in runs_file, run nothing
+    easy: bool = False  # seed 004: the original (easy) kitchen problems instead of the hard distribution
 
 
 ReproduceFn = Callable[[ReproductionOptions], ReproductionResult]

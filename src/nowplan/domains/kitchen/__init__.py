@@ -1,6 +1,7 @@
 """The PyBullet kitchen of seed 004: drawers, occlusion, particle beliefs, four tasks.
 
-Registered as the ``kitchen`` domain (scenarios inspect/stow/swap/cook,
+Registered as the ``kitchen`` domain (scenarios inspect/stow/swap/cook and
+their hard versions inspect-hard/…/cook-hard,
 renderer, ``nowplan demo kitchen``) and as the reproduction of seed 004
 (``nowplan reproduce 004``).  Needs the ``kitchen`` extra (pybullet); the
 package imports without it and says so when used.
@@ -17,6 +18,15 @@ from nowplan.experiments.reproductions import Reproduction
 def _scenario(task: str) -> Any:
     def make(seed: int) -> Any:
         from nowplan.domains.kitchen.tasks import make as mk
+
+        return mk(task, seed % 25, seed // 25)
+
+    return make
+
+
+def _hard(task: str) -> Any:
+    def make(seed: int) -> Any:
+        from nowplan.domains.kitchen.hard import make as mk
 
         return mk(task, seed % 25, seed // 25)
 
@@ -45,7 +55,8 @@ SPEC = register(
     DomainSpec(
         name="kitchen",
         description="PyBullet kitchen with drawers and occlusion, particle beliefs (seed 004)",
-        scenarios={t: _scenario(t) for t in ("inspect", "stow", "swap", "cook")},
+        scenarios={**{t: _scenario(t) for t in ("inspect", "stow", "swap", "cook")},
+                   **{f"{t}-hard": _hard(t) for t in ("inspect", "stow", "swap", "cook")}},
         renderer=_render,
         default_scenario="inspect",
         demo=_demo,

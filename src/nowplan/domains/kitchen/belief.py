@@ -103,7 +103,7 @@ def segments_blocked(a: np.ndarray, ends: np.ndarray, centres: np.ndarray, half:
 
 class KitchenBelief:
     def __init__(self, priors: dict[str, list[Region]], seed: int, sensor: SensorModel = SensorModel(),
-                 n: int = DEFAULT_PARTICLES, scene: S.Scene | None = None) -> None:
+                 n: int = DEFAULT_PARTICLES, scene: S.Scene | None = None, cabinet: bool = False) -> None:
         self.rng = np.random.default_rng(seed)
         self.prng = random.Random(seed)
         self.sensor = sensor
@@ -113,11 +113,15 @@ class KitchenBelief:
             lifted = [Region(r.frame, r.lo, r.hi, S.SIZES[o][2]) for r in regs]
             self.particles[o] = PoseParticles.uniform(lifted, n, self.rng)
         self.conf = Conf(S.HOME)
-        self.drawers = {d: 0.0 for d in S.DRAWERS}
+        self.cabinet = cabinet
+        self.containers = S.containers(cabinet)  # the frames that open and close
+        self.frames = S.frames_of(cabinet)
+        self.regions = S.regions(cabinet)
+        self.drawers = {d: 0.0 for d in self.containers}  # drawers' travel and the cabinet lid's (m)
         self.held: str | None = None
         self.stove_on = False
         self.cooked: set[str] = set()
-        self.scene = scene or S.build(self.objects)
+        self.scene = scene or S.build(self.objects, cabinet)
         self.streams: Any = None  # set by the model (nowplan.domains.kitchen.model)
         self.planning_heuristic: Any = None  # likewise (nowplan.domains.kitchen.heuristic.estimate)
         self.version = 0
@@ -126,14 +130,14 @@ class KitchenBelief:
 
     # -- geometry ------------------------------------------------------------------
     def origins(self) -> dict[str, np.ndarray]:
-        out = {f: S.frame_origin(f, self.drawers) for f in ("counter", "stove", *S.DRAWERS)}
+        out = {f: S.frame_origin(f, self.drawers) for f in self.frames}
         out["hand"] = np.zeros(3)
         return out
 
     def frame_visible(self, frame: str) -> bool:
         if frame == "hand":
             return False
-        if frame in S.DRAWERS and self.drawers[frame] < 0.2:
+        if frame in self.containers and self.drawers[frame] < 0.2:
             return False
         return not (frame == "bottom" and self.drawers["top"] > 0.05)
 
@@ -163,6 +167,10 @@ class KitchenBelief:
         halves = [np.array([0.22, 0.01, 0.12])] * len(S.DRAWERS)
         centres.append(np.array([0.0, 0.725, S.COUNTER_TOP - 0.02]))
         halves.append(np.array([0.25, 0.275, 0.02]))
+        if self.cabinet:
+            for c, h in S.cabinet_boxes(state.get(S.CABINET, 0.0)):
+                centres.append(c)
+                halves.append(h)
         ends = np.atleast_2d(world) + self._top_point(target, np.zeros(3))
         hidden = np.zeros(len(ends), dtype=bool)
         for c, h in zip(centres, halves, strict=True):
@@ -247,7 +255,7 @@ class KitchenBelief:
         state = drawers if drawers is not None else self.drawers
         for d, q in state.items():
             S.set_drawer(self.scene, d, q)
-        origins = {f: S.frame_origin(f, state) for f in ("counter", "stove", *S.DRAWERS)} | {"hand": np.zeros(3)}
+        origins = {f: S.frame_origin(f, state) for f in self.frames} | {"hand": np.zeros(3)}
         for o in self.objects:
             if o in skip or o == self.held:
                 S.set_object(self.scene, o, np.array([0.0, -2.0, -1.0 - self.objects.index(o)]))

@@ -38,7 +38,7 @@ def _frame_of(belief: Any, o: str) -> str:
 
 def _open_cost(belief: Any, f: str) -> float:
     """Pulling a closed drawer (0 for the counter, the stove or an open drawer)."""
-    return MOVE_ACT if f in S.DRAWERS and belief.drawers[f] < 0.2 else 0.0
+    return MOVE_ACT if f in belief.drawers and belief.drawers[f] < 0.2 else 0.0
 
 
 def _pick_cost(belief: Any, o: str) -> float:
@@ -53,7 +53,7 @@ def atom_estimate(a: Atom, belief: Any) -> float:
     if name == "AtConf":
         return 1.0
     if name == "Open":
-        if args[0] not in S.DRAWERS:
+        if args[0] not in belief.drawers:
             return 0.0
         return MOVE_ACT if a.value is True else MOVE_ACT + 2 * MOVE_ACT * _tall_inside(belief, args[0])
     if name in ("HandEmpty", "StoveOn"):
@@ -78,13 +78,13 @@ def atom_estimate(a: Atom, belief: Any) -> float:
 
 def _needs_open(a: Atom, belief: Any) -> str | None:
     """The drawer an unmet atom will have to open (to put something in or take it out)."""
-    if a.predicate == "In" and a.value is True and a.args[1] in S.DRAWERS:
+    if a.predicate == "In" and a.value is True and a.args[1] in belief.drawers:
         return str(a.args[1])
     if a.predicate == "Closable" and a.value is True and a.args[0] in S.DRAWERS:
         return str(a.args[0])
     if a.predicate in ("Holding", "Cooked") and a.value is True and belief.held != a.args[0]:
         f = _frame_of(belief, str(a.args[0]))
-        return f if f in S.DRAWERS else None
+        return f if f in belief.drawers else None
     return None
 
 
@@ -106,7 +106,7 @@ def estimate(goal: Goal, belief: Any, holds: Callable[[Atom], bool]) -> float:
         closed = next((a for a in goal.atoms if a.predicate == "Open" and a.args == (d,) and a.value is False), None)
         if closed is not None and holds(closed):
             total += atom_estimate(closed, belief)
-        if any(a.predicate == "Open" and a.value is True and a.args[0] in S.DRAWERS and a.args[0] != d
+        if d in S.DRAWERS and any(a.predicate == "Open" and a.value is True and a.args[0] in S.DRAWERS and a.args[0] != d
                for a in goal.atoms):
             total += 2 * MOVE_ACT + (2 * MOVE_ACT if held else 0.0)
     return total

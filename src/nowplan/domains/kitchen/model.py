@@ -42,13 +42,18 @@ OVERLAP_MASS = 0.5  # belief mass of another object at a placement that makes it
 MOTION_ATTEMPTS = 3  # RRT-Connect runs (fresh random samples) before a motion counts as failed
 
 
+def _opened(container: str) -> float:
+    """A container's joint when open: a drawer's travel, or the cabinet lid's slide."""
+    return S.CABINET_OPEN if container == S.CABINET else S.DRAWER_OPEN
+
+
 def _tests() -> dict[str, Predicate]:
     def at_conf(b: KitchenBelief, args: Any, v: Any) -> bool:
         return bool(np.max(np.abs(np.array(b.conf.q) - np.array(v.q))) < 1e-3)
 
     def is_open(b: KitchenBelief, args: Any, v: Any) -> bool:
         f = args[0]
-        state = (b.drawers[f] > 0.2) if f in S.DRAWERS else True
+        state = (b.drawers[f] > 0.2) if f in b.drawers else True
         return bool(state == v)
 
     def in_frame(b: KitchenBelief, args: Any, v: Any) -> bool:
@@ -58,7 +63,7 @@ def _tests() -> dict[str, Predicate]:
         return b.localized_at(args[0], v)
 
     def closable(b: KitchenBelief, args: Any, v: Any) -> bool:
-        ok = all(b.particles[o].frame_mass(args[0]) < 0.05 for o in S.TALL if o in b.particles)
+        ok = args[0] == S.CABINET or all(b.particles[o].frame_mass(args[0]) < 0.05 for o in S.TALL if o in b.particles)
         return bool(ok == v)
 
     return {
@@ -97,6 +102,9 @@ class KitchenModel:
         ])
         belief.streams = self.streams
         belief.planning_heuristic = estimate
+        # detect's BOccluded test, expanded: one NotBlocks precondition per other object (J, K, J2, …)
+        extra = [Var(f"j{i}") for i in range(2, len(belief.objects) - 1)]
+        self.others: tuple[Var, ...] = (J, K, *extra)
         self.domain = self._domain()
 
     # -- streams ------------------------------------------------------------------
@@ -108,7 +116,7 @@ class KitchenModel:
         start, drawers, held, placed = self.predicted(earlier)
         belief.sync_scene(skip=(held,) if held else (), drawers=drawers)
         sc = belief.scene
-        origins = {f: S.frame_origin(f, drawers) for f in ("counter", "stove", *S.DRAWERS)}
+        origins = {f: S.frame_origin(f, drawers) for f in belief.frames}
         for o, p in placed.items():
             if o != held:
                 S.set_object(sc, o, origins[p.frame] + p.rel())
@@ -136,7 +144,7 @@ class KitchenModel:
             if a.name == "move":
                 conf = args[0]
             elif a.name in ("pull", "push"):
-                drawers[str(args[0])] = S.DRAWER_OPEN if a.name == "pull" else 0.0
+                drawers[str(args[0])] = _opened(str(args[0])) if a.name == "pull" else 0.0
                 conf = Conf(S.HOME)  # the arm retracts after moving the handle
             elif a.name in ("pick", "pick_tall"):
                 held = str(args[0])
@@ -187,7 +195,7 @@ class KitchenModel:
 
     def _hidden(self, o: str, p: Pose) -> bool:
         """Is ``o`` at ``p`` hidden from the camera by the kitchen itself (its drawer open, the other closed)?"""
-        state = {d: (S.DRAWER_OPEN if d == p.frame else 0.0) for d in S.DRAWERS}
+        state = self._reaching_into(p.frame)
         return bool(self.b.statically_hidden(o, (S.frame_origin(p.frame, state) + p.rel())[None, :], state)[0])
 
     def ik(self, target: np.ndarray, ignore: tuple[str, ...] = (), frame: str | None = None,
@@ -195,8 +203,8 @@ class KitchenModel:
         """A configuration reaching ``target`` with ``grasp`` (cached per belief version); reaching into
         drawer ``frame``, the scene has that drawer open and the other closed (the action needs it so);
         ``drawers`` sets the drawers' state outright."""
-        if drawers is None and frame in S.DRAWERS:
-            drawers = {d: (S.DRAWER_OPEN if d == frame else 0.0) for d in S.DRAWERS}
+        if drawers is None and frame in self.b.containers:
+            drawers = self._reaching_into(frame)
         state = tuple((drawers or self.b.drawers).values())
         key = (tuple(np.round(target, 3)), ignore, state, grasp, self.b.version)
         if key not in self._ik:
@@ -205,6 +213,10 @@ class KitchenModel:
             q = inverse_kinematics(self.b.scene, target, self.b.prng, orientation=GRASPS[grasp])
             self._ik[key] = None if q is None else Conf(q)
         return self._ik[key]
+
+    def _reaching_into(self, frame: str) -> dict[str, float]:
+        """The containers' state for acting in ``frame``: it open, the others closed."""
+        return {d: (_opened(d) if d == frame else 0.0) for d in self.b.containers}
 
     def _reach(self, target: np.ndarray, ignore: tuple[str, ...], frame: str) -> tuple[Conf | None, str]:
         """The first grasp with an IK solution at ``target``, and that solution."""
@@ -223,15 +235,15 @@ class KitchenModel:
     def g_obs(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         o = b[O]
         others = [x for x in bel.objects if x != o]
-        others += ["none"] * (2 - len(others))
+        others += ["none"] * (len(self.others) - len(others))
         if P in b:
             poses = [b[P]] if isinstance(b[P], Pose) and b[P].frame != "hand" else []
         else:
             poses = self.candidates(o, b.get(F), 4)
         for p in poses:
-            if p.frame in S.DRAWERS and self._hidden(o, p):  # looking into a drawer needs it open
+            if p.frame in bel.containers and self._hidden(o, p):  # looking into a drawer needs it open
                 continue
-            yield {P: p, F: p.frame, J: others[0], K: others[1]}
+            yield {P: p, F: p.frame, **dict(zip(self.others, others, strict=True))}
 
     def g_pick(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         """Grasp poses and IK for picking ``o``; with ``o`` unbound (``Closable(f)``), each object in ``f``."""
@@ -244,7 +256,7 @@ class KitchenModel:
         for o in objs:
             seen = set()
             poses = [] if bel.held == o else [bel.mode_pose(o)]
-            if (bel.held == o or poses[0].frame in S.DRAWERS) and b.get(F, "counter") == "counter":
+            if (bel.held == o or poses[0].frame in bel.containers) and b.get(F, "counter") == "counter":
                 # o may be picked where it will have been set down (to switch drawers, say)
                 poses += self._placements(o, "counter")[:2]
             if bel.held != o:
@@ -282,7 +294,9 @@ class KitchenModel:
     def _placements(self, o: str, frame: str, n: int = 6, gone: tuple[str, ...] = ()) -> list[Pose]:
         """Placements of ``o`` in ``frame`` from a pool of ``n × level`` draws, free of the objects
         believed there (except those ``gone`` by then)."""
-        reg = S.regions()[frame]
+        reg = self.b.regions[frame]
+        if frame == S.CABINET and o in S.TALL:
+            return []  # a tall box does not fit under the cabinet's lid
 
         def draw() -> Pose:
             x = self.b.prng.uniform(reg.lo[0] + 0.03, reg.hi[0] - 0.03)
@@ -350,20 +364,30 @@ class KitchenModel:
             yield dict(vals)
 
     def _handle(self, d: str, state: float) -> Conf | None:
-        """A configuration at the drawer's handle (a few approach points are tried)."""
+        """A configuration at the drawer's handle (a few approach points are tried), or at the
+        cabinet lid's edge."""
+        if d == S.CABINET:
+            for dz in (0.0, 0.04, -0.03):
+                q = self.ik(S.cabinet_handle(state) + np.array([0.0, 0.0, dz]),
+                            drawers={e: (state if e == d else 0.0) for e in self.b.containers})
+                if q is not None:
+                    return q
+            return None
         for dy, dz in ((0.1, 0.22), (0.15, 0.2), (0.0, 0.2), (-0.05, 0.25), (0.05, 0.3), (-0.1, 0.3)):
             q = self.ik(np.array([0.0, S.FRONT_Y - state - dy, S.DRAWER_FLOOR[d] + dz]),
-                        drawers={e: (state if e == d else 0.0) for e in S.DRAWERS})
+                        drawers={e: (state if e == d else 0.0) for e in self.b.containers})
             if q is not None:
                 return q
         return None
 
     def g_handle(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
-        if b.get(D) not in S.DRAWERS:
+        """The handle's configuration; ``E`` is the drawer that must be closed first (the stacked
+        drawers open one at a time; the cabinet names itself: nothing else has to be closed)."""
+        if b.get(D) not in bel.containers:
             return
         q = self._handle(b[D], 0.0)
         if q is not None:
-            yield {Q: q, E: "top" if b[D] == "bottom" else "bottom"}
+            yield {Q: q, E: b[D] if b[D] == S.CABINET else "top" if b[D] == "bottom" else "bottom"}
 
     def g_button(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         q = self.ik(S.BUTTON + np.array([0.0, 0.0, 0.03]))
@@ -390,11 +414,11 @@ class KitchenModel:
         ops = (
             Operator("move", (Q, T), (), (atom("AtConf", value=Q),), 1.0,
                      generators=(Generator("motion", (T,), self.g_move),)),
-            Operator("detect", (O, P, F, J, K),
-                     (pre(atom("Open", F)), pre(atom("NotBlocks", J, O, P)), pre(atom("NotBlocks", K, O, P)),
+            Operator("detect", (O, P, F, *self.others),
+                     (pre(atom("Open", F)), *(pre(atom("NotBlocks", j, O, P)) for j in self.others),
                       pre(atom("HandEmpty"))),
                      (atom("AtPose", O, value=P), atom("In", O, F)), self.detect_cost,
-                     generators=(Generator("sample-obs", (P, F, J, K), self.g_obs),)),
+                     generators=(Generator("sample-obs", (P, F, *self.others), self.g_obs),)),
             Operator("pick", (O, P, F, G, Q),
                      (pre(atom("AtPose", O, value=P)), pre(atom("Open", F)), pre(atom("HandEmpty")), pre(conf)),
                      (atom("Holding", O), atom("HandEmpty", value=False), atom("In", O, F, value=False)),
@@ -440,8 +464,8 @@ class KitchenModel:
         return Domain("kitchen", _tests(), ops, types=types, conflicts=(*CONFLICTS, Occludes(self.b)))
 
     def g_button_or_handle(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
-        if b.get(D) not in S.DRAWERS:
+        if b.get(D) not in bel.containers:
             return
-        q = self._handle(b[D], S.DRAWER_OPEN)
+        q = self._handle(b[D], _opened(b[D]))
         if q is not None:
             yield {Q: q}

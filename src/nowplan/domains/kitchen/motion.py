@@ -36,7 +36,8 @@ def limits(sc: Scene) -> tuple[np.ndarray, np.ndarray]:
 def in_collision(sc: Scene, q: Conf, ignore: Sequence[int] = ()) -> bool:
     set_conf(sc, q)
     p = sc.p
-    for body in (*sc.statics[:-1], sc.drawers, *sc.objects.values()):  # not the pedestal it stands on
+    lid = (sc.lid,) if sc.lid >= 0 else ()
+    for body in (*sc.statics[:-1], sc.drawers, *lid, *sc.objects.values()):  # not the pedestal it stands on
         if body in ignore:
             continue
         if p.getClosestPoints(sc.robot, body, 0.0, physicsClientId=sc.client):

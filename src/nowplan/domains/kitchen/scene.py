@@ -2,14 +2,20 @@
 
 A counter with two stacked drawers on prismatic joints (the tall sugar box
 does not fit under the counter top when the top drawer closes), a stove
-plate with a button, three boxes (green block, sugar box, cracker box), a
-fixed camera, and the Franka Panda from ``pybullet_data`` on a pedestal that
-slides along a rail in front of the counter.  The same builder makes the
-true world and the agent's model scene (for collision checks and IK).
+plate with a button, boxes (green block, sugar box, cracker box; the hard
+problems add a mustard bottle, a soup can and a spam tin), a fixed camera,
+and the Franka Panda from ``pybullet_data`` on a pedestal that slides along
+a rail in front of the counter.  The hard problems add a **cabinet**: a box
+on the left of the counter whose lid slides to the left to open it (a sliding
+lid rather than the paper's hinged door, so that the top-down grasps reach
+in).  The same builder makes the true world and the agent's model scene
+(for collision checks and IK).
 
 Frames: ``counter``, ``stove``, ``top`` and ``bottom`` (drawer trays, whose
-origins move with the drawer joint) and ``hand``.  Positions of movable
-objects are their box centres relative to a frame's origin.
+origins move with the drawer joint), ``cabinet`` (fixed) and ``hand``.
+Positions of movable objects are their box centres relative to a frame's
+origin.  "Containers" are the frames that open and close: the drawers and,
+when built, the cabinet; their states (m of travel) are kept in one dict.
 """
 
 from __future__ import annotations
@@ -60,6 +66,12 @@ COUNTER_TOP = 0.60
 FRONT_Y = 0.45  # the counter's front face
 DRAWER_OPEN = 0.27  # how far an open drawer slides out (m)
 DRAWERS = ("top", "bottom")
+CABINET = "cabinet"
+CABINET_CENTRE = np.array([-0.44, 0.66, COUNTER_TOP])  # the cabinet frame's origin (its floor's centre)
+CABINET_HALF = (0.12, 0.15)  # interior half extents (x, y)
+CABINET_WALL = 0.10  # wall height above the counter top
+CABINET_OPEN = 0.26  # how far the open lid has slid to the left (m)
+HARD_COUNTER = ((-0.26, 0.50), (0.28, 0.78))  # the counter left free by the cabinet and the stove
 DRAWER_FLOOR = {"top": 0.38, "bottom": 0.14}
 BASE_Z = 0.45
 RAIL = (-0.45, 0.45)  # the pedestal's x range
@@ -74,9 +86,22 @@ SIZES = {
     "green": (0.025, 0.025, 0.025),
     "sugar": (0.04, 0.025, 0.095),
     "cracker": (0.07, 0.025, 0.105),
+    "mustard": (0.035, 0.025, 0.095),
+    "soup": (0.035, 0.035, 0.07),
+    "spam": (0.045, 0.03, 0.035),
 }
-COLOURS = {"green": (0.1, 0.8, 0.1, 1), "sugar": (0.9, 0.9, 0.2, 1), "cracker": (0.8, 0.2, 0.1, 1)}
-TALL = ("sugar", "cracker")
+COLOURS = {"green": (0.1, 0.8, 0.1, 1), "sugar": (0.9, 0.9, 0.2, 1), "cracker": (0.8, 0.2, 0.1, 1),
+           "mustard": (0.95, 0.75, 0.1, 1), "soup": (0.7, 0.1, 0.1, 1), "spam": (0.2, 0.3, 0.8, 1)}
+TALL = ("sugar", "cracker", "mustard")  # too tall for a closed drawer (and for the cabinet)
+
+
+def containers(cabinet: bool) -> tuple[str, ...]:
+    return (*DRAWERS, CABINET) if cabinet else DRAWERS
+
+
+def frames_of(cabinet: bool) -> tuple[str, ...]:
+    """The frames objects rest in (the hand aside)."""
+    return ("counter", "stove", *containers(cabinet))
 
 
 def frame_origin(frame: str, drawers: dict[str, float]) -> np.ndarray:
@@ -87,17 +112,47 @@ def frame_origin(frame: str, drawers: dict[str, float]) -> np.ndarray:
         return np.array([0.38, 0.62, COUNTER_TOP + 0.01])
     if frame in DRAWERS:
         return np.array([0.0, FRONT_Y - drawers[frame], DRAWER_FLOOR[frame]])
+    if frame == CABINET:
+        return CABINET_CENTRE.copy()
     raise KeyError(frame)
 
 
-def regions() -> dict[str, Region]:
-    """Where objects may rest in each frame (frame coordinates; z added per object)."""
-    return {
+def regions(cabinet: bool = False) -> dict[str, Region]:
+    """Where objects may rest in each frame (frame coordinates; z added per object).  With the
+    cabinet the counter is the strip between the cabinet and the stove (the hard problems)."""
+    out = {
         "counter": Region("counter", (-0.45, 0.55), (0.15, 0.78)),
         "stove": Region("stove", (-0.04, -0.04), (0.04, 0.04)),
         "top": Region("top", (-0.15, 0.04), (0.15, 0.21)),
         "bottom": Region("bottom", (-0.15, 0.04), (0.15, 0.21)),
     }
+    if cabinet:
+        out["counter"] = Region("counter", *HARD_COUNTER)
+        hx, hy = CABINET_HALF
+        out[CABINET] = Region(CABINET, (-hx + 0.01, -hy + 0.01), (hx - 0.01, hy - 0.01))
+    return out
+
+
+def cabinet_boxes(state: float) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The cabinet's walls and lid as (centre, half extents) in the world, the lid slid ``state`` m left."""
+    cx, cy, z0 = CABINET_CENTRE
+    hx, hy = CABINET_HALF
+    h, t = CABINET_WALL / 2, 0.01
+    walls = [
+        (np.array([cx, cy - hy - t, z0 + h]), np.array([hx + 2 * t, t, h])),  # front
+        (np.array([cx, cy + hy + t, z0 + h]), np.array([hx + 2 * t, t, h])),  # back
+        (np.array([cx - hx - t, cy, z0 + h]), np.array([t, hy, h])),  # left
+        (np.array([cx + hx + t, cy, z0 + h]), np.array([t, hy, h])),  # right
+    ]
+    lid = (np.array([cx - state, cy, z0 + CABINET_WALL + 0.006]), np.array([hx + 2 * t, hy + 2 * t, 0.005]))
+    return [*walls, lid]
+
+
+def cabinet_handle(state: float) -> np.ndarray:
+    """Where the gripper takes the lid: above its right edge."""
+    cx, cy, z0 = CABINET_CENTRE
+    out: np.ndarray = np.array([cx - state + CABINET_HALF[0] - 0.02, cy - 0.05, z0 + CABINET_WALL + 0.08])
+    return out
 
 
 BUTTON = np.array([0.38, 0.50, COUNTER_TOP + 0.015])
@@ -112,6 +167,7 @@ class Scene:
     drawers: int  # one multibody, link 0 = top tray, link 1 = bottom tray
     statics: tuple[int, ...]
     objects: dict[str, int]
+    lid: int = -1  # the cabinet's lid (a multibody whose link 0 slides along -x), -1 without a cabinet
 
     @property
     def p(self) -> Any:
@@ -125,7 +181,27 @@ def _box(p: Any, c: int, half: tuple[float, float, float], pos: tuple[float, flo
     return int(p.createMultiBody(mass, col, vis, pos, physicsClientId=c))
 
 
-def build(objects: tuple[str, ...] = ("green", "sugar", "cracker")) -> Scene:
+def _cabinet(p: Any, c: int, statics: list[int]) -> int:
+    """The cabinet's walls (static boxes) and its lid on a prismatic joint; returns the lid's body."""
+    colour = (0.45, 0.35, 0.5, 1)
+    boxes = cabinet_boxes(0.0)
+    for centre, half in boxes[:-1]:
+        # before the pedestal, which stays last (the robot stands on it: collision checks skip it)
+        h3 = (float(half[0]), float(half[1]), float(half[2]))
+        c3 = (float(centre[0]), float(centre[1]), float(centre[2]))
+        statics.insert(len(statics) - 1, _box(p, c, h3, c3, colour))
+    centre, half = boxes[-1]
+    col = p.createCollisionShape(p.GEOM_BOX, halfExtents=tuple(half), physicsClientId=c)
+    vis = p.createVisualShape(p.GEOM_BOX, halfExtents=tuple(half), rgbaColor=(0.6, 0.5, 0.65, 1), physicsClientId=c)
+    anchor = p.createCollisionShape(p.GEOM_SPHERE, radius=0.001, physicsClientId=c)
+    return int(p.createMultiBody(
+        0, anchor, -1, (0, 0, 0), linkMasses=[0.0], linkCollisionShapeIndices=[col], linkVisualShapeIndices=[vis],
+        linkPositions=[tuple(float(v) for v in centre)], linkOrientations=[(0, 0, 0, 1)],
+        linkInertialFramePositions=[(0, 0, 0)], linkInertialFrameOrientations=[(0, 0, 0, 1)],
+        linkParentIndices=[0], linkJointTypes=[p.JOINT_PRISMATIC], linkJointAxis=[(-1, 0, 0)], physicsClientId=c))
+
+
+def build(objects: tuple[str, ...] = ("green", "sugar", "cracker"), cabinet: bool = False) -> Scene:
     p = pybullet()
     pd = require("pybullet_data", "kitchen")
     c = p.connect(p.DIRECT)
@@ -174,7 +250,8 @@ def build(objects: tuple[str, ...] = ("green", "sugar", "cracker")) -> Scene:
     objs: dict[str, int] = {}
     for o in objects:
         objs[o] = _box(p, c, SIZES[o], (0.0, 0.0, -1.0 - len(objs)), COLOURS[o])
-    sc = Scene(c, int(robot), int(drawers), tuple(statics), objs)
+    lid = _cabinet(p, c, statics) if cabinet else -1
+    sc = Scene(c, int(robot), int(drawers), tuple(statics), objs, lid)
     set_conf(sc, HOME)
     return sc
 
@@ -197,6 +274,11 @@ def set_conf(sc: Scene, q: tuple[float, ...]) -> None:
 
 
 def set_drawer(sc: Scene, drawer: str, q: float) -> None:
+    """Set a container's joint: a drawer's travel, or how far the cabinet's lid has slid."""
+    if drawer == CABINET:
+        if sc.lid >= 0:
+            sc.p.resetJointState(sc.lid, 0, q, physicsClientId=sc.client)
+        return
     link = 0 if drawer == "top" else 2
     sc.p.resetJointState(sc.drawers, link, q, physicsClientId=sc.client)
 

@@ -28,16 +28,17 @@ log = logging.getLogger(__name__)
 
 class KitchenWorld:
     def __init__(self, placements: dict[str, tuple[str, tuple[float, float]]], seed: int,
-                 sensor: SensorModel = SensorModel()) -> None:
+                 sensor: SensorModel = SensorModel(), cabinet: bool = False) -> None:
         self.rng = np.random.default_rng(seed + 7919)
         self.sensor = sensor
-        self.scene = S.build(tuple(placements))
+        self.cabinet = cabinet
+        self.scene = S.build(tuple(placements), cabinet)
         self.frames: dict[str, str] = {}
         self.rel: dict[str, np.ndarray] = {}
         for o, (frame, (x, y)) in placements.items():
             self.frames[o] = frame
             self.rel[o] = np.array([x, y, S.SIZES[o][2]])
-        self.drawers = {d: 0.0 for d in S.DRAWERS}
+        self.drawers = {d: 0.0 for d in S.containers(cabinet)}
         self.conf: tuple[float, ...] = S.HOME
         self.held: str | None = None
         self.stove_on = False
@@ -63,7 +64,7 @@ class KitchenWorld:
         from nowplan.belief.particles import PoseParticles
         from nowplan.domains.kitchen.belief import Conf, KitchenBelief
 
-        b = KitchenBelief({}, seed=0, sensor=self.sensor, scene=self.scene)
+        b = KitchenBelief({}, seed=0, sensor=self.sensor, scene=self.scene, cabinet=self.cabinet)
         b.objects = tuple(self.frames)
         b.particles = {o: PoseParticles.point(self.frames[o], tuple(float(v) for v in self.rel[o]))  # type: ignore[arg-type]
                        for o in self.frames}
@@ -138,7 +139,7 @@ class KitchenWorld:
             self.conf = tuple(a[0].q)
         elif name in ("pull", "push"):
             d = str(a[0])
-            self.drawers[d] = S.DRAWER_OPEN if name == "pull" else 0.0
+            self.drawers[d] = (S.CABINET_OPEN if d == S.CABINET else S.DRAWER_OPEN) if name == "pull" else 0.0
             self.conf = S.HOME  # the arm retracts after moving the handle
         elif name in ("pick", "pick_tall"):
             o, pose = str(a[0]), a[1]
