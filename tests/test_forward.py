@@ -13,6 +13,7 @@ from nowplan.core.operators import Operator, Precondition
 from nowplan.core.state import State
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning import task as task_mod
+from nowplan.planning import task_grounding
 from nowplan.planning.forward import regress_actions, search
 from nowplan.planning.hff import RelaxedHeuristic
 from nowplan.planning.plan import PlanStatus
@@ -53,7 +54,7 @@ def test_astar_with_hmax_is_optimal_on_small_problems(dom: str, prob: str) -> No
 
 def test_the_same_call_gives_the_same_plan_whatever_the_cache_saw_before() -> None:
     p = load_pddl(DATA / "logistics" / "domain.pddl", DATA / "logistics" / "p03.pddl")
-    task_mod._CACHE.clear()
+    task_grounding._CACHE.clear()
     first = plan(p.domain, p.objects, p.init, p.goal, flat_levels())
     # plan from a later state (the cache grows its reached set), then ask again
     assert first.plan is not None

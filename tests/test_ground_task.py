@@ -15,7 +15,8 @@ from nowplan.io.pddl_read import load_pddl
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.ground_task import instances
 from nowplan.planning.heuristics import ground_all, ground_task
-from nowplan.planning.regression import PlannerConfig, _Search
+from nowplan.planning.regression import PlannerConfig
+from nowplan.planning.regression_search import _Search
 
 DATA = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl"
 IPC = Path(__file__).resolve().parent / "data" / "pddl_ipc_style"

@@ -15,7 +15,8 @@ from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
 from nowplan.planning.hadd_relevant import RelevantHadd
 from nowplan.planning.native import kernel_class
 from nowplan.planning.heuristics import ground_task, hadd_ids
-from nowplan.planning.regression import PlannerConfig, _Search
+from nowplan.planning.regression import PlannerConfig
+from nowplan.planning.regression_search import _Search
 
 DATA = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl"
 CASES = [("logistics", "p02", True), ("logistics", "p03", False), ("lights", "p02", False),

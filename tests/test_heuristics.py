@@ -17,7 +17,8 @@ from nowplan.core.state import State
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.heuristics import hadd_table
-from nowplan.planning.regression import PlannerConfig, _Search, plan
+from nowplan.planning.regression import PlannerConfig, plan
+from nowplan.planning.regression_search import _Search
 
 DATA = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl"
 

@@ -28,7 +28,7 @@ from nowplan.core.atoms import Atom
 from nowplan.core.domain import Problem
 from nowplan.core.operators import Action
 from nowplan.core.state import State
-from nowplan.planning.task import grounding
+from nowplan.planning.task_grounding import grounding
 
 
 @dataclass(frozen=True)

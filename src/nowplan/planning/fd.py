@@ -24,7 +24,7 @@ from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.operators import Action
 from nowplan.errors import ModelError, require
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
-from nowplan.planning.regression import regress_through, static_drop
+from nowplan.planning.preimage import regress_through, static_drop
 
 log = logging.getLogger(__name__)
 

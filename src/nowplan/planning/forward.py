@@ -44,7 +44,7 @@ from nowplan.planning.task import Task, build_task, forward_unsupported
 
 if TYPE_CHECKING:
     from nowplan.planning._kernel import Kernel
-    from nowplan.planning.regression import PlannerConfig
+    from nowplan.planning.config import PlannerConfig
 
 log = logging.getLogger(__name__)
 
@@ -285,7 +285,7 @@ def regress_actions(
     ``None`` if an action destroys a pre-image atom or the belief does not
     satisfy ``g0`` (the sequence is then not a plan at these levels).
     """
-    from nowplan.planning.regression import regress_through, static_drop
+    from nowplan.planning.preimage import regress_through, static_drop
 
     drop = static_drop(domain, belief)
     if domain.axioms:
@@ -316,7 +316,7 @@ def _regress_base(domain: Domain, goal: Goal, actions: Sequence[Action], levels:
     such domains).  ``None`` if an action destroys a base literal needed later.
     """
     from nowplan.core.atoms import Goal as GoalT
-    from nowplan.planning.regression import preimage
+    from nowplan.planning.preimage import preimage
 
     goals = [goal]
     for i in range(len(actions) - 1, -1, -1):
@@ -382,7 +382,7 @@ def plan_forward(
     its levels (then the regression search answers instead).
     """
     from nowplan.errors import UsageError
-    from nowplan.planning.regression import _clock
+    from nowplan.planning.config import _clock
 
     why = forward_unsupported(domain, belief)
     if why is not None:

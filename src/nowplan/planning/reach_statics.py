@@ -29,7 +29,7 @@ from nowplan.core.atoms import Atom
 from nowplan.core.domain import Domain, Predicate, Problem
 from nowplan.core.operators import Operator, Precondition
 from nowplan.core.state import State
-from nowplan.planning.task import grounding
+from nowplan.planning.task_grounding import grounding
 
 log = logging.getLogger(__name__)
 

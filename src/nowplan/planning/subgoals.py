@@ -1,4 +1,4 @@
-"""Pre-images over fact ids: what :func:`nowplan.planning.regression.preimage` computes, per node.
+"""Pre-images over fact ids: what :func:`nowplan.planning.preimage.preimage` computes, per node.
 
 A subgoal is a frozenset of fact ids (:class:`~nowplan.core.facts.FactTable`).
 When the search expands a node it indexes the node once (:class:`NodeIndex`:
@@ -17,7 +17,7 @@ kept on the action):
 Pairs of remaining facts are not checked again: every node the search
 generates was checked whole when it was made, so only a root goal can be
 contradictory, and the search regresses a contradictory root with the
-Goal-level :func:`~nowplan.planning.regression.preimage` instead
+Goal-level :func:`~nowplan.planning.preimage.preimage` instead
 (:meth:`FactTable.consistent` decides).  Plain pairwise conflict rules are
 asked once per pair of facts (the table keeps the answer).
 """

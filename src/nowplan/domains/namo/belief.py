@@ -14,6 +14,11 @@ Counters: ``version`` changes on every update (caches key on it);
 reconsideration (a new object, a much better or a moved estimate, an object
 gone).  Belief fluents (``BClear``, ``Observed``…) are answered by the
 methods at the bottom, which the domain's predicate tests call.
+
+One object's estimate (:class:`ObjectEstimate`) and ``k_of`` are in
+:mod:`nowplan.domains.namo.estimate`, the polyline helpers ``along`` and
+``heading_to`` in :mod:`nowplan.domains.namo.geometry`; all are re-exported
+here (``__all__``).
 """
 
 from __future__ import annotations
@@ -22,16 +27,29 @@ import logging
 import math
 from collections.abc import Hashable
 from dataclasses import dataclass, field
-from functools import lru_cache
-from statistics import NormalDist
 from typing import Any
 
 import numpy as np
 
 from nowplan.core.operators import Action
-from nowplan.domains.namo.geometry import Box, Manip, MapGeometry, Pt, Region, polyline_length
+from nowplan.domains.namo.estimate import ObjectEstimate, k_of
+from nowplan.domains.namo.geometry import Box, Manip, MapGeometry, Pt, Region, along, heading_to, polyline_length
 from nowplan.domains.namo.params import DEFAULT_PARAMS, DEFAULT_SENSOR, Params, Sensor
 from nowplan.worlds.base import Observation
+
+__all__ = [
+    "CONTACT_AHEAD",
+    "CONTACT_MOVED",
+    "CONTACT_REACH",
+    "DRAG_MARGIN",
+    "DRAG_MARGIN_MAX",
+    "LOOP_LIMIT",
+    "NamoBelief",
+    "ObjectEstimate",
+    "along",
+    "heading_to",
+    "k_of",
+]
 
 log = logging.getLogger(__name__)
 
@@ -48,34 +66,6 @@ CONTACT_MOVED = 0.1
 # this much more room from the walls, up to DRAG_MARGIN_MAX (placement.py)
 DRAG_MARGIN = 0.05
 DRAG_MARGIN_MAX = 0.2
-
-
-@lru_cache(maxsize=64)
-def k_of(eps: float) -> float:
-    """Standard deviations within which a Gaussian lies with probability 1 - eps (one-sided)."""
-    return NormalDist().inv_cdf(1.0 - min(max(eps, 1e-6), 0.5))
-
-
-@dataclass
-class ObjectEstimate:
-    name: str
-    mean: np.ndarray
-    cov: np.ndarray
-    size: tuple[float, float]
-    first_seen: int  # the belief's percept counter when it was first detected
-    looks: int = 1
-
-    @property
-    def sigma(self) -> float:
-        return float(math.sqrt(max(np.linalg.eigvalsh(self.cov).max(), 0.0)))
-
-    @property
-    def center(self) -> Pt:
-        return Pt.of(self.mean[0], self.mean[1])
-
-    @property
-    def box(self) -> Box:
-        return Box(float(self.mean[0]), float(self.mean[1]), self.size[0], self.size[1])
 
 
 @dataclass
@@ -496,22 +486,3 @@ class NamoBelief:
             if best is not None:
                 est.mean = np.array(best)
                 return
-
-
-def heading_to(a: Pt, b: Pt) -> float:
-    return math.atan2(b.y - a.y, b.x - a.x)
-
-
-def along(path: tuple[Pt, ...] | list[Pt], dist: float) -> Pt:
-    """The point ``dist`` metres along a polyline (its end if the polyline is shorter)."""
-    if not path:
-        raise ValueError("empty path")
-    left = dist
-    for i in range(len(path) - 1):
-        a, b = path[i], path[i + 1]
-        L = a.dist(b)
-        if left <= L + 1e-9:
-            t = 0.0 if L == 0 else left / L
-            return Pt.of(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t)
-        left -= L
-    return path[-1]

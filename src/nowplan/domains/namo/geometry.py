@@ -366,6 +366,25 @@ def polyline_length(pts: Sequence[Pt]) -> float:
     return sum(pts[i].dist(pts[i + 1]) for i in range(len(pts) - 1))
 
 
+def heading_to(a: Pt, b: Pt) -> float:
+    return math.atan2(b.y - a.y, b.x - a.x)
+
+
+def along(path: tuple[Pt, ...] | list[Pt], dist: float) -> Pt:
+    """The point ``dist`` metres along a polyline (its end if the polyline is shorter)."""
+    if not path:
+        raise ValueError("empty path")
+    left = dist
+    for i in range(len(path) - 1):
+        a, b = path[i], path[i + 1]
+        L = a.dist(b)
+        if left <= L + 1e-9:
+            t = 0.0 if L == 0 else left / L
+            return Pt.of(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t)
+        left -= L
+    return path[-1]
+
+
 def point_back(pts: Sequence[Pt], dist: float) -> Pt:
     """The vertex before the end, or the point ``dist`` back along the last piece if that is longer."""
     if len(pts) < 2:

@@ -1,0 +1,63 @@
+"""The regression planner's settings (:class:`PlannerConfig`) and the clock they choose.
+
+:class:`PlannerConfig` configures :func:`nowplan.planning.regression.plan`
+and, through ``engine``, the forward engine it may hand a flat call to.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Literal
+
+
+@dataclass(frozen=True)
+class PlannerConfig:
+    """Settings of the regression planner (budgets, heuristic, search options)."""
+
+    max_nodes: int = 50_000  # expansions for the full search
+    time_limit: float = 60.0  # seconds for one call (all methods), on ``clock``
+    # "wall" (elapsed time) or "cpu" (this process's CPU time: the same searches end on a loaded
+    # machine as on a quiet one, for experiments)
+    clock: Literal["wall", "cpu"] = "wall"
+    weight: float = 1.0  # f = g + weight * h
+    serialization: bool = True  # HPN shortcut 1
+    monotonic: bool = True  # HPN shortcut 2
+    shortcut_nodes: int = 2_000  # expansions allowed to each shortcut
+    max_generator_values: int = 8
+    seed: int = 0
+    # hadd | hmax | hff | lmcut: relaxed costs from the belief (HSPr-style; h_max and LM-cut admissible);
+    # count: unmet atoms x cheapest cost.
+    # Without lazy_relaxation the relaxed ones need the whole ground task (a belief that lists its
+    # facts, no generators or tested predicates) and fall back to count otherwise.
+    heuristic: str = "hadd"
+    # relax over the achievers the grounder finds, explored on demand from the subgoals' atoms
+    # (works with generators and tested predicates; heuristics.LazyRelaxed)
+    lazy_relaxation: bool = False
+    # the estimate for the random-serialization shortcut (None: ``heuristic``); e.g. h_max there, where
+    # one conjunct at a time is searched, and LM-cut for the searches of whole conjunctions
+    shortcut_heuristic: str | None = None
+    # "auto": search forward (nowplan.planning.forward) where the belief lists its facts and the
+    # domain has no generators or tested predicates, else regress; "forward" | "regression" force one
+    engine: Literal["auto", "forward", "regression"] = "auto"
+    # the forward search: LAMA's first iteration (h_FF and landmark count; the default: within 2x of
+    # lama-first's wall time and 10 % of its cost on more of benchmarks/classical than gbfs), lazy
+    # greedy best-first on h_FF alone, or (weighted) A*
+    search: Literal["gbfs", "lama", "astar"] = "lama"
+    # anytime improvement after the first forward plan (weighted A* with falling weights, bounded by
+    # the best cost): CPU budget = improve x the first search's CPU time + 0.02 s; 0 = off
+    improve: float = 0.0
+    forward_heuristic: Literal["ff", "add", "max"] = "ff"
+    # action costs as the forward heuristic sees them (FD's adapt_costs): one | plusone | normal
+    cost_type: Literal["one", "plusone", "normal"] = "plusone"
+
+
+
+def _clock(config: PlannerConfig) -> Callable[[], float]:
+    if config.clock not in ("wall", "cpu"):
+        from nowplan.errors import UsageError
+
+        raise UsageError(f"PlannerConfig.clock is {config.clock!r}; use 'wall' or 'cpu'")
+    return time.process_time if config.clock == "cpu" else time.perf_counter
+

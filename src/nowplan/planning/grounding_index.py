@@ -1,0 +1,86 @@
+"""What the goal-directed grounder looks up rather than computes per call.
+
+:func:`unify_effect` unifies an effect template with a target atom;
+``_effects_by_predicate`` indexes a domain's operators by the predicates
+they change (kept per domain); ``_shared`` holds the answers the calls of
+one problem share (kept per objects and static facts: the executive plans
+many times with the same static facts).  :class:`nowplan.planning.grounding.Grounder`
+uses all three.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable
+from typing import Any
+
+from nowplan.core.atoms import Atom, Var
+from nowplan.core.domain import Domain
+from nowplan.core.operators import Action, Operator
+
+
+def unify_effect(effect: Atom, target: Atom, domain: Domain) -> dict[Var, Any] | None:
+    """Bindings that make ``effect`` entail ``target``, or ``None``."""
+    if effect.predicate != target.predicate or len(effect.args) != len(target.args):
+        return None
+    b: dict[Var, Any] = {}
+    for e, t in zip(effect.args, target.args, strict=True):
+        if isinstance(e, Var):
+            if e in b and b[e] != t:
+                return None
+            b[e] = t
+        elif e != t:
+            return None
+    ev = effect.value
+    if isinstance(ev, Var):
+        if ev in b and not domain.rules.rule(target.predicate).entails(b[ev], target.value):
+            return None
+        b.setdefault(ev, target.value)
+    elif not domain.rules.rule(target.predicate).entails(ev, target.value):
+        return None
+    return b
+
+
+_ByPred = dict[str, list[tuple[int, Operator, tuple[Atom, ...]]]]
+
+
+def _effects_by_predicate(
+    domain: Domain,
+) -> tuple[_ByPred, dict[str, tuple[tuple[int, Operator, tuple[Atom, ...]], ...]], frozenset[str]]:
+    """Per predicate the operators (in order) with an effect of it, and those effects; the same for
+    operators with generators; the predicates such an operator achieves (kept per domain)."""
+    hit = domain.facts.derived.get("effects by predicate")
+    if hit is not None and hit[0] is domain.operators:
+        return hit[1]  # type: ignore[no-any-return]
+    out: _ByPred = {}
+    for i, op in enumerate(domain.operators):
+        per: dict[str, list[Atom]] = {}
+        for e in op.effects:
+            per.setdefault(e.predicate, []).append(e)
+        for pred, effs in per.items():
+            out.setdefault(pred, []).append((i, op, tuple(effs)))
+    gen = {pred: tuple(e for e in entries if e[1].generators) for pred, entries in out.items()}
+    answer = (out, gen, frozenset(p for p, e in gen.items() if e))
+    domain.facts.derived["effects by predicate"] = (domain.operators, answer)
+    return answer
+
+
+class _Shared:
+    """Grounding answers that depend only on a problem's objects and static facts."""
+
+    def __init__(self) -> None:
+        self.op_cache: dict[tuple[int, Atom], list[Action]] = {}
+        self.fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+        self.answers: dict[Atom, list[Action]] = {}  # achievers of atoms no generator achieves
+
+
+_SHARED_PER_DOMAIN = 4
+
+
+def _shared(domain: Domain, signature: Hashable) -> _Shared:
+    store: dict[Hashable, _Shared] = domain.facts.grounding
+    hit = store.get(signature)
+    if hit is None:
+        if len(store) >= _SHARED_PER_DOMAIN:
+            store.pop(next(iter(store)))
+        hit = store[signature] = _Shared()
+    return hit

@@ -1,0 +1,363 @@
+"""The regression planner's search: A* over subgoals as sets of fact ids.
+
+:class:`_Search` holds one planning call's state (grounder, caches of what
+holds, the heuristic in use) and runs A* backwards from a goal, optionally
+serialized or monotonic (seed 002 V-B); :func:`nowplan.planning.regression.plan`
+drives it.
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import logging
+import math
+from collections.abc import Hashable, Mapping, Sequence
+from typing import Any
+
+from nowplan.belief.protocols import ListsFacts
+from nowplan.core.atoms import Atom, Goal
+from nowplan.core.domain import Domain
+from nowplan.core.facts import FactTable
+from nowplan.core.levels import LevelMap
+from nowplan.core.operators import Action
+from nowplan.planning.config import PlannerConfig, _clock
+from nowplan.planning.context import PlanningContext
+from nowplan.planning.ground_task import GroundTask
+from nowplan.planning.grounding import Grounder
+from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
+from nowplan.planning.hadd_relevant import RelevantHadd
+from nowplan.planning.heuristics import ground_task, relax_unsupported
+from nowplan.planning.plan import PlanStatus
+from nowplan.planning.preimage import preimage, static_drop
+from nowplan.planning.relaxed import LazyRelaxed, Supporter
+from nowplan.planning.subgoals import NodeIndex, action_facts, regress
+from nowplan.planning.successors import Successors
+
+# the planner's logger: its fallbacks are reported where they always were
+log = logging.getLogger("nowplan.planning.regression")
+
+
+_RELAXED = {"hadd": "add", "hmax": "max", "hff": "ff", "lmcut": "lmcut"}
+
+_FALLBACKS_LOGGED: set[tuple[str, str, str]] = set()
+
+
+def _log_fallback(domain: str, heuristic: str, why: str) -> None:
+    """Say once per (domain, heuristic, reason) that the planner counts unmet atoms instead."""
+    key = (domain, heuristic, why)
+    if key not in _FALLBACKS_LOGGED:
+        _FALLBACKS_LOGGED.add(key)
+        log.info(
+            "domain %s: heuristic %s falls back to counting unmet atoms: %s "
+            "(PlannerConfig(lazy_relaxation=True) keeps a relaxed estimate with tests and generators)",
+            domain, heuristic, why,
+        )
+
+
+
+class _Search:
+    """A* over subgoals as frozensets of fact ids (:mod:`nowplan.planning.subgoals`)."""
+
+    def __init__(
+        self,
+        domain: Domain,
+        objects: Mapping[str, str | None],
+        belief: Any,
+        levels: LevelMap,
+        config: PlannerConfig,
+        context: PlanningContext | None,
+    ) -> None:
+        self.domain = domain
+        self.belief = belief
+        self.levels = levels
+        self.config = config
+        self.now = _clock(config)
+        self.deadline = self.now() + config.time_limit
+        self.table = domain.facts
+        lists = isinstance(belief, ListsFacts)
+        self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values, lists)
+        self.drop = static_drop(domain, belief, lists)
+        self._holds: dict[Atom, bool] = {}
+        self._fholds: dict[int, bool] = {}
+        self._hv: dict[int, float] = {}
+        self._costs: dict[tuple[str, tuple[Any, ...]], float] = {}
+        self.expanded = 0
+        self.generated = 0
+        self.min_cost = min(
+            (float(o.cost) for o in domain.operators if not callable(o.cost)), default=1.0
+        )
+        self.min_cost = max(self.min_cost, 0.0)
+        self.hadd: RelevantHadd | KernelHadd | None = None  # ground h_add by fact id, explored from the facts asked for
+        self.relaxed: LazyRelaxed | None = None
+        # a domain's own estimate, fn(goal, belief, holds) -> cost, passed as context.extras["heuristic"]
+        self.domain_h = context.extras.get("heuristic") if context is not None else None
+        # first steps learnt not to be refinable from this belief (context.extras["forbidden_first"], a
+        # set of action keys, see nowplan.acting.backtrack): a plan may not start with one of them
+        self.forbidden_first: frozenset[Any] = frozenset(
+            context.extras.get("forbidden_first", ()) if context is not None else ())
+        self._no_relax = relax_unsupported(self.grounder, belief)
+        self._can_relax = self._no_relax is None
+        # with a belief that lists its facts and boolean predicates without tests, truth is membership
+        self._true_ids: frozenset[int] | None = None
+        if self._can_relax:
+            self.true_ids()
+        self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
+        self._ground_hadd: RelevantHadd | KernelHadd | None = None
+        self._task: GroundTask | None = None
+        self._ctx: tuple[frozenset[int], Goal] | None = None
+        self._successors = Successors(self.table, self.grounder, levels, self.drop, self.cost)
+        for name in (config.heuristic, config.shortcut_heuristic or config.heuristic):
+            if name not in (*_RELAXED, "count"):
+                from nowplan.errors import UsageError
+
+                raise UsageError(f"PlannerConfig heuristic {name!r}: use hadd, hmax, hff, lmcut or count")
+        self.use(config.heuristic)
+
+    def use(self, name: str) -> None:
+        """Estimate with ``name`` from now on (explorations are shared: h_max with LM-cut, h_add with h_FF)."""
+        self.relaxed = self.hadd = None
+        kind = _RELAXED.get(name)
+        if callable(self.domain_h) or kind is None:
+            return
+        if self.config.lazy_relaxation or (kind != "add" and self._can_relax):
+            additive = kind in ("add", "ff")
+            r = self._relaxers.get(additive)
+            if r is None:
+                r = self._relaxers[additive] = LazyRelaxed(self._supporters, self.fholds, kind, self._context_key)
+            r.kind = kind
+            self.relaxed = r
+        elif self._can_relax:
+            if self._ground_hadd is None:
+                task = ground_task(self.grounder, self.drop)
+                if kernel_hadd(task, self.levels.top):  # one compiled exploration of every action
+                    self._ground_hadd = KernelHadd(task, self.levels, self.true_ids())
+                else:
+                    self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost, self.true_ids())
+                self._task = task
+                self._successors.task = task
+                self.grounder.use_task(task)  # generator-free achievers read off the ground task
+            self.hadd = self._ground_hadd
+        else:
+            _log_fallback(self.grounder.domain.name, name, str(self._no_relax))
+
+    def _goal_of(self, context: frozenset[int]) -> Goal:
+        if self._ctx is None or self._ctx[0] is not context:
+            self._ctx = (context, self.table.goal(context))
+        return self._ctx[1]
+
+    def _context_key(self, f: int, context: frozenset[int]) -> Hashable | None:
+        """What the generators behind fact ``f``'s achievers read of ``context`` (``None``: nothing)."""
+        a = self.table.atoms[f]
+        if self.grounder.goal_free(a):
+            return None
+        return self.grounder.reading(a, self._goal_of(context))
+
+    def _supporters(self, f: int, context: frozenset[int]) -> list[Supporter]:
+        """The relaxation's achievers of fact ``f``: the grounder's, with ``context`` as their goal."""
+        a = self.table.atoms[f]
+        out: list[Supporter] = []
+        for act in self.grounder.achievers(a, lambda: self._goal_of(context)):
+            info = action_facts(self.table, act, self.levels.level(act), self.drop)
+            out.append((act, self.cost(act), info.pre))
+        return out
+
+    def holds(self, a: Atom) -> bool:
+        r = self._holds.get(a)
+        if r is None:
+            r = self.domain.holds(a, self.belief)
+            self._holds[a] = r
+        return r
+
+    def fholds(self, f: int) -> bool:
+        r = self._fholds.get(f)
+        if r is None:
+            true = self._true_ids
+            a = self.table.atoms[f]
+            if true is None or a.predicate not in self.domain.predicates:
+                r = self.holds(a)
+            else:  # boolean predicates without tests: a lookup in the belief's facts
+                r = f in true if a.value is not False else self.table.by_key.get((a.predicate, a.args, True)) not in true
+            self._fholds[f] = r
+        return r
+
+    def true_ids(self) -> frozenset[int]:
+        """The ids of the facts the belief lists (it does: only asked where the relaxation can run)."""
+        if self._true_ids is None:
+            if self._can_relax:  # boolean predicates: each listed fact is true
+                get, id_of = self.table.by_key.get, self.table.id_of
+                keys = [(p, args, True) for p in self.domain.predicates for args in self.belief.facts(p)]
+                ids = list(map(get, keys))
+                if None in ids:
+                    ids = [id_of(*k) if f is None else f for f, k in zip(ids, keys, strict=True)]
+                self._true_ids = frozenset(ids)  # type: ignore[arg-type]
+            else:
+                self._true_ids = self.table.ids_of(self.belief.atoms())
+        return self._true_ids
+
+    def satisfied(self, fs: frozenset[int]) -> bool:
+        return all(self.fholds(f) for f in fs)
+
+    def h(self, fs: frozenset[int]) -> float:
+        if callable(self.domain_h):
+            return float(self.domain_h(self.table.goal(fs), self.belief, self.holds))
+        if self.relaxed is not None:
+            return self.relaxed.estimate(fs)
+        if self.hadd is not None:
+            if isinstance(self.hadd, KernelHadd):
+                try:  # every fact valued, 0 where it holds (see hadd_kernel)
+                    return sum(map(self.hadd.values.__getitem__, fs))
+                except IndexError:
+                    pass  # a fact newer than the task: asked one by one
+            hv = self._hv
+            try:
+                return sum(map(hv.__getitem__, fs))  # every fact valued (0 if it holds) in this call
+            except KeyError:
+                pass
+            ask = [f for f in fs if f not in hv and not self.fholds(f)]
+            if ask:
+                self.hadd.extend(ask)  # one exploration for the facts new to the closure
+            total = 0.0
+            for f in fs:
+                x = hv.get(f)
+                if x is None:
+                    x = hv[f] = 0.0 if self.fholds(f) else self.hadd.get(f)
+                total += x
+            return total
+        unmet = sum(1 for f in fs if not self.fholds(f))
+        return unmet * (self.min_cost if self.min_cost > 0 else 1.0)
+
+    def cost(self, act: Action) -> float:
+        fixed = act.operator.cost
+        if not callable(fixed):
+            return float(fixed)
+        c = self._costs.get(act.key)
+        if c is None:
+            c = act.cost(self.belief)
+            self._costs[act.key] = c
+        return c
+
+    def run(
+        self,
+        goal: Goal,
+        max_nodes: int,
+        order: Sequence[Atom] | None = None,
+        protect: frozenset[Atom] = frozenset(),
+    ) -> tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str]:
+        """A* from ``goal``; ``order`` = serialization, ``protect`` = monotonic atoms."""
+        T = self.table
+        fluent = T.fluent
+        root = T.ids_of(goal.atoms)
+        root_ok = T.consistent(root)  # else its successors are computed on Goals (see subgoals)
+        order_ids = [T.id(a) for a in order] if order is not None else None
+        # the atoms left out of the search while the focus is k: order[: k - 1]
+        hidden = [frozenset(order_ids[: max(k - 1, 0)]) for k in range(len(order_ids) + 1)] if order_ids else []
+        guard = {fluent[f]: f for f in T.ids_of(protect)}
+        focus0 = len(order) if order is not None else 0
+        counter = itertools.count()
+        Node = tuple[frozenset[int], int]
+        start: Node = (root, focus0)
+        h0 = self.h(root)
+        frontier: list[tuple[float, float, int, Node]] = [(self.config.weight * h0, h0, next(counter), start)]
+        best_g: dict[Node, float] = {start: 0.0}
+        parent: dict[Node, tuple[Node, Action] | None] = {start: None}
+        closed: set[Node] = set()
+        levels, drop, weight = self.levels, self.drop, self.config.weight
+        hvals = self.hadd.values.__getitem__ if isinstance(self.hadd, KernelHadd) and not callable(self.domain_h) else None
+        exp = 0
+        regress_, forbidden, inf, push = regress, self.forbidden_first, math.inf, heapq.heappush
+        while frontier:
+            _, _, _, node = heapq.heappop(frontier)
+            if node in closed:
+                continue
+            closed.add(node)
+            fs, focus = node
+            if order_ids is not None:
+                # shift the focus down once the non-focused part already holds
+                if focus > 0:
+                    unmet = [f for f in fs if not self.fholds(f)]
+                    while focus > 0 and hidden[focus].issuperset(unmet):
+                        focus -= 1
+            if self.satisfied(fs):
+                return PlanStatus.SOLVED, self._path(node, parent), ""
+            exp += 1
+            self.expanded += 1
+            if exp > max_nodes:
+                return PlanStatus.NODE_LIMIT, None, f"expanded {max_nodes} nodes without a plan"
+            if self.now() > self.deadline:
+                return PlanStatus.TIME_LIMIT, None, f"time limit of {self.config.time_limit:g} s reached"
+            gcost = best_g[node]
+            skip = hidden[focus] if order_ids is not None else frozenset()
+            allowed = [f for f in T.sorted(fs) if f not in skip]
+            index = NodeIndex(T, fs)
+            goal_of = _GoalOf(T, fs)
+            legacy = not root_ok and fs == root
+            tried: set[int] = set()  # by identity: the grounder makes one object per instance
+            for target in allowed:
+                for act, info, cost in self._successors(target, goal_of):
+                    if id(act) in tried:
+                        continue
+                    tried.add(id(act))
+                    if guard and any(guard.get(fluent[e], e) != e for e in info.all_effs):
+                        continue
+                    if not legacy:
+                        pre = regress_(T, index, info)
+                    else:
+                        g = preimage(goal_of(), act, levels.level(act), self.domain, drop)
+                        pre = None if g is None else T.ids_of(g.atoms)
+                    if pre is None:
+                        continue
+                    if forbidden and act.key in forbidden and self.satisfied(pre):
+                        continue  # it would be the plan's first step: learnt not to be refinable from here
+                    child = (pre, focus)
+                    ng = gcost + cost
+                    if child in closed or ng >= best_g.get(child, inf):
+                        continue
+                    best_g[child] = ng
+                    parent[child] = (node, act)
+                    self.generated += 1
+                    if hvals is not None:
+                        try:  # the kernel's values: every fact valued, 0 where it holds
+                            hh = sum(map(hvals, pre))
+                        except IndexError:
+                            hh = self.h(pre)
+                    else:
+                        hh = self.h(pre)
+                    if hh == inf:
+                        continue  # an atom of the pre-image is unreachable
+                    push(frontier, (ng + weight * hh, hh, next(counter), child))
+        return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
+
+    def _path(
+        self,
+        node: tuple[frozenset[int], int],
+        parent: Mapping[tuple[frozenset[int], int], tuple[tuple[frozenset[int], int], Action] | None],
+    ) -> list[tuple[Action | None, Goal]]:
+        T = self.table
+        steps: list[tuple[Action | None, Goal]] = [(None, T.goal(node[0]))]
+        cur = node
+        while True:
+            link = parent[cur]
+            if link is None:
+                break
+            prev, act = link
+            steps.append((act, T.goal(prev[0])))
+            cur = prev
+        return steps
+
+
+class _GoalOf:
+    """A node's subgoal as a :class:`Goal`, made on the first call (for generators)."""
+
+    __slots__ = ("table", "fs", "goal")
+
+    def __init__(self, table: FactTable, fs: frozenset[int]) -> None:
+        self.table = table
+        self.fs = fs
+        self.goal: Goal | None = None
+
+    def __call__(self) -> Goal:
+        if self.goal is None:
+            self.goal = self.table.goal(self.fs)
+        return self.goal
+

@@ -1,0 +1,229 @@
+"""The reachable ground actions of a problem, by relaxed reachability (for the forward task).
+
+Grounding joins each operator's positive preconditions against the facts a
+relaxed (delete-free) exploration reaches from the initial state, until a
+fixpoint; parameters no such precondition binds are enumerated by type.
+Static preconditions (predicates no operator changes) are checked at every
+level, as the regression planner's grounder does; the others count only
+when their criticality is kept at the action's level.  A grounding is
+cached per (domain, objects, static facts, level) and reused for any later
+state whose true facts it already reached (everything reachable from such a
+state was reached too).  :func:`nowplan.planning.task.build_task` turns a
+grounding into an integer task.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from nowplan.core.atoms import Atom, Var
+from nowplan.core.domain import Domain
+from nowplan.core.operators import Action, Operator
+
+
+@dataclass
+class Grounding:
+    """The reachable ground actions of a problem for one abstraction level."""
+
+    actions: list[Action]
+    reached: set[Atom]  # positive atoms reachable from the states seen so far
+    statics: frozenset[str]
+
+
+_CACHE: dict[Any, Grounding] = {}
+_CACHE_SIZE = 16
+
+
+def _key_of(domain: Domain, objects: Mapping[str, str | None], belief: Any, statics: frozenset[str],
+            level: int) -> Any:
+    facts = tuple(sorted((p, tuple(sorted(map(repr, belief.facts(p))))) for p in statics))
+    # the domain itself (held by the cache, so its identity cannot be reused by another domain)
+    # operators compare without their costs: two domains equal but for costs must not share actions
+    costs = tuple(id(o.cost) if callable(o.cost) else o.cost for o in domain.operators)
+    return (domain, costs, tuple(sorted(objects.items(), key=repr)), facts, level)
+
+
+def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, level: int) -> Grounding:
+    """The reachable actions for ``belief`` at ``level`` (cached across calls)."""
+    statics = domain.static_predicates
+    key = _key_of(domain, objects, belief, statics, level)
+    init = {a for a in belief.atoms() if a.value is True}
+    hit = _CACHE.get(key)
+    if hit is not None and init <= hit.reached:
+        return hit
+    start = init | (hit.reached if hit is not None else set())
+    g = _ground(domain, objects, start, statics, level)
+    if len(_CACHE) >= _CACHE_SIZE and key not in _CACHE:
+        _CACHE.pop(next(iter(_CACHE)))
+    _CACHE[key] = g
+    return g
+
+
+def _objects_by_type(domain: Domain, objects: Mapping[str, str | None]) -> dict[str | None, list[str]]:
+    allobj = {**dict(domain.constants), **dict(objects)}
+    out: dict[str | None, list[str]] = {None: sorted(allobj)}
+    for t in list(domain.types) + [o for o in set(allobj.values()) if o is not None]:
+        if t not in out:
+            ok = domain.subtypes(t)
+            out[t] = sorted(o for o, ot in allobj.items() if ot in ok)
+    return out
+
+
+def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
+            statics: frozenset[str], level: int) -> Grounding:
+    by_type = _objects_by_type(domain, objects)
+    type_sets = {t: frozenset(v) for t, v in by_type.items()}
+    reached: set[Atom] = set(start)
+    facts: dict[str, set[tuple[Any, ...]]] = {}
+    for a in reached:
+        facts.setdefault(a.predicate, set()).add(a.args)
+    schemas = (*domain.operators, *domain.axioms)  # an axiom's conditions are kept at every level
+    joins = [_Join(op, statics, level, facts) for op in schemas]
+    seen: set[tuple[str, tuple[Any, ...]]] = set()
+    actions: list[Action] = []
+    changed: set[str] | None = None  # predicates with new facts in the last round (None: all)
+    while changed is None or changed:
+        index = _Index(facts)
+        new: list[Atom] = []
+        for op, join in zip(schemas, joins, strict=True):
+            if changed is not None and not join.predicates & changed:
+                continue  # nothing new to join against: the same bindings as last round
+            for args in join.bindings(index, by_type, type_sets):
+                key = (op.name, args)
+                if key in seen:
+                    continue
+                act = Action(op, args)
+                if not _negative_statics_hold(act, statics, facts):
+                    continue
+                seen.add(key)
+                actions.append(act)
+                for e in act.effects():
+                    if e.value is True and e not in reached:
+                        reached.add(e)
+                        new.append(e)
+        changed = set()
+        for e in new:
+            facts.setdefault(e.predicate, set()).add(e.args)
+            changed.add(e.predicate)
+    return Grounding(actions, reached, statics)
+
+
+def _negative_statics_hold(act: Action, statics: frozenset[str], facts: Mapping[str, set[Any]]) -> bool:
+    for p in act.preconditions(None):
+        if p.value is False and p.predicate in statics and p.args in facts.get(p.predicate, ()):
+            return False
+    return True
+
+
+class _Index:
+    """Facts of a predicate by the values at some argument positions, built on demand."""
+
+    def __init__(self, facts: Mapping[str, set[tuple[Any, ...]]]) -> None:
+        self.facts = facts
+        self.tables: dict[tuple[str, tuple[int, ...]], dict[tuple[Any, ...], list[tuple[Any, ...]]]] = {}
+
+    def lookup(self, pred: str, positions: tuple[int, ...], arity: int) -> dict[tuple[Any, ...], list[tuple[Any, ...]]]:
+        key = (pred, positions)
+        t = self.tables.get(key)
+        if t is None:
+            t = {}
+            for args in self.facts.get(pred, ()):
+                if len(args) == arity:
+                    t.setdefault(tuple(args[i] for i in positions), []).append(args)
+            self.tables[key] = t
+        return t
+
+
+class _Join:
+    """An operator's positive conditions compiled into a join plan over parameter slots.
+
+    The conditions joined are the static ones and those kept at ``level``;
+    each step looks facts up by the slots already bound (an index per
+    predicate and bound positions), then binds the rest.
+    """
+
+    def __init__(self, op: Operator, statics: frozenset[str], level: int,
+                 facts: Mapping[str, set[tuple[Any, ...]]]) -> None:
+        self.op = op
+        slot = {v: i for i, v in enumerate(op.params)}
+        conds = [
+            p.atom for p in op.preconditions
+            if p.atom.value is True and (p.atom.predicate in statics or p.criticality > level)
+        ]
+        self.predicates = frozenset(c.predicate for c in conds)
+        bound: set[Var] = set()
+        # per step: predicate, arity, bound positions, how to build the lookup key (slot or constant),
+        # and the positions that bind new slots (a slot repeated in one atom is checked after binding)
+        self.steps: list[tuple[str, int, tuple[int, ...], tuple[tuple[bool, Any], ...],
+                               tuple[tuple[int, int], ...]]] = []
+        remaining = list(conds)
+        while remaining:  # the most constrained condition first
+            best = max(remaining, key=lambda a: (
+                sum(1 for t in a.args if not isinstance(t, Var) or t in bound),
+                -len(facts.get(a.predicate, ()))))
+            remaining.remove(best)
+            positions: list[int] = []
+            keyparts: list[tuple[bool, Any]] = []
+            binds: list[tuple[int, int]] = []
+            fresh: set[Var] = set()
+            for i, t in enumerate(best.args):
+                if isinstance(t, Var):
+                    if t in bound:
+                        positions.append(i)
+                        keyparts.append((True, slot[t]))
+                    else:
+                        binds.append((i, slot[t]))
+                        fresh.add(t)
+                else:
+                    positions.append(i)
+                    keyparts.append((False, t))
+            bound |= fresh
+            self.steps.append((best.predicate, len(best.args), tuple(positions), tuple(keyparts), tuple(binds)))
+        self.free = [(i, op.param_types[i] if op.param_types else None)
+                     for i, v in enumerate(op.params) if v not in bound]
+        self.typed = [(i, t) for i, t in enumerate(op.param_types) if t is not None] if op.param_types else []
+
+    def bindings(self, index: _Index, by_type: Mapping[str | None, list[str]],
+                 type_sets: Mapping[str | None, frozenset[str]]) -> Iterator[tuple[Any, ...]]:
+        n = len(self.op.params)
+        steps = self.steps
+        objects = type_sets[None]
+
+        def join(k: int, cur: list[Any]) -> Iterator[list[Any]]:
+            if k == len(steps):
+                yield cur
+                return
+            pred, arity, positions, keyparts, binds = steps[k]
+            table = index.lookup(pred, positions, arity)
+            key = tuple(cur[v] if is_slot else v for is_slot, v in keyparts)
+            for args in table.get(key, ()):
+                nxt = list(cur)
+                ok = True
+                for pos, sl in binds:
+                    have = nxt[sl]
+                    if have is _UNBOUND:
+                        nxt[sl] = args[pos]
+                    elif have != args[pos]:
+                        ok = False
+                        break
+                if ok:
+                    yield from join(k + 1, nxt)
+
+        for b in join(0, [_UNBOUND] * n):
+            if any(b[i] in objects and b[i] not in type_sets.get(t, ()) for i, t in self.typed
+                   if b[i] is not _UNBOUND):
+                continue
+            if not self.free:
+                yield tuple(b)
+                continue
+            for combo in itertools.product(*(by_type.get(t, []) for _, t in self.free)):
+                full = list(b)
+                for (i, _), v in zip(self.free, combo, strict=True):
+                    full[i] = v
+                yield tuple(full)
+
+
+_UNBOUND = object()
