@@ -2,17 +2,9 @@
 
 In the style of Fast Downward's translator and search code: atoms become
 fact ids, a ground action becomes tuples of precondition, add and delete
-ids, and a state is a ``frozenset`` of the true fact ids.
-
-Grounding joins each operator's positive preconditions against the facts a
-relaxed (delete-free) exploration reaches from the initial state, until a
-fixpoint; parameters no such precondition binds are enumerated by type.
-Static preconditions (predicates no operator changes) are checked at every
-level, as the regression planner's grounder does; the others count only
-when their criticality is kept at the action's level.  A grounding is
-cached per (domain, objects, static facts, level) and reused for any later
-state whose true facts it already reached (everything reachable from such a
-state was reached too).
+ids, and a state is a ``frozenset`` of the true fact ids.  The ground
+actions come from :mod:`nowplan.planning.task_grounding` (relaxed
+reachability, cached per problem and level).
 
 Negative conditions are compiled into facts of their own ("not p"): an
 action that deletes ``p`` adds ``not p`` and one that adds ``p`` deletes it
