@@ -165,6 +165,14 @@ static int build_triggers(Kernel *k) {
 
 #include "_kernel_axioms.h"
 
+/* dst := the successor of state src by action a (deletes, then adds, then the derived facts) */
+static inline void apply_action(Kernel *k, uint64_t *dst, const uint64_t *src, int32_t a) {
+    memcpy(dst, src, (size_t)k->words * sizeof(uint64_t));
+    for (int32_t j = k->del.off[a]; j < k->del.off[a + 1]; j++) CLRBIT(dst, k->del.v[j]);
+    for (int32_t j = k->add.off[a]; j < k->add.off[a + 1]; j++) SETBIT(dst, k->add.v[j]);
+    if (k->dmask) axioms_eval(k, dst);
+}
+
 static PyObject *Kernel_new(PyTypeObject *type, PyObject *args, PyObject *kwds) {
     static char *kwlist[] = {"nfacts", "pre", "add", "dele", "cost", "goal", "by_pre", "no_pre", "kind",
                              "nactions", "axioms", NULL};

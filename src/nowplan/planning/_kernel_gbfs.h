@@ -175,10 +175,7 @@ static PyObject *Kernel_gbfs(Kernel *k, PyObject *args, PyObject *kwds) {
         QEnt e;
         if (x.prf.n && (!x.reg.n || prio_prf <= prio_reg)) { e = qpop(&x.prf); prio_prf++; }
         else { e = qpop(&x.reg); prio_reg++; }
-        memcpy(cur, st.bits + (size_t)e.sid * (size_t)words, (size_t)words * sizeof(uint64_t));
-        for (int32_t j = k->del.off[e.a]; j < k->del.off[e.a + 1]; j++) CLRBIT(cur, k->del.v[j]);
-        for (int32_t j = k->add.off[e.a]; j < k->add.off[e.a + 1]; j++) SETBIT(cur, k->add.v[j]);
-        if (k->dmask) axioms_eval(k, cur);
+        apply_action(k, cur, st.bits + (size_t)e.sid * (size_t)words, e.a);
         long long sid = store_add(&st, cur, e.sid, e.a, &added);
         if (sid < 0) goto error;
         if (!added) continue;

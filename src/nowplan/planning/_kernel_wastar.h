@@ -79,10 +79,7 @@ static PyObject *Kernel_bounded_wastar(Kernel *k, PyObject *args, PyObject *kwds
             int32_t a = succ[i];
             double ng = g + cost[a];
             if (ng >= bound) continue;
-            memcpy(nxt, cur, (size_t)words * sizeof(uint64_t));
-            for (int32_t j = k->del.off[a]; j < k->del.off[a + 1]; j++) CLRBIT(nxt, k->del.v[j]);
-            for (int32_t j = k->add.off[a]; j < k->add.off[a + 1]; j++) SETBIT(nxt, k->add.v[j]);
-            if (k->dmask) axioms_eval(k, nxt);
+            apply_action(k, nxt, cur, a);
             long long sid = store_add(&st, nxt, e.sid, a, &added);
             if (sid < 0) goto error;
             if (st.cap > gcap) {
