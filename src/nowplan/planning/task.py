@@ -21,6 +21,7 @@ re-exported here (``__all__``).
 
 from __future__ import annotations
 
+import bisect
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -110,6 +111,28 @@ class Task:
                 self.by_pre.setdefault(f, []).append(k)
 
 
+@dataclass
+class _Structure:
+    """What the tasks of one grounding, level map and set of "not" facts share across calls."""
+
+    facts: list[Atom]
+    index: dict[Atom, int]
+    actions: list[Action]
+    pre: list[tuple[int, ...]]
+    add: list[tuple[int, ...]]
+    dele: list[tuple[int, ...]]
+    negs: frozenset[Atom]  # the positive atoms whose "not" fact the task has
+    axioms: GroundAxioms | None
+    by_pre: dict[int, list[int]]
+    no_pre: list[int]
+    mutex: FactMutex | None
+    rows: _Rows  # makes an action's row at another level (the level map's overrides)
+    position: dict[Any, int] = field(default_factory=dict)  # action key -> its id
+
+
+_STRUCTURES_PER_GROUNDING = 8
+
+
 def build_task(
     domain: Domain,
     objects: Mapping[str, str | None],
@@ -118,64 +141,38 @@ def build_task(
     levels: LevelMap,
     cost_of: Any,
 ) -> Task:
-    """The integer task for ``goal`` from ``belief`` with each action at its level in ``levels``."""
+    """The integer task for ``goal`` from ``belief`` with each action at its level in ``levels``.
+
+    The actions are the (cached) grounding's, so the task's actions, facts and
+    ids do not depend on the state: they are built once per grounding, top
+    level and set of negative goal atoms and shared by later calls (the
+    executive's many calls on one problem); a call sets the costs, the initial
+    state and the goal, and rebuilds the rows of the few actions its level map
+    moves to another level.  Actions a relaxed exploration from this state does
+    not reach never apply (the heuristics explore from the state).  The "not"
+    facts are those of every action's full preconditions, whatever its level,
+    so a row at any level finds its facts.
+    """
     top = max([levels.top, *(lv for _, lv in levels.overrides)])
     gr = grounding(domain, objects, belief, top)
     statics = gr.statics
-    facts: list[Atom] = []
-    index: dict[Atom, int] = {}
-
-    def fid(a: Atom) -> int:
-        i = index.get(a)
-        if i is None:
-            i = index[a] = len(facts)
-            facts.append(a)
-        return i
-
     true_now = {a for a in belief.atoms() if a.value is True}
-    negs: set[Atom] = set()  # the positive atoms whose negation is a condition somewhere
-    kept = _reachable(gr, levels, statics, true_now)
-    rules = [(act, conds) for act, conds in kept if act.operator.name in _axiom_names(domain)]
-    if rules:
-        kept = [(act, conds) for act, conds in kept if act.operator.name not in _axiom_names(domain)]
-    for _, conds in kept + rules:
-        negs.update(p.negate() for p in conds if p.value is False)
-    negs.update(a.negate() for a in goal.atoms if a.value is False and a.predicate not in statics)
-    # ids in a canonical order, whatever the cache saw before: the same call makes the same plan
-    reached = set(true_now)
-    for act, _ in kept + rules:
-        reached.update(e for e in act.effects() if e.value is True)
-    for a in sorted(reached, key=_atom_order):
-        fid(a)
-    for a in sorted(negs, key=_atom_order):
-        fid(a.negate())
-    abstract = any(not levels.is_primitive(act) for act, _ in kept)
-    excludes = _Excluder(domain, reached) if abstract and domain.rules.conflicts else None
-    pre: list[tuple[int, ...]] = []
-    add: list[tuple[int, ...]] = []
-    dele: list[tuple[int, ...]] = []
-    cost: list[float] = []
-    actions: list[Action] = []
-    for act, conds in kept:
-        p_ids = tuple(sorted({fid(c) if c.value is True else index[c] for c in conds}))
-        adds = {e for e in act.effects() if e.value is True}
-        dels = {e.negate() for e in act.effects() if e.value is False} - adds
-        if excludes is not None and not levels.is_primitive(act):
-            dels |= excludes(adds) - adds
-        a_ids = {index[e] for e in adds if e in index}
-        d_ids = {index[e] for e in dels if e in index}
-        a_ids |= {index[e.negate()] for e in dels if e in negs}
-        d_ids |= {index[e.negate()] for e in adds if e in negs}
-        actions.append(act)
-        pre.append(p_ids)
-        add.append(tuple(sorted(a_ids)))
-        dele.append(tuple(sorted(d_ids - a_ids)))
-        cost.append(float(cost_of(act)))
-    init = frozenset({index[a] for a in true_now if a in index}
-                     | {index[n.negate()] for n in negs if n not in true_now})
-    task = Task(facts, index, actions, pre, add, dele, cost, init, ())
-    if domain.axioms:
-        task.axioms = _ground_axioms(domain, rules, index, negs)
+    goal_negs = frozenset(a.negate() for a in goal.atoms if a.value is False and a.predicate not in statics)
+    st = _structure(domain, gr, levels.top, goal_negs)
+    pre, add, dele, by_pre, no_pre = st.pre, st.add, st.dele, st.by_pre, st.no_pre
+    moved = [(st.position[key], lv) for key, lv in sorted(levels.overrides, key=repr) if key in st.position]
+    if moved:
+        pre, add, dele, by_pre, no_pre = list(pre), list(add), list(dele), dict(by_pre), list(no_pre)
+        for k, lv in moved:
+            _unindex(by_pre, no_pre, pre[k], k)
+            pre[k], add[k], dele[k] = st.rows.row(st.actions[k], lv)
+            _reindex(by_pre, no_pre, pre[k], k)
+    init = frozenset({st.index[a] for a in true_now if a in st.index}
+                     | {st.index[n.negate()] for n in st.negs if n not in true_now})
+    cost = [float(cost_of(act)) for act in st.actions]
+    task = Task(st.facts, st.index, st.actions, pre, add, dele, cost, init, (),
+                by_pre=by_pre, no_pre=no_pre, axioms=st.axioms)
+    if st.axioms is not None:
         from nowplan.planning.axioms import evaluator
 
         ev = evaluator(task)
@@ -187,17 +184,110 @@ def build_task(
             if not domain.holds(a, belief):
                 task.unsolvable = f"the goal needs {a}, a static fact that is false"
             continue
-        i = index.get(a)
+        i = st.index.get(a)
         if i is None:
             task.unsolvable = f"the goal needs {a}, which no action sequence reaches"
             continue
         goal_ids.append(i)
     task.goal = tuple(sorted(goal_ids))
-    task.index_preconditions()
-    keyed = [c for c in domain.rules.conflicts if isinstance(c, KeyedRule)]
-    if keyed:
-        task.memo["mutex"] = FactMutex(facts, keyed)
+    if st.mutex is not None:
+        task.memo["mutex"] = st.mutex
     return task
+
+
+def _unindex(by_pre: dict[int, list[int]], no_pre: list[int], pre: tuple[int, ...], k: int) -> None:
+    if not pre:
+        no_pre.remove(k)
+    for f in pre:
+        by_pre[f] = [x for x in by_pre[f] if x != k]
+
+
+def _reindex(by_pre: dict[int, list[int]], no_pre: list[int], pre: tuple[int, ...], k: int) -> None:
+    if not pre:
+        bisect.insort(no_pre, k)
+    for f in pre:
+        row = list(by_pre.get(f, ()))
+        bisect.insort(row, k)
+        by_pre[f] = row
+
+
+def _structure(domain: Domain, gr: Grounding, top: int, goal_negs: frozenset[Atom]) -> _Structure:
+    """The state-free part of the task (cached on the grounding, a few per grounding)."""
+    store = gr.tasks
+    key = (top, goal_negs)
+    hit: _Structure | None = store.get(key)
+    if hit is not None:
+        return hit
+    hit = _build_structure(domain, gr, top, goal_negs)
+    if len(store) >= _STRUCTURES_PER_GROUNDING:
+        store.pop(next(iter(store)))
+    store[key] = hit
+    return hit
+
+
+def _build_structure(domain: Domain, gr: Grounding, top: int, goal_negs: frozenset[Atom]) -> _Structure:
+    statics = gr.statics
+    names = _axiom_names(domain)
+    ordered = sorted(gr.actions, key=lambda a: (a.name, repr(a.args)))
+    kept = [act for act in ordered if act.operator.name not in names]
+    rules = [(act, [p for p in act.preconditions(top) if p.predicate not in statics])
+             for act in ordered if act.operator.name in names]
+    negs: set[Atom] = set(goal_negs)  # the positive atoms whose negation is a condition somewhere
+    reached = set(gr.reached)
+    for act in kept:
+        negs.update(p.negate() for p in act.preconditions(None) if p.value is False and p.predicate not in statics)
+        reached.update(p for p in act.preconditions(None) if p.value is True and p.predicate not in statics)
+    for _, conds in rules:
+        negs.update(p.negate() for p in conds if p.value is False)
+    for act, _ in rules:
+        reached.update(e for e in act.effects() if e.value is True)
+    for act in kept:
+        reached.update(e for e in act.effects() if e.value is True)
+    # ids in a canonical order, whatever the cache saw before: the same call makes the same plan
+    facts = sorted(reached, key=_atom_order)
+    facts += [a.negate() for a in sorted(negs, key=_atom_order)]
+    index = {a: i for i, a in enumerate(facts)}
+    rows = _Rows(domain, statics, index, frozenset(negs), reached)
+    pre: list[tuple[int, ...]] = []
+    add: list[tuple[int, ...]] = []
+    dele: list[tuple[int, ...]] = []
+    for act in kept:
+        p, a, d = rows.row(act, top)
+        pre.append(p)
+        add.append(a)
+        dele.append(d)
+    axioms = _ground_axioms(domain, rules, index, negs) if domain.axioms else None
+    shell = Task(facts, index, kept, pre, add, dele, [], frozenset(), ())
+    shell.index_preconditions()
+    keyed = [c for c in domain.rules.conflicts if isinstance(c, KeyedRule)]
+    mutex = FactMutex(facts, keyed) if keyed else None
+    return _Structure(facts, index, kept, pre, add, dele, frozenset(negs), axioms, shell.by_pre,
+                      shell.no_pre, mutex, rows, {act.key: i for i, act in enumerate(kept)})
+
+
+class _Rows:
+    """An action's precondition, add and delete fact ids at a level."""
+
+    def __init__(self, domain: Domain, statics: frozenset[str], index: dict[Atom, int], negs: frozenset[Atom],
+                 reached: set[Atom]) -> None:
+        self.domain, self.statics, self.index, self.negs, self.reached = domain, statics, index, negs, reached
+        self._excluder: _Excluder | None = None
+
+    def row(self, act: Action, level: int) -> tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...]]:
+        index, negs = self.index, self.negs
+        conds = [p for p in act.preconditions(level) if p.predicate not in self.statics]
+        p_ids = tuple(sorted({index[c] for c in conds}))
+        adds = {e for e in act.effects() if e.value is True}
+        dels = {e.negate() for e in act.effects() if e.value is False} - adds
+        if self.domain.rules.conflicts and not act.is_primitive(level):
+            if self._excluder is None:
+                self._excluder = _Excluder(self.domain, self.reached)
+            dels |= self._excluder(adds) - adds
+        a_ids = {index[e] for e in adds if e in index}
+        d_ids = {index[e] for e in dels if e in index}
+        a_ids |= {index[e.negate()] for e in dels if e in negs}
+        d_ids |= {index[e.negate()] for e in adds if e in negs}
+        return p_ids, tuple(sorted(a_ids)), tuple(sorted(d_ids - a_ids))
 
 
 class FactMutex:
@@ -258,44 +348,6 @@ def _ground_axioms(domain: Domain, rules: list[tuple[Action, list[Atom]]], index
 
 def _atom_order(a: Atom) -> tuple[str, str, bool]:
     return (a.predicate, repr(a.args), bool(a.value))
-
-
-def _reachable(gr: Grounding, levels: LevelMap, statics: frozenset[str],
-               true_now: set[Atom]) -> list[tuple[Action, list[Atom]]]:
-    """The actions a relaxed exploration from ``true_now`` reaches at their levels, in name order.
-
-    Each comes with its conditions at its level (static ones left out: the
-    grounding checked them).
-    """
-    conds_of: list[tuple[Action, list[Atom]]] = []
-    waiting: dict[Atom, list[int]] = {}
-    missing: list[int] = []
-    for act in gr.actions:
-        conds = [p for p in act.preconditions(levels.level(act)) if p.predicate not in statics]
-        k = len(conds_of)
-        conds_of.append((act, conds))
-        need = {p for p in conds if p.value is True}
-        missing.append(len(need))
-        for p in need:
-            waiting.setdefault(p, []).append(k)
-    reached: set[Atom] = set()
-    fired = [k for k, m in enumerate(missing) if m == 0]
-    queue = list(true_now)
-    for k in fired:
-        queue.extend(e for e in conds_of[k][0].effects() if e.value is True)
-    while queue:
-        f = queue.pop()
-        if f in reached:
-            continue
-        reached.add(f)
-        for k in waiting.pop(f, ()):
-            missing[k] -= 1
-            if missing[k] == 0:
-                fired.append(k)
-                queue.extend(e for e in conds_of[k][0].effects() if e.value is True and e not in reached)
-    out = [conds_of[k] for k in fired]
-    out.sort(key=lambda ac: (ac[0].name, repr(ac[0].args)))
-    return out
 
 
 class _Excluder:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.core.atoms import Atom, Var
@@ -31,6 +31,8 @@ class Grounding:
     actions: list[Action]
     reached: set[Atom]  # positive atoms reachable from the states seen so far
     statics: frozenset[str]
+    # integer task structures built from these actions (nowplan.planning.task), by level map and "not" facts
+    tasks: dict[Any, Any] = field(default_factory=dict, repr=False)
 
 
 _CACHE: dict[Any, Grounding] = {}
