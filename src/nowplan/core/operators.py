@@ -91,6 +91,18 @@ def reads_nothing(bindings: Mapping[Var, Any], goal: Any) -> tuple[()]:
 CostFn = Callable[[Bindings, Any], float]
 
 
+class StateFreeCost:
+    """A cost function of an action's arguments (and fixed data) alone, never of the belief.
+
+    Subclass it (and implement ``__call__(bindings, belief)``) so that planners
+    may compute each ground action's cost once per problem instead of once per
+    call; a plain callable is assumed to read the belief.
+    """
+
+    def __call__(self, bindings: Bindings, belief: Any = None) -> float:
+        raise NotImplementedError
+
+
 @dataclass(frozen=True)
 class Operator:
     """An operator schema: parameters, preconditions (each with a criticality), effects, cost.
@@ -187,6 +199,12 @@ class Action:
     def cost(self, belief: Any = None) -> float:
         c = self.operator.cost
         return float(c(self.bindings, belief)) if callable(c) else float(c)
+
+    @property
+    def cost_is_state_free(self) -> bool:
+        """The cost is a number or a :class:`StateFreeCost`: the same in every belief."""
+        c = self.operator.cost
+        return not callable(c) or isinstance(c, StateFreeCost)
 
     def resources(self) -> tuple[Resource, ...]:
         b = self.bindings

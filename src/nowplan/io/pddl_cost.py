@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.core.atoms import Var
+from nowplan.core.operators import StateFreeCost
 from nowplan.errors import PDDLError
 from nowplan.io.pddl_adl import evaluate
 from nowplan.io.pddl_ast import NConst, NExpr, NFunc, NOp
@@ -52,7 +53,7 @@ def show_expr(x: NExpr) -> str:
 
 
 @dataclass(frozen=True)
-class FunctionCost:
+class FunctionCost(StateFreeCost):
     """The cost of a ground action: its ``(increase (total-cost) ...)`` expressions evaluated."""
 
     action: str

@@ -344,16 +344,20 @@ def forward_plan(
     max_nodes: int = 500_000,
     out_of_time: Callable[[], bool] = lambda: False,
     improve: float = 0.0,
+    cache_costs: bool = False,
 ) -> tuple[ForwardResult, list[tuple[Action | None, Goal]] | None]:
-    """Ground, search and regress: the result and the plan's steps (``None`` unless solved)."""
-    task = build_task(domain, objects, belief, goal, levels, cost_of)
+    """Ground, search and regress: the result and the plan's steps (``None`` unless solved).
+
+    ``cache_costs``: ``cost_of`` is ``Action.cost`` in ``belief`` (see :func:`build_task`).
+    """
+    task = build_task(domain, objects, belief, goal, levels, cost_of, cache_costs=cache_costs)
     t0 = time.process_time()
     res = search(task, method=method, heuristic=heuristic, cost_type=cost_type, weight=weight,
                  max_nodes=max_nodes, out_of_time=out_of_time)
     if res.status is not PlanStatus.SOLVED or res.actions is None:
         return res, None
-    ids = {act: i for i, act in enumerate(task.actions)}
-    found = eliminate_actions(task, [ids[a] for a in res.actions])
+    pos: dict[Any, int] = task.memo.get("position") or {act.key: i for i, act in enumerate(task.actions)}
+    found = eliminate_actions(task, [pos[a.key] for a in res.actions])
     if improve > 0 and found:
         from nowplan.planning.anytime import improve as improve_plan
 
@@ -405,7 +409,7 @@ def plan_forward(
         domain, objects, belief, goal, levels, cost_of,
         method=config.search, heuristic=config.forward_heuristic, cost_type=config.cost_type,
         weight=config.weight, max_nodes=config.max_nodes, out_of_time=lambda: now() > deadline,
-        improve=config.improve,
+        improve=config.improve, cache_costs=True,
     )
     method = f"forward:{config.search}"
     common: dict[str, Any] = dict(expanded=res.expanded, generated=res.generated, method=method,

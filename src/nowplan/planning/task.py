@@ -128,6 +128,7 @@ class _Structure:
     mutex: FactMutex | None
     rows: _Rows  # makes an action's row at another level (the level map's overrides)
     position: dict[Any, int] = field(default_factory=dict)  # action key -> its id
+    costs: list[float] | None = None  # each action's cost, where every cost is state-free
 
 
 _STRUCTURES_PER_GROUNDING = 8
@@ -140,6 +141,8 @@ def build_task(
     goal: Goal,
     levels: LevelMap,
     cost_of: Any,
+    *,
+    cache_costs: bool = False,
 ) -> Task:
     """The integer task for ``goal`` from ``belief`` with each action at its level in ``levels``.
 
@@ -151,7 +154,9 @@ def build_task(
     moves to another level.  Actions a relaxed exploration from this state does
     not reach never apply (the heuristics explore from the state).  The "not"
     facts are those of every action's full preconditions, whatever its level,
-    so a row at any level finds its facts.
+    so a row at any level finds its facts.  With ``cache_costs`` (``cost_of`` is
+    ``Action.cost`` in the call's belief) and every cost state-free
+    (:attr:`Action.cost_is_state_free`), the costs are kept with the structure.
     """
     top = max([levels.top, *(lv for _, lv in levels.overrides)])
     gr = grounding(domain, objects, belief, top)
@@ -169,7 +174,12 @@ def build_task(
             _reindex(by_pre, no_pre, pre[k], k)
     init = frozenset({st.index[a] for a in true_now if a in st.index}
                      | {st.index[n.negate()] for n in st.negs if n not in true_now})
-    cost = [float(cost_of(act)) for act in st.actions]
+    if cache_costs and st.costs is not None:
+        cost = st.costs
+    else:
+        cost = [float(cost_of(act)) for act in st.actions]
+        if cache_costs and all(act.cost_is_state_free for act in st.actions):
+            st.costs = cost
     task = Task(st.facts, st.index, st.actions, pre, add, dele, cost, init, (),
                 by_pre=by_pre, no_pre=no_pre, axioms=st.axioms)
     if st.axioms is not None:
@@ -192,6 +202,7 @@ def build_task(
     task.goal = tuple(sorted(goal_ids))
     if st.mutex is not None:
         task.memo["mutex"] = st.mutex
+    task.memo["position"] = st.position
     return task
 
 

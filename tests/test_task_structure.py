@@ -1,0 +1,115 @@
+"""The forward task's state-free structure, kept across calls (planning/task.py).
+
+A task built from a kept structure (later calls on one problem, other level
+overrides, other states, other goals) must equal one built from scratch: the
+same actions with the same precondition, add and delete facts, the same
+initial state and goal.  Costs are kept only when every cost is state-free.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from nowplan.core.atoms import Atom, Goal
+from nowplan.core.levels import LevelMap, flat_levels
+from nowplan.core.operators import Action, StateFreeCost
+from nowplan.io.pddl_read import load_pddl
+from nowplan.planning import task_grounding
+from nowplan.planning.task import Task, build_task
+
+DATA = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl"
+
+
+def _rows(t: Task) -> dict[tuple[str, tuple[object, ...]], tuple[frozenset[Atom], frozenset[Atom], frozenset[Atom]]]:
+    """Each action's rows as atoms (ids may differ between two tasks)."""
+    out = {}
+    for k, act in enumerate(t.actions):
+        out[act.key] = (frozenset(t.facts[f] for f in t.pre[k]), frozenset(t.facts[f] for f in t.add[k]),
+                        frozenset(t.facts[f] for f in t.dele[k]))
+    return out
+
+
+def _state(t: Task, s: frozenset[int]) -> frozenset[Atom]:
+    return frozenset(t.facts[f] for f in s)
+
+
+def _fresh(*args: object) -> Task:
+    task_grounding._CACHE.clear()
+    return build_task(*args)  # type: ignore[arg-type]
+
+
+def test_a_kept_structure_gives_the_task_a_fresh_build_gives() -> None:
+    p = load_pddl(DATA / "logistics" / "domain.pddl", DATA / "logistics" / "p02.pddl",
+                  DATA / "logistics" / "logistics.crit")
+    top = p.domain.top_level
+    first = build_task(p.domain, p.objects, p.init, p.goal, LevelMap(top), lambda a: 1.0)
+    # a level map that moves two actions down: only their rows change
+    moved = [a for a in first.actions if not a.is_primitive(top)][:2]
+    assert moved, "the test needs abstract actions at the top level"
+    levels = LevelMap(top, frozenset((a.key, -1) for a in moved))
+    goal = Goal.of(list(p.goal.atoms)[:1])
+    kept = build_task(p.domain, p.objects, p.init, goal, levels, lambda a: 1.0)
+    assert kept.facts is first.facts  # the structure was shared
+    fresh = _fresh(p.domain, p.objects, p.init, goal, levels, lambda a: 1.0)
+    assert _rows(kept) == _rows(fresh)
+    assert _state(kept, kept.init) == _state(fresh, fresh.init)
+    assert _state(kept, frozenset(kept.goal)) == _state(fresh, frozenset(fresh.goal))
+    # the moved actions' rows are those of their lower level, the others those of the top level
+    rows_top = _rows(first)
+    for a in moved:
+        assert _rows(kept)[a.key][0] >= rows_top[a.key][0]
+        assert _rows(kept)[a.key] != rows_top[a.key] or a.is_primitive(-1) == a.is_primitive(top)
+    # the shared structure's own rows were not changed by the override
+    assert _rows(build_task(p.domain, p.objects, p.init, p.goal, LevelMap(top), lambda a: 1.0)) == rows_top
+    # the successor index follows the moved rows
+    for k in range(len(kept.actions)):
+        for f in kept.pre[k]:
+            assert k in kept.by_pre[f]
+    assert sorted(kept.no_pre) == [k for k in range(len(kept.actions)) if not kept.pre[k]]
+
+
+def test_a_negative_goal_gives_the_fresh_task() -> None:
+    p = load_pddl(DATA / "gripper" / "domain.pddl", DATA / "gripper" / "p01.pddl")
+    lv = flat_levels()
+    build_task(p.domain, p.objects, p.init, p.goal, lv, lambda a: 1.0)
+    goal = Goal.of([next(iter(p.goal.atoms)).negate()])  # a negative goal: its "not" fact is new
+    kept = build_task(p.domain, p.objects, p.init, goal, lv, lambda a: 1.0)
+    fresh = _fresh(p.domain, p.objects, p.init, goal, lv, lambda a: 1.0)
+    assert _rows(kept) == _rows(fresh)
+    assert _state(kept, kept.init) == _state(fresh, fresh.init)
+    assert _state(kept, frozenset(kept.goal)) == _state(fresh, frozenset(fresh.goal))
+
+
+class _Flat(StateFreeCost):
+    def __call__(self, bindings: object, belief: object = None) -> float:
+        return 3.0
+
+
+def test_costs_are_kept_only_when_asked_and_state_free() -> None:
+    p = load_pddl(DATA / "gripper" / "domain.pddl", DATA / "gripper" / "p01.pddl")
+    lv = flat_levels()
+    calls: list[Action] = []
+
+    def cost_of(a: Action) -> float:
+        calls.append(a)
+        return 1.0
+
+    build_task(p.domain, p.objects, p.init, p.goal, lv, cost_of, cache_costs=True)
+    n = len(calls)
+    assert n > 0
+    build_task(p.domain, p.objects, p.init, p.goal, lv, cost_of, cache_costs=True)
+    assert len(calls) == n  # kept: gripper's costs are numbers
+    t = build_task(p.domain, p.objects, p.init, p.goal, lv, lambda a: 2.0)
+    assert set(t.cost) == {2.0}  # without cache_costs the caller's costs count
+    assert all(a.cost_is_state_free for a in t.actions)
+    assert _Flat()({}, None) == 3.0
+
+
+def test_a_belief_reading_cost_is_not_state_free() -> None:
+    from dataclasses import replace
+
+    p = load_pddl(DATA / "gripper" / "domain.pddl", DATA / "gripper" / "p01.pddl")
+    op = replace(p.domain.operators[0], cost=lambda b, belief: 1.0)
+    assert not Action(op, tuple("x" for _ in op.params)).cost_is_state_free
+    op2 = replace(p.domain.operators[0], cost=_Flat())
+    assert Action(op2, tuple("x" for _ in op2.params)).cost_is_state_free
