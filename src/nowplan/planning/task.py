@@ -22,6 +22,7 @@ re-exported here (``__all__``).
 from __future__ import annotations
 
 import bisect
+import dataclasses
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -147,12 +148,12 @@ def build_task(
     """The integer task for ``goal`` from ``belief`` with each action at its level in ``levels``.
 
     The actions are the (cached) grounding's, so the task's actions, facts and
-    ids do not depend on the state: they are built once per grounding, top
-    level and set of negative goal atoms and shared by later calls (the
-    executive's many calls on one problem); a call sets the costs, the initial
-    state and the goal, and rebuilds the rows of the few actions its level map
-    moves to another level.  Actions a relaxed exploration from this state does
-    not reach never apply (the heuristics explore from the state).  The "not"
+    ids do not depend on the state: they are built once per grounding, level
+    map without its overrides, and set of negative goal atoms, and shared by
+    later calls (the executive's many calls on one problem); a call sets the
+    costs, the initial state and the goal, and rebuilds the rows of the few
+    actions its level map overrides.  Actions a relaxed exploration from this
+    state does not reach never apply (the heuristics explore from the state).  The "not"
     facts are those of every action's full preconditions, whatever its level,
     so a row at any level finds its facts.  With ``cache_costs`` (``cost_of`` is
     ``Action.cost`` in the call's belief) and every cost state-free
@@ -163,14 +164,14 @@ def build_task(
     statics = gr.statics
     true_now = {a for a in belief.atoms() if a.value is True}
     goal_negs = frozenset(a.negate() for a in goal.atoms if a.value is False and a.predicate not in statics)
-    st = _structure(domain, gr, levels.top, goal_negs)
+    st = _structure(domain, gr, dataclasses.replace(levels, overrides=frozenset()), goal_negs)
     pre, add, dele, by_pre, no_pre = st.pre, st.add, st.dele, st.by_pre, st.no_pre
-    moved = [(st.position[key], lv) for key, lv in sorted(levels.overrides, key=repr) if key in st.position]
+    moved = sorted(st.position[key] for key, _ in levels.overrides if key in st.position)
     if moved:
         pre, add, dele, by_pre, no_pre = list(pre), list(add), list(dele), dict(by_pre), list(no_pre)
-        for k, lv in moved:
+        for k in moved:
             _unindex(by_pre, no_pre, pre[k], k)
-            pre[k], add[k], dele[k] = st.rows.row(st.actions[k], lv)
+            pre[k], add[k], dele[k] = st.rows.row(st.actions[k], levels.level(st.actions[k]))
             _reindex(by_pre, no_pre, pre[k], k)
     init = frozenset({st.index[a] for a in true_now if a in st.index}
                      | {st.index[n.negate()] for n in st.negs if n not in true_now})
@@ -222,26 +223,26 @@ def _reindex(by_pre: dict[int, list[int]], no_pre: list[int], pre: tuple[int, ..
         by_pre[f] = row
 
 
-def _structure(domain: Domain, gr: Grounding, top: int, goal_negs: frozenset[Atom]) -> _Structure:
-    """The state-free part of the task (cached on the grounding, a few per grounding)."""
+def _structure(domain: Domain, gr: Grounding, base: LevelMap, goal_negs: frozenset[Atom]) -> _Structure:
+    """The state-free part of the task at ``base`` (a level map without overrides; cached on the grounding)."""
     store = gr.tasks
-    key = (top, goal_negs)
+    key = (base, goal_negs)
     hit: _Structure | None = store.get(key)
     if hit is not None:
         return hit
-    hit = _build_structure(domain, gr, top, goal_negs)
+    hit = _build_structure(domain, gr, base, goal_negs)
     if len(store) >= _STRUCTURES_PER_GROUNDING:
         store.pop(next(iter(store)))
     store[key] = hit
     return hit
 
 
-def _build_structure(domain: Domain, gr: Grounding, top: int, goal_negs: frozenset[Atom]) -> _Structure:
+def _build_structure(domain: Domain, gr: Grounding, base: LevelMap, goal_negs: frozenset[Atom]) -> _Structure:
     statics = gr.statics
     names = _axiom_names(domain)
     ordered = sorted(gr.actions, key=lambda a: (a.name, repr(a.args)))
     kept = [act for act in ordered if act.operator.name not in names]
-    rules = [(act, [p for p in act.preconditions(top) if p.predicate not in statics])
+    rules = [(act, [p for p in act.preconditions(base.level(act)) if p.predicate not in statics])
              for act in ordered if act.operator.name in names]
     negs: set[Atom] = set(goal_negs)  # the positive atoms whose negation is a condition somewhere
     reached = set(gr.reached)
@@ -263,7 +264,7 @@ def _build_structure(domain: Domain, gr: Grounding, top: int, goal_negs: frozens
     add: list[tuple[int, ...]] = []
     dele: list[tuple[int, ...]] = []
     for act in kept:
-        p, a, d = rows.row(act, top)
+        p, a, d = rows.row(act, base.level(act))
         pre.append(p)
         add.append(a)
         dele.append(d)
