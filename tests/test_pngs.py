@@ -211,6 +211,7 @@ def int_tasks(draw: st.DrawFn) -> Task:
     return int_task(n, actions, draw(st.lists(fact, max_size=4)), draw(st.lists(fact, min_size=1, max_size=3)))
 
 
+@pytest.mark.timeout(300, method="thread")  # hypothesis and the signal method: see pyproject.toml
 @settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(task=int_tasks(), limit=st.sampled_from([1, 4, 16, 1000]))
 def test_random_neighborhoods_are_valid_and_never_costlier(mode: Callable[[str], None], task: Task,
@@ -228,6 +229,7 @@ def test_random_neighborhoods_are_valid_and_never_costlier(mode: Callable[[str],
 
 
 @needs_kernel
+@pytest.mark.timeout(300, method="thread")
 @settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(task=int_tasks(), limit=st.sampled_from([1, 4, 16, 1000]))
 def test_random_neighborhoods_are_identical(mode: Callable[[str], None], task: Task, limit: int) -> None:

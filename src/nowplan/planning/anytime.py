@@ -76,11 +76,15 @@ def _bounded_wastar(task: Task, h: RelaxedHeuristic, succ: _Successors, weight: 
 
 
 def improve(task: Task, plan: list[int], budget_s: float, cost_type: CostType = "plusone",
-            out_of_time: Callable[[], bool] = lambda: False) -> list[int]:
-    """A plan no costlier than ``plan``, searching for at most ``budget_s`` CPU seconds."""
+            out_of_time: Callable[[], bool] = lambda: False, wastar_share: float = WASTAR_SHARE) -> list[int]:
+    """A plan no costlier than ``plan``, searching for at most ``budget_s`` CPU seconds.
+
+    ``wastar_share``: the part of the budget for the weighted A* searches (1: no
+    neighborhood search, unless they end early).
+    """
     start = time.process_time()
     end = start + budget_s
-    end_wastar = start + WASTAR_SHARE * budget_s
+    end_wastar = start + wastar_share * budget_s
 
     def stop() -> bool:
         return time.process_time() > end or out_of_time()
