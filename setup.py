@@ -13,7 +13,7 @@ setup(
             sources=["src/nowplan/planning/_kernel.c"],
             depends=["src/nowplan/planning/_kernel_heap.h", "src/nowplan/planning/_kernel_gbfs.h", "src/nowplan/planning/_kernel_lama.h",
                      "src/nowplan/planning/_kernel_wastar.h", "src/nowplan/planning/_kernel_axioms.h",
-                     "src/nowplan/planning/_kernel_costs.h"],
+                     "src/nowplan/planning/_kernel_costs.h", "src/nowplan/planning/_kernel_pngs.h"],
             optional=True,
         )
     ]

@@ -1,11 +1,12 @@
 /* The forward engine's compiled kernel: h_FF / h_add / h_max with preferred
  * operators, the successor generator, lazy GBFS, LAMA's first iteration
- * (_kernel_lama.h) and the bounded weighted A* of the anytime improvement
- * (_kernel_wastar.h) over bitset states, the stratified evaluation of the
- * rules of derived predicates after every action (_kernel_axioms.h, axioms.py),
+ * (_kernel_lama.h), the bounded weighted A* of the anytime improvement
+ * (_kernel_wastar.h) and the plan neighborhood graph search (_kernel_pngs.h)
+ * over bitset states, the stratified evaluation of the rules of derived
+ * predicates after every action (_kernel_axioms.h, axioms.py),
  * and every fact's relaxed cost for the regression search's h_add (_kernel_costs.h).
  *
- * It mirrors nowplan/planning/hff.py, forward.py, lama.py and anytime.py (the reference: both
+ * It mirrors nowplan/planning/hff.py, forward.py, lama.py, anytime.py and pngs.py (the reference: both
  * paths must give the same h, the same preferred operators, the same plan
  * and the same counters).  The exploration pops the lowest cost and, among
  * equal costs, the most recently pushed entry (a push counter stands in for
@@ -19,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define KERNEL_API 7
+#define KERNEL_API 8
 #define BIT(b, f) (((b)[(f) >> 6] >> ((f) & 63)) & 1u)
 #define SETBIT(b, f) ((b)[(f) >> 6] |= (uint64_t)1 << ((f) & 63))
 #define CLRBIT(b, f) ((b)[(f) >> 6] &= ~((uint64_t)1 << ((f) & 63)))
@@ -499,6 +500,7 @@ static PyObject *Kernel_close(Kernel *k, PyObject *state) {
 #include "_kernel_gbfs.h"
 #include "_kernel_lama.h"
 #include "_kernel_wastar.h"
+#include "_kernel_pngs.h"
 #include "_kernel_costs.h"
 
 static PyMethodDef Kernel_methods[] = {
@@ -517,6 +519,9 @@ static PyMethodDef Kernel_methods[] = {
      "costs(state, overrides=(), off=()) -> the relaxed cost of every fact from state minus off (inf: not reached); overrides = [(action, facts)]"},
     {"bounded_wastar", (PyCFunction)(void (*)(void))Kernel_bounded_wastar, METH_VARARGS | METH_KEYWORDS,
      "bounded_wastar(init, cost, weight, bound, stop) -> a plan (action ids) cheaper than bound, or None"},
+    {"neighborhood", (PyCFunction)(void (*)(void))Kernel_neighborhood, METH_VARARGS | METH_KEYWORDS,
+     "neighborhood(init, plan, limit, cost, stop) -> (cheapest plan in the plan's neighborhood graph of at most "
+     "limit states, states, complete, stopped)"},
     {NULL, NULL, 0, NULL},
 };
 

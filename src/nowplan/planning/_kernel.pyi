@@ -63,3 +63,11 @@ class Kernel:
         bound: float,
         stop: Callable[[], object] | None = None,
     ) -> list[int] | None: ...
+    def neighborhood(
+        self,
+        init: Iterable[int],
+        plan: Sequence[int],
+        limit: int,
+        cost: Sequence[float],
+        stop: Callable[[], object] | None = None,
+    ) -> tuple[list[int], int, bool, bool]: ...
