@@ -132,13 +132,6 @@ def fog_along(per_metre: np.ndarray, cells: np.ndarray) -> float:
     return float(np.mean(per_metre[cells]))
 
 
-def fog_fraction(belief: NamoBelief, cells: np.ndarray) -> float:
-    """The fraction of ``cells`` (those a straight segment crosses) that are fog."""
-    if cells.size == 0:
-        return 0.0
-    return float(np.count_nonzero(~belief.observed[cells])) / float(cells.size)
-
-
 def _band(belief: NamoBelief, segments: Sequence[tuple[Pt, Pt]], half_width: float, size: float) -> np.ndarray:
     """The fog cells within ``half_width`` of a route's centre line where an object's centre fits."""
     g = belief.geom.grid
