@@ -13,7 +13,7 @@ pytest.importorskip("shapely")
 from nowplan.core.levels import LevelMap  # noqa: E402
 from nowplan.errors import NowplanError  # noqa: E402
 from nowplan.domains.namo.belief import NamoBelief  # noqa: E402
-from nowplan.domains.namo.fogcost import fog_price  # noqa: E402
+from nowplan.domains.namo.fogcost import bypass_cost, fog_cost_spread, fog_price, object_cost  # noqa: E402
 from nowplan.domains.namo.geometry import Grid, MapGeometry, Pt  # noqa: E402
 from nowplan.domains.namo.params import Params  # noqa: E402
 from nowplan.domains.namo.paths import PathPlanner, dijkstra  # noqa: E402
@@ -72,8 +72,11 @@ def test_pricing_off_makes_fog_free():
 def test_a_straight_move_pays_the_fog_price_for_the_part_it_runs_in_fog():
     b = _belief(Params(fog_prior_objects=3.0))
     _observe_left(b, 4.0)
-    rho = fog_price(b).per_metre
-    assert rho > 0
+    f = fog_price(b)
+    assert f.per_metre > 0
+    # an open room: an object met in fog is side-stepped, so a metre of fog costs the side-step
+    rho = f.density * f.width * bypass_cost(f.width)
+    assert 0 < rho < f.per_metre
     pp = PathPlanner.of(b, False)
     seen_a, seen_b = Pt(0.5, 2.0), Pt(3.5, 2.0)
     fog_a, fog_b = Pt(4.5, 2.0), Pt(7.5, 2.0)
@@ -135,18 +138,22 @@ def _fig6_with_crate(params: Params) -> tuple[object, NamoBelief]:
     return plan, b
 
 
-def test_a_detour_through_fog_replans_only_if_it_pays_in_expectation():
-    """Stage 2 compares the old route (clearing the crate) with a detour through fog, both priced."""
+def test_a_detour_through_an_open_room_pays_even_when_fog_is_cluttered():
+    """Stage 2 compares the old route (clearing the crate) with a detour through fog, both priced.
+
+    Fig. 6's room is open: an object the detour meets in fog is side-stepped,
+    not cleared, so even a cluttered prior leaves the detour cheaper.
+    """
     plan, b = _fig6_with_crate(Params(fog_pricing=False))
     new_obstacle, _ = make_triggers(b.params)
     reason = new_obstacle(plan, b)  # fog free: the detour looks clearly cheaper
     assert reason is not None and "shorter" in reason
 
     plan, b = _fig6_with_crate(Params(fog_prior_objects=8.0, fog_prior_area=10.0))
-    rho = fog_price(b).per_metre
-    assert rho > 2.0  # a cluttered prior: each metre of fog is expected to cost more than 2 m
+    assert fog_price(b).per_metre > 2.0  # where an object would block, a metre of fog costs over 2 m
     new_obstacle, _ = make_triggers(b.params)
-    assert new_obstacle(plan, b) is None  # the detour's fog is dearer than clearing the crate
+    reason = new_obstacle(plan, b)
+    assert reason is not None and "shorter" in reason
 
 
 def test_fig6_detour_still_happens_with_the_default_price():
@@ -154,6 +161,7 @@ def test_fig6_detour_still_happens_with_the_default_price():
     plan, b = _fig6_with_crate(Params())
     rho = fog_price(b).per_metre
     assert 0 < rho < 2.0 and math.isfinite(rho)
+    assert fog_cost_spread(b, [(Pt(1.0, 0.6), Pt(7.0, 0.6))], []) < 0.5  # open fog: little at stake
     new_obstacle, _ = make_triggers(b.params)
     reason = new_obstacle(plan, b)
     assert reason is not None and "shorter" in reason
@@ -206,3 +214,89 @@ def _with_free_fog(b: NamoBelief) -> NamoBelief:
     free.params = Params(fog_pricing=False)
     free._bump()
     return free
+
+
+# -- passages: where an object met in fog must be cleared -------------------------------------------
+CORRIDOR = ((2.0, 0.0, 6.0, 1.5), (2.0, 2.7, 6.0, 4.0))  # a 1.2 m corridor from x = 2 to 6, walls off the grid
+
+
+def test_passage_width_is_the_corridors_width_and_a_rooms_extent():
+    geom = MapGeometry(8.0, 4.0, CORRIDOR)
+    g = geom.grid
+    w = geom.passage_width
+    assert w[g.cell(Pt(4.0, 2.1))] == pytest.approx(1.2, abs=0.01)  # measured exactly, though off the grid
+    assert w[g.cell(Pt(1.0, 0.3))] == pytest.approx(2.0, abs=0.01)  # a room cell next to a wall: the room's extent
+    assert w[g.cell(Pt(4.0, 0.5))] == 0.0  # inside a wall
+
+
+def test_an_object_met_in_a_narrow_corridor_costs_its_clearing_in_a_room_a_side_step():
+    p = Params()
+    narrow = ((2.0, 0.0, 6.0, 1.5), (2.0, 2.5, 6.0, 4.0))  # 1.0 m: one object fills it
+    b = NamoBelief(MapGeometry(8.0, 4.0, narrow), np.array([0.5, 2.0]), params=p)
+    k = object_cost(b, 0.5, 1.0)
+    g = b.geom.grid
+    assert k[g.cell(Pt(4.0, 2.0))] == pytest.approx(p.clear_cost)
+    assert k[g.cell(Pt(1.0, 2.0))] == pytest.approx(bypass_cost(1.0))
+    wide = NamoBelief(MapGeometry(8.0, 4.0, CORRIDOR), np.array([0.5, 2.0]), params=p)
+    mid = object_cost(wide, 0.5, 1.0)[g.cell(Pt(4.0, 2.1))]  # 1.2 m: passable beside an object near a wall
+    assert bypass_cost(1.0) < mid < p.clear_cost
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=list(HealthCheck))
+@given(width=st.floats(0.6, 6.0), size=st.floats(0.1, 1.0))
+def test_object_cost_lies_between_a_side_step_and_a_clearing_and_falls_as_space_widens(width, size):
+    p = Params()
+    half = width / 2
+    walls = ((0.0, 0.0, 8.0, 2.0 - half), (0.0, 2.0 + half, 8.0, 8.0)) if half < 2.0 else ()
+    b = NamoBelief(MapGeometry(8.0, 8.0, walls), np.array([0.5, 2.0]), params=p)
+    band = 2 * b.geom.robot_radius + size
+    k = object_cost(b, size, band)[b.geom.grid.cell(Pt(4.0, 2.0))]
+    assert min(bypass_cost(band), p.clear_cost) - 1e-9 <= k <= p.clear_cost + 1e-9
+    wider = NamoBelief(MapGeometry(8.0, 8.0, ()), np.array([0.5, 2.0]), params=p)
+    assert object_cost(wider, size, band)[b.geom.grid.cell(Pt(4.0, 2.0))] <= k + 1e-9
+
+
+def test_fog_spread_grows_with_the_fog_only_the_new_route_runs_into():
+    b = NamoBelief(MapGeometry(8.0, 4.0, CORRIDOR), np.array([0.5, 2.0]), params=Params())
+    _observe_left(b, 1.5)
+    corridor = [(Pt(1.0, 2.1), Pt(7.0, 2.1))]
+    assert fog_cost_spread(b, corridor, corridor) == 0.0  # the same fog: nothing at stake
+    through = fog_cost_spread(b, corridor, [])
+    assert through > 1.0  # objects met in the corridor must be cleared
+    room = NamoBelief(MapGeometry(8.0, 4.0, ()), np.array([0.5, 2.0]), params=Params())
+    _observe_left(room, 1.5)
+    assert fog_cost_spread(room, corridor, []) < through / 3  # in a room they are side-stepped
+    off = NamoBelief(MapGeometry(8.0, 4.0, CORRIDOR), np.array([0.5, 2.0]), params=Params(fog_pricing=False))
+    assert fog_cost_spread(off, corridor, []) == 0.0
+    _observe_left(b, 8.0)
+    assert fog_cost_spread(b, corridor, []) == 0.0  # no fog left
+
+
+def test_a_detour_into_a_foggy_corridor_must_stand_out_of_its_spread():
+    """Domain 2, seed 0: the first look finds midbox; the detour into the low corridor gains 5 m in
+    expectation, but the corridor's fog, where every object met must be cleared, may cost far more."""
+    from nowplan.domains.namo.triggers import destination, remaining_moves
+
+    reasons = {}
+    for sd in (0.0, Params().reconsider_sd):
+        ep = make("domain2", 0)
+        b, dom = ep.belief, ep.problem.domain
+        b.params = Params(reconsider_sd=sd)
+        res = regression_plan(dom, {}, b, ep.problem.goal, LevelMap(dom.top_level))
+        assert res.solved and res.plan is not None
+        first = next(a for a in res.plan.actions if a.name == "Move")
+        b.update(_look(dom, first.args[2]), ep.world.execute(_look(dom, first.args[2])))
+        assert "midbox" in b.objects
+        regions, _ = remaining_moves(res.plan, b)
+        assert destination(res.plan) == regions[-1].end
+        new_obstacle, _ = make_triggers(b.params)
+        reasons[sd] = new_obstacle(res.plan, b)
+    assert reasons[0.0] is not None and "shorter" in reasons[0.0]  # in expectation the detour pays...
+    assert reasons[Params().reconsider_sd] is None  # ...but not beyond the spread of its fog's cost
+
+
+def _look(dom: object, region: object) -> object:
+    from nowplan.core.operators import Action
+
+    op = next(o for o in dom.operators if o.name == "Look")  # type: ignore[attr-defined]
+    return Action(op, (region.start, region))  # type: ignore[attr-defined]

@@ -27,8 +27,10 @@ from nowplan.domains.namo.scenarios import SCENARIOS, episode  # noqa: E402
 from nowplan.trace import Trace  # noqa: E402
 
 
-def traced(scenario: str, strategy: str, seed: int) -> tuple[Trace, object]:
+def traced(scenario: str, strategy: str, seed: int, **params: object) -> tuple[Trace, object]:
     scen = SCENARIOS.spec(scenario)
+    if params:
+        scen = replace(scen, params=replace(scen.params, **params))
     ep = episode(scen, seed)
     st = parse_strategy(strategy, max_actions=scen.max_actions, max_plans=800, time_limit=120.0)
     st = replace(st, planner=replace(PLANNER, seed=seed), cost_increase=float("inf"))
@@ -51,8 +53,10 @@ def test_a_placement_in_a_later_manipulations_path_conflicts() -> None:
 def test_picks_do_not_fail_on_fog_the_object_hid_and_drags_are_not_blocked_by_the_plan(seed: int) -> None:
     # domain 2, selective replanning, seeds 0 and 8: the pick used to "fail" at once (the
     # carry volume stopped counting as observed once the object was lifted) and, in seed 0,
-    # a drag ran into an object the same plan had just put down
-    tr, m = traced("domain2", "hpn+flexible+foresight+selective", seed)
+    # a drag ran into an object the same plan had just put down.  (Selective replanning no longer
+    # takes these detours into a foggy corridor by default -- the gain does not stand out of the
+    # spread of the corridor's fog cost -- so the fixed 1 m rule alone brings the runs back.)
+    tr, m = traced("domain2", "hpn+flexible+foresight+selective", seed, reconsider_sd=0.0)
     assert m.outcome.value == "reached"
     actions = {e["n"]: e["action"] for e in tr.of("action")}
     for f in tr.of("failure"):
@@ -61,8 +65,9 @@ def test_picks_do_not_fail_on_fog_the_object_hid_and_drags_are_not_blocked_by_th
         assert "dragging" not in f["reason"], f["reason"]
 
 
-def test_selective_does_not_replan_a_plan_whose_step_just_failed() -> None:
-    tr, m = traced("domain2", "hpn+flexible+foresight+selective", 0)
+@pytest.mark.parametrize("seed,params", [(0, {"reconsider_sd": 0.0}), (5, {})])
+def test_selective_does_not_replan_a_plan_whose_step_just_failed(seed: int, params: dict[str, float]) -> None:
+    tr, m = traced("domain2", "hpn+flexible+foresight+selective", seed, **params)
     assert m.outcome.value == "reached"
     assert tr.of("failure"), "the scenario should contain a failed step"
     for f in tr.of("failure"):

@@ -61,7 +61,7 @@ def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -
     for a in sorted(belief.route_memo.get(b, ())):
         if belief.at(a) and a.dist(b) <= seg + 1e-9 and belief.geom.segment_free(a, b):
             r = region(belief, a, b, fs)
-            if _clearable(belief, r):
+            if _clearable(belief, r) and not _unobservable(belief, r):
                 yield {A: a, SW: r}
                 return
     start = belief.nominal()
@@ -85,6 +85,14 @@ def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -
         # only moves whose refinement can succeed: every obstacle in the way can be looked
         # at or moved (finding one that cannot marks it, and the path is planned again)
         good = [a for a in opts if _clearable(belief, region(belief, a, b, fs))]
+        seeable = [a for a in good if not _unobservable(belief, region(belief, a, b, fs))]
+        if good and not seeable and start.dist(b) > 0.4:
+            # a look from the start already failed to reveal the way (fog hidden behind something
+            # not seen from there): get there in two moves, looking again from halfway
+            mid = belief.geom.grid.snap(Pt.of((start.x + b.x) / 2, (start.y + b.y) / 2))
+            if mid not in (start, b) and belief.geom.segment_free(mid, b):
+                seeable = [mid]
+        good = seeable or good
         if good or set(belief.unmovable.items()) == stuck_before:
             break
     if not good:  # nothing surely refinable: let the refinement try (and fail informatively)
@@ -93,6 +101,15 @@ def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -
         if a != start:
             belief.route_memo.setdefault(b, set()).add(a)
         yield {A: a, SW: region(belief, a, b, fs)}
+
+
+def _unobservable(belief: NamoBelief, r: Region) -> bool:
+    """Did a look from the move's start already fail to reveal its volume, with nothing new seen since?
+
+    (Fog hidden behind something the robot cannot see from there: the same
+    look would fail again, and a plan that needs it would repeat it.)
+    """
+    return belief.futile_looks.get((r.view, f"look:{r}")) == belief.percept and not belief.is_observed(r)
 
 
 def _clearable(belief: NamoBelief, r: Region) -> bool:

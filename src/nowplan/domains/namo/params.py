@@ -52,12 +52,16 @@ class Params:
     fog_place_cost: float = 4.0  # placement penalty for putting an object down partly in fog
     motion_model: float = 0.01  # the agent's model of its odometry noise per metre
     reconsider_gain: float = 1.0  # selective: replan when a path this much shorter exists (m)
+    # selective: ... and by this many standard deviations of the fog cost the new path runs into and
+    # the planned one does not (fogcost.fog_cost_spread; 2.33: one-sided 99 %); 0: the fixed gain alone
+    reconsider_sd: float = 2.33
     # fog is priced by its expected clearance cost (fogcost.py): a Gamma prior on the density of
     # objects in free space (this many objects in this many m^2), updated by what the robot observed
     fog_pricing: bool = True
     fog_prior_objects: float = 1.0
     fog_prior_area: float = 10.0  # m^2
     fog_prior_width: float = 0.5  # m: the mean object width assumed before any object is seen
+    pass_margin: float = 0.1  # m: beyond the robot's diameter, the gap it needs to pass an object met in fog
 
     @property
     def k_clear(self) -> float:

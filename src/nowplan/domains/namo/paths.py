@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from nowplan.domains.namo.belief import NamoBelief, k_of
-from nowplan.domains.namo.fogcost import fog_fraction, fog_price
+from nowplan.domains.namo.fogcost import fog_along, fog_price
 from nowplan.domains.namo.geometry import Box, Grid, Pt, Region
 
 SQRT2 = math.sqrt(2.0)
@@ -148,8 +148,8 @@ class CostMap:
     labels: list[str]  # what each bit stands for, e.g. "box1" or "box1~shadow"
     radius: float = 0.25
     objects: list[tuple[Box, float, int, int]] = field(default_factory=list)
-    fog_cost: float = 0.0  # expected clearance cost per metre of fog (fogcost.fog_price)
-    per_metre: np.ndarray | None = None  # per cell: fog_cost in fog, 0 in observed space (None: all 0)
+    fog_cost: float = 0.0  # expected clearance cost per metre of fog where objects block (fogcost.fog_price)
+    per_metre: np.ndarray | None = None  # per cell: fog's expected clearance cost per metre, 0 where observed (None: all 0)
 
 
 def build_costmap(belief: NamoBelief, foresight: bool, stuck_impassable: bool = True) -> CostMap:
@@ -188,8 +188,9 @@ def build_costmap(belief: NamoBelief, foresight: bool, stuck_impassable: bool = 
             labels.append(o.name + "~shadow")
             for c in np.nonzero(ring)[0].tolist():
                 masks[c] |= bit
-    fog_cost = fog_price(belief).per_metre
-    per_metre = np.where(belief.observed, 0.0, fog_cost) if fog_cost > 0 else None
+    price = fog_price(belief)
+    fog_cost = price.per_metre
+    per_metre = np.where(belief.observed, 0.0, price.cells) if fog_cost > 0 else None
     return CostMap(g, passable, masks, penalties, labels, r, objects, fog_cost, per_metre)
 
 
@@ -353,7 +354,7 @@ class PathPlanner:
         ks = self.cm.grid.line_cells(a, b)
         if not self.cm.passable[ks].all():
             return INF
-        fog = self.cm.fog_cost * a.dist(b) * fog_fraction(self.belief, ks) if self.cm.fog_cost > 0 else 0.0
+        fog = fog_along(self.cm.per_metre, ks) * a.dist(b) if self.cm.per_metre is not None else 0.0
         r = self.cm.radius
         swept = Region(a, b, r)  # the volume BClear tests: swept after leaving a
         pen = 0.0

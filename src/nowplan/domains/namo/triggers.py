@@ -29,12 +29,16 @@ whose triggers are the two of its Sec. V (see docs/namo.md).
 from __future__ import annotations
 
 from collections.abc import Callable
+import logging
 from typing import Any
 
 from nowplan.domains.namo.belief import NamoBelief, k_of
+from nowplan.domains.namo.fogcost import fog_cost_spread
 from nowplan.domains.namo.geometry import Pt, Region
 from nowplan.domains.namo.params import Params
 from nowplan.domains.namo.paths import INF, PathPlanner
+
+log = logging.getLogger(__name__)
 
 Trigger = Callable[[Any, Any], "str | None"]
 
@@ -107,7 +111,19 @@ def make_triggers(params: Params) -> tuple[Trigger, ...]:
         why = f" (new obstacle {', '.join(new)} on the planned path)" if new else ""
         if cost < INF and old == INF:
             return "the planned path is blocked (something there cannot be moved); another exists" + why
-        if cost < INF and cost < old - params.reconsider_gain:
+        if cost == INF or cost >= old - params.reconsider_gain:
+            return None
+        # the gain must also stand out of the noise of the fog's expected cost (fogcost.py)
+        spread = 0.0
+        if params.reconsider_sd > 0:
+            spread = fog_cost_spread(
+                belief, list(zip(path, path[1:])), [(r.start, r.end) for r in regions],
+            )
+        log.debug(
+            "stage 2: planned %.2f, new %.2f, gain %.2f, fog spread %.2f (needs > %.2f)%s",
+            old, cost, old - cost, spread, params.reconsider_gain + params.reconsider_sd * spread, why,
+        )
+        if old - cost > params.reconsider_gain + params.reconsider_sd * spread:
             return f"a path shorter by {old - cost:.1f} m exists" + why
         return None
 
