@@ -111,10 +111,12 @@ def _set_down(hold: Hold, door: Door, anchor: Cell) -> Config:
     return base.with_items([*hold.items, (hold.held, hold.held_shape, anchor)]), door
 
 
-@lru_cache(maxsize=50_000)
+@lru_cache(maxsize=4096)
 def successors(conf: Config) -> tuple[tuple[Transition, float], ...]:
     """The robot operators from ``conf`` (memoised: the searches of one bay, for stow, fetch and
-    the shareability test, expand many of the same configurations)."""
+    the shareability test, expand many of the same configurations).  4,096 configurations keep
+    the hits of 50,000 (12 RCHPN runs, both-dispersed 6-8: 2,317 against 2,331 of 14,710) while
+    the collector no longer walks ~86,000 cached transitions at every full pass."""
     return tuple(_successors(conf))
 
 
