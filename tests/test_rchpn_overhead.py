@@ -83,7 +83,7 @@ def bays(draw: Any) -> lp.Config:
 @given(bays())
 def test_bay_geometry_matches_the_reference(conf: lp.Config) -> None:
     hold, door = conf
-    assert reachable(hold, door) == _reachable_ref(hold, door)
+    assert reachable(hold, door) == _reachable_ref(hold, door) == reachable(hold, door, occupancy(hold, door))
     for shape in SHAPES:
         assert lp.spots(hold, door, shape) == _spots_ref(hold, door, shape)
     # every successor is a well-formed bay: items sorted, nothing overlapping

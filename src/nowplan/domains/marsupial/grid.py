@@ -163,9 +163,11 @@ def neighbours(rows: int, cols: int) -> dict[Cell, tuple[Cell, ...]]:
     }
 
 
-def reachable(hold: Hold, door: Door) -> dict[Cell, int]:
-    """Cells the loader can walk to through free cells, with their BFS distance."""
-    occ = occupancy(hold, door)
+def reachable(hold: Hold, door: Door, occ: Mapping[Cell, str] | None = None) -> dict[Cell, int]:
+    """Cells the loader can walk to through free cells, with their BFS distance (``occ``: the
+    bay's :func:`occupancy`, when the caller has it)."""
+    if occ is None:
+        occ = occupancy(hold, door)
     nbrs = neighbours(hold.rows, hold.cols)
     start = hold.loader
     dist = {start: 0}

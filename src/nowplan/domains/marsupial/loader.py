@@ -31,7 +31,6 @@ from nowplan.domains.marsupial.grid import (
     Cell,
     Door,
     Hold,
-    adjacent,
     border,
     cells,
     door_status,
@@ -39,6 +38,7 @@ from nowplan.domains.marsupial.grid import (
     inside,
     is_packed,
     load_anchor,
+    neighbours,
     occupancy,
     placement_penalty,
     reachable,
@@ -124,9 +124,9 @@ def _successors(conf: Config) -> list[tuple[Transition, float]]:
     hold, door = conf
     rows, cols = hold.rows, hold.cols
     out: list[tuple[Transition, float]] = []
-    dist = reachable(hold, door)
+    occ = occupancy(hold, door)
+    dist = reachable(hold, door, occ)
     if hold.held is None:
-        occ = occupancy(hold, door)
         seen: set[str] = set()
         for dr, dc in STEPS:  # lift a neighbouring package
             q = occ.get((hold.loader[0] + dr, hold.loader[1] + dc))
@@ -141,7 +141,10 @@ def _successors(conf: Config) -> list[tuple[Transition, float]]:
                 after = (Hold(hold.rows, hold.cols, rest, hold.loader, q, q_shape), door)
             out.append((Transition("grasp", q, conf, after), 1.0))
         # walk next to a package, or out of the load region
-        near = {(r + dr, c + dc) for (r, c) in occ for dr, dc in STEPS}
+        nbrs = neighbours(rows, cols)
+        near: set[Cell] = set()
+        for x in occ:
+            near.update(nbrs[x] if x in nbrs else [(x[0] + dr, x[1] + dc) for dr, dc in STEPS])
         targets: set[Cell] = {x for x in dist if x in near and x != hold.loader}
         parking = [x for x in dist if in_storage(x, rows, cols)]
         if not in_storage(hold.loader, rows, cols) and parking:
@@ -152,8 +155,8 @@ def _successors(conf: Config) -> list[tuple[Transition, float]]:
     shape = hold.held_shape
     assert shape is not None
     ranked = sorted((spot_penalty(shape, a, rows, cols), a) for a in spots(hold, door, shape))
-    for pen, a in ranked:  # set it down next to the loader
-        if any(adjacent(hold.loader, x) for x in cells(shape, a)):
+    for pen, a in ranked:  # set it down next to the loader (never on it: spots() excludes its cell)
+        if hold.loader in border(shape, a):
             out.append((Transition("place", hold.held, conf, _set_down(hold, door, a)), 1.0 + EPS * max(pen, 0.0)))
     # walk towards the best spots (each from its nearest neighbouring cell)
     stores = [a for p, a in ranked if p < 10.0 * cols][:MAX_PLACEMENTS]
