@@ -283,8 +283,8 @@ class PathCache:
 
     def into(self, start: Config, target: Hold, status: str | None) -> Transition | None:
         """The transition of a known path from ``start`` that ends in ``target``."""
-        for p in self._by_start.get(start, ()):
-            for t in p:
+        for known in self._by_start.get(start, ()):
+            for t in known:
                 if t.after[0] == target and (status is None or t.door_after == status):
                     return t
         p = self.path(start, f"exact:{target}:{status}", exact_goal(target, status), lambda c: 0.0)
