@@ -25,6 +25,7 @@ resources, so their conjuncts are exactly the ones not to serialize.
 
 from __future__ import annotations
 
+import gc
 import logging
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
@@ -265,6 +266,8 @@ class Peephole(Mechanism):
         # frame above it is popped, so that the combination is given up where it was made (popping
         # only the failing frame lets the plans in between lead back to the same failure)
         self._unwind_to: int | None = None
+        # the highest true kernel found by ``applicable`` (frame, plan, actions taken, k)
+        self._applicable: tuple[Any, Plan, int, int | None] | None = None
 
     def _failed_now(self, ex: Executive) -> list[frozenset[Any]]:
         """The combinations that failed in the current belief (forgotten after each action)."""
@@ -293,6 +296,8 @@ class Peephole(Mechanism):
         if frame.i >= frame.n:
             return False
         k = highest_applicable(ex.domain, ex.belief, frame.plan)
+        # the executive asks next_step right after this, in the same belief: it reuses k
+        self._applicable = (frame, frame.plan, ex.metrics.actions, k)
         if k is None:
             return False
         if k == frame.n:  # the plan's goal already holds: done
@@ -303,6 +308,18 @@ class Peephole(Mechanism):
     def next_step(self, ex: Executive, frame: Frame) -> PlanStep | None:
         if frame.root:
             return None
+        # the collector is paused while the tail is rewritten, as during a planner call: the
+        # estimates and the shareability tests (bay searches) allocate many small acyclic objects
+        paused = gc.isenabled()
+        if paused:
+            gc.disable()
+        try:
+            return self._next_step(ex, frame)
+        finally:
+            if paused:
+                gc.enable()
+
+    def _next_step(self, ex: Executive, frame: Frame) -> PlanStep | None:
         own = frame.info.pop("own_levels", None)
         if own is not None:
             # the combined operators were lowered for their joint refinement only (Alg. 2 lines
@@ -311,7 +328,11 @@ class Peephole(Mechanism):
             # vehicle's travel is planned before its loader work
             frame.plan = replace(frame.plan, levels=own)
         plan = frame.plan
-        k = highest_applicable(ex.domain, ex.belief, plan)
+        known, self._applicable = self._applicable, None
+        if known is not None and known[0] is frame and known[1] is plan and known[2] == ex.metrics.actions:
+            k = known[3]
+        else:
+            k = highest_applicable(ex.domain, ex.belief, plan)
         if k is None or k >= frame.n:
             return None
         ops = [s.action for s in plan.steps[k + 1 :] if s.action is not None]

@@ -373,10 +373,24 @@ def conjoin(goal: Goal, extra: Iterable[Atom], rules: Rules = DEFAULT_RULES) -> 
 
 
 def _keyed(rules: Rules) -> tuple[list[Any], list[ConflictRule]]:
-    """Split conflict rules into keyed ones (with ``group_keys``) and plain pairwise ones."""
-    keyed = [c for c in rules.conflicts if isinstance(c, KeyedRule)]
-    plain = [c for c in rules.conflicts if not isinstance(c, KeyedRule)]
+    """Split conflict rules into keyed ones (with ``group_keys``) and plain pairwise ones.
+
+    Kept per conflicts tuple (by identity): ``isinstance`` against the runtime-checkable
+    protocol inspects attributes, and the pre-image computation asks at every regression step.
+    """
+    conflicts = rules.conflicts
+    hit = _KEYED.get(id(conflicts))
+    if hit is not None and hit[0] is conflicts:
+        return hit[1], hit[2]
+    keyed = [c for c in conflicts if isinstance(c, KeyedRule)]
+    plain = [c for c in conflicts if not isinstance(c, KeyedRule)]
+    if len(_KEYED) >= 64:
+        _KEYED.clear()
+    _KEYED[id(conflicts)] = (conflicts, keyed, plain)  # the tuple is kept, so its id is not reused
     return keyed, plain
+
+
+_KEYED: dict[int, tuple[tuple[ConflictRule, ...], list[Any], list[ConflictRule]]] = {}
 
 
 def _same_fluent_clash(atoms: list[Atom], rules: Rules) -> tuple[Atom, Atom] | None:

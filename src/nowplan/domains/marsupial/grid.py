@@ -94,7 +94,7 @@ class Hold:
         return [n for n, _, _ in self.items] + ([self.held] if self.held else [])
 
     def with_items(self, items: Iterable[tuple[str, str, Cell]]) -> Hold:
-        return replace(self, items=tuple(sorted(items)))
+        return Hold(self.rows, self.cols, tuple(sorted(items)), self.loader, self.held, self.held_shape)
 
     def stored(self) -> bool:
         """Every package set down lies in storage."""
@@ -154,18 +154,33 @@ def is_packed(hold: Hold, door: Door) -> bool:
     )
 
 
-def reachable(hold: Hold, door: Door) -> dict[Cell, int]:
-    """Cells the loader can walk to through free cells, with their BFS distance."""
-    rows, cols = hold.rows, hold.cols
-    occ = occupancy(hold, door)
-    dist = {hold.loader: 0}
-    queue = deque([hold.loader])
+@lru_cache(maxsize=16)
+def neighbours(rows: int, cols: int) -> dict[Cell, tuple[Cell, ...]]:
+    """Each cell's neighbours inside a ``rows × cols`` grid, in the order of :data:`STEPS`."""
+    return {
+        (r, c): tuple((r + dr, c + dc) for dr, dc in STEPS if inside((r + dr, c + dc), rows, cols))
+        for r in range(rows) for c in range(cols)
+    }
+
+
+def reachable(hold: Hold, door: Door, occ: Mapping[Cell, str] | None = None) -> dict[Cell, int]:
+    """Cells the loader can walk to through free cells, with their BFS distance (``occ``: the
+    bay's :func:`occupancy`, when the caller has it)."""
+    if occ is None:
+        occ = occupancy(hold, door)
+    nbrs = neighbours(hold.rows, hold.cols)
+    start = hold.loader
+    dist = {start: 0}
+    queue = deque([start])
     while queue:
         x = queue.popleft()
-        for dr, dc in STEPS:
-            y = (x[0] + dr, x[1] + dc)
-            if y not in dist and inside(y, rows, cols) and y not in occ:
-                dist[y] = dist[x] + 1
+        d = dist[x] + 1
+        near = nbrs.get(x)
+        if near is None:  # off the grid (never for a loader the operators moved)
+            near = tuple(y for y in ((x[0] + dr, x[1] + dc) for dr, dc in STEPS) if inside(y, hold.rows, hold.cols))
+        for y in near:
+            if y not in dist and y not in occ:
+                dist[y] = d
                 queue.append(y)
     return dist
 

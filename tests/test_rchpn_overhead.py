@@ -1,0 +1,225 @@
+"""RCHPN's overhead cuts (issue 19 target 3) keep every answer: checks against reference code.
+
+The loader's bay geometry (``reachable``, ``spots``, the successors), the path cache's
+``into``, the keyed-conflict split kept per conflicts tuple, and the peephole's reuse of
+the kernel index and its pause of the collector are each compared with a plain
+re-implementation of what they computed before.
+"""
+
+from __future__ import annotations
+
+import gc
+from collections import deque
+from typing import Any
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from nowplan.acting.peephole import Peephole
+from nowplan.core.atoms import AtMostOne, Rules, atom, contradiction
+from nowplan.domains.marsupial import loader as lp
+from nowplan.domains.marsupial.grid import SHAPES, SIZES, Hold, cells, inside, load_anchor, occupancy, reachable
+
+pytestmark = pytest.mark.timeout(120)
+
+# ------------------------------------------------------------------ reference geometry
+
+
+def _reachable_ref(hold: Hold, door: lp.Door) -> dict[tuple[int, int], int]:
+    occ = occupancy(hold, door)
+    dist = {hold.loader: 0}
+    queue = deque([hold.loader])
+    while queue:
+        x = queue.popleft()
+        for dr, dc in ((-1, 0), (1, 0), (0, -1), (0, 1)):
+            y = (x[0] + dr, x[1] + dc)
+            if y not in dist and inside(y, hold.rows, hold.cols) and y not in occ:
+                dist[y] = dist[x] + 1
+                queue.append(y)
+    return dist
+
+
+def _spots_ref(hold: Hold, door: lp.Door, shape: str) -> list[tuple[int, int]]:
+    rows, cols = hold.rows, hold.cols
+    occ = occupancy(hold, door)
+    anchor = load_anchor(cols)
+    out = []
+    for r in range(rows):
+        for c in range(cols):
+            cs = cells(shape, (r, c))
+            if all(0 <= x[0] < rows and 0 <= x[1] < cols and x not in occ and x != hold.loader for x in cs):
+                if (r, c) == anchor or door is None or anchor not in cs:
+                    out.append((r, c))
+    return out
+
+
+@st.composite
+def bays(draw: Any) -> lp.Config:
+    """A bay with packages set down on free cells, maybe one at the door, a free loader cell."""
+    rows, cols = draw(st.sampled_from(SIZES))
+    taken: set[tuple[int, int]] = set()
+    door: lp.Door = None
+    if draw(st.booleans()):
+        shape = draw(st.sampled_from(sorted(SHAPES)))
+        door = ("d", shape)
+        taken.update(cells(shape, load_anchor(cols)))
+    items = []
+    for i in range(draw(st.integers(0, 6))):
+        shape = draw(st.sampled_from(sorted(SHAPES)))
+        at = (draw(st.integers(0, rows - 1)), draw(st.integers(0, cols - 1)))
+        cs = cells(shape, at)
+        if all(inside(c, rows, cols) and c not in taken for c in cs):
+            taken.update(cs)
+            items.append((f"p{i}", shape, at))
+    free = [(r, c) for r in range(rows) for c in range(cols) if (r, c) not in taken]
+    loader = draw(st.sampled_from(free)) if free else (0, 0)
+    held = draw(st.sampled_from([None, *sorted(SHAPES)]))
+    hold = Hold(rows, cols, tuple(sorted(items)), loader, "h" if held else None, held)
+    return hold, door
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(bays())
+def test_bay_geometry_matches_the_reference(conf: lp.Config) -> None:
+    hold, door = conf
+    assert reachable(hold, door) == _reachable_ref(hold, door) == reachable(hold, door, occupancy(hold, door))
+    for shape in SHAPES:
+        assert lp.spots(hold, door, shape) == _spots_ref(hold, door, shape)
+    # every successor is a well-formed bay: items sorted, nothing overlapping
+    for t, cost in lp._successors(conf):
+        assert cost >= 1.0
+        after = t.after[0]
+        assert after.items == tuple(sorted(after.items))
+        occupancy(*t.after)  # no exception
+
+
+# ------------------------------------------------------------------ the path cache
+
+
+def _into_ref(cache: lp.PathCache, start: lp.Config, target: Hold, status: str | None) -> Any:
+    """``into`` as it was: the first matching transition over every cached path, in found order."""
+    for (s, _), p in cache._paths.items():
+        if s != start or not p:
+            continue
+        for t in p:
+            if t.after[0] == target and (status is None or t.door_after == status):
+                return t
+    return None
+
+
+def test_into_reads_the_paths_of_its_start_in_found_order() -> None:
+    cache = lp.PathCache()
+    starts: list[lp.Config] = [(Hold.empty(3, 6), ("a", "ell")), (Hold.empty(3, 6), ("b", "box"))]
+    conf = starts[0]
+    stowed = cache.path(conf, "stow", lp.stow_goal, lp.stow_h)
+    assert stowed
+    starts.append((stowed[-1].after[0], ("c", "bar")))
+    for s in starts:
+        cache.path(s, "stow", lp.stow_goal, lp.stow_h)
+        cache.path(s, "fetch:a", lp.fetch_goal("a"), lp.fetch_h("a"))
+    checked = searched = 0
+    for s in starts:
+        for (_, _), p in list(cache._paths.items()):
+            for t in p or ():
+                target, status = t.after[0], t.door_after
+                want = _into_ref(cache, s, target, status)
+                searches = cache.searches
+                got = cache.into(s, target, status)
+                if want is not None:  # known from a path of this start: that transition, no search
+                    assert got is want and cache.searches == searches
+                    checked += 1
+                else:  # another start's path does not count: searched (or known exact) from ``s``
+                    assert cache.searches <= searches + 1
+                    assert got is None or any(got in q for (s2, _), q in cache._paths.items() if s2 == s and q)
+                    searched += 1
+    assert checked > 10 and searched > 0
+
+
+def test_path_cache_forgets_its_index_when_full() -> None:
+    cache = lp.PathCache(limit=1)
+    a: lp.Config = (Hold.empty(3, 6), ("a", "dot"))
+    b: lp.Config = (Hold.empty(3, 6), ("b", "bar"))
+    pa = cache.path(a, "stow", lp.stow_goal, lp.stow_h)
+    cache.path(b, "stow", lp.stow_goal, lp.stow_h)  # clears a's path
+    assert pa and cache._by_start.keys() == {b}
+    before = cache.searches
+    cache.into(a, pa[-1].after[0], None)  # not known any more: searched again
+    assert cache.searches == before + 1
+
+
+# ------------------------------------------------------------------ keyed conflicts per tuple
+
+
+def test_conflict_split_follows_each_rules_object() -> None:
+    x, y = atom("at", "p", "a"), atom("at", "p", "b")
+    for _ in range(3):  # new tuples (their ids may be reused): each answers with its own rules
+        keyed = Rules(conflicts=(AtMostOne(("at",)),))
+        assert contradiction([x, y], keyed) is not None
+        del keyed
+        gc.collect()
+        none = Rules(conflicts=())
+        assert contradiction([x, y], none) is None
+        plain = Rules(conflicts=(lambda a, b: a.args[1] == "a" and b.args[1] == "b",))
+        assert contradiction([x, y], plain) is not None
+        del none, plain
+        gc.collect()
+
+
+# ------------------------------------------------------------------ the peephole
+
+
+def _run(regime: str, n: int, trial: int, monkeypatch: pytest.MonkeyPatch, reuse: bool) -> list[str]:
+    from nowplan.domains.marsupial.flatcmp import timed_run
+    from nowplan.domains.marsupial.scenarios import episode
+
+    if not reuse:
+        orig = Peephole._next_step
+
+        def fresh(self: Peephole, ex: Any, frame: Any) -> Any:
+            self._applicable = None  # always recompute the highest true kernel
+            return orig(self, ex, frame)
+
+        monkeypatch.setattr(Peephole, "_next_step", fresh)
+    ep = episode(regime, n, trial)
+    done: list[str] = []
+    execute = ep.world.execute
+
+    def record(action: Any) -> Any:
+        done.append(str(action))
+        return execute(action)
+
+    monkeypatch.setattr(ep.world, "execute", record)
+    m, _, ok = timed_run(ep, "hpn+peephole", trial, 120.0)
+    monkeypatch.undo()
+    assert ok and m.actions == len(done)
+    return done
+
+
+@pytest.mark.parametrize("regime,n,trial", [("both", 3, 0), ("single", 3, 1)])
+def test_peephole_reuses_the_kernel_index_without_changing_a_choice(
+    regime: str, n: int, trial: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    assert _run(regime, n, trial, monkeypatch, reuse=True) == _run(regime, n, trial, monkeypatch, reuse=False)
+
+
+def test_peephole_restores_the_collector(monkeypatch: pytest.MonkeyPatch) -> None:
+    def boom(self: Peephole, ex: Any, frame: Any) -> Any:
+        assert not gc.isenabled()
+        raise RuntimeError("boom")
+
+    class _Frame:
+        root = False
+
+    monkeypatch.setattr(Peephole, "_next_step", boom)
+    assert gc.isenabled()
+    with pytest.raises(RuntimeError):
+        Peephole().next_step(None, _Frame())  # type: ignore[arg-type]
+    assert gc.isenabled()
+    gc.disable()
+    try:
+        with pytest.raises(RuntimeError):
+            Peephole().next_step(None, _Frame())  # type: ignore[arg-type]
+        assert not gc.isenabled()  # left as the caller had it
+    finally:
+        gc.enable()
