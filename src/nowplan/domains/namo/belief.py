@@ -126,6 +126,13 @@ class NamoBelief:
 
         return fingerprint(self)
 
+    @property
+    def planning_heuristic(self) -> Any:
+        """The planner's goal-distance estimate from this belief (:mod:`nowplan.domains.namo.heuristic`)."""
+        from nowplan.domains.namo.heuristic import estimate
+
+        return estimate
+
     def planning_loop(self) -> bool:
         """Has the planner asked for moves far more often than any plan needs, with nothing done since?
 
