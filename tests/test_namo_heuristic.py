@@ -1,4 +1,5 @@
-"""The NAMO goal-distance estimate (nowplan.domains.namo.heuristic) the flat planners search with."""
+"""The NAMO goal-distance estimate (nowplan.domains.namo.heuristic) the flat planners search with, the
+memoised landmark looks, and the move generator's loop guard (per planning call)."""
 
 from __future__ import annotations
 
@@ -95,3 +96,15 @@ def test_landmark_looks_are_memoised_per_belief_version() -> None:
     b.robot_var = 0.025**2
     b.version += 1  # an update: what was memoised for the old belief is not used
     assert [x[Var("lm")] for x in gen_look_landmark(want, goal, b, None)] == ["L"]
+
+
+def test_the_move_generators_loop_guard_counts_per_planning_call() -> None:
+    from nowplan.domains.namo.belief import LOOP_LIMIT
+
+    b = _belief()
+    first, second = object(), object()
+    assert not any(b.planning_loop(first) for _ in range(LOOP_LIMIT - 1))
+    assert b.planning_loop(first)  # this call asked for moves LOOP_LIMIT times: it gives up
+    assert not b.planning_loop(second)  # the next call (e.g. the level above replanning) still gets moves
+    b.version += 1  # an action: every count starts again
+    assert not b.planning_loop(first)

@@ -77,3 +77,21 @@ def test_the_online_policy_reaches_the_goal_after_a_pick(strategy: str, seed: in
     m = run_episode(spec.scenario("domain1")(seed), st, seed)
     assert m.outcome.value == "reached", m.reason
     assert m.action_counts["Pick"] >= 1  # the scenario does need a pick (else the test shows nothing)
+
+
+@pytest.mark.slow
+def test_hpn_replans_above_a_refinement_whose_search_gave_up() -> None:
+    # domain 1, sensor noise 0.1 m/m, seed 6: refining one move asked for moves 1500 times and gave
+    # up; the guard then counted per belief, so the top level's replanning got no move at all and the
+    # run ended "no plan for the goal"; counted per planning call, the top level routes around
+    from nowplan.acting.run import run_episode
+    from nowplan.acting.strategy import parse_strategy
+    from nowplan.domains.registry import get_domain
+    from nowplan.experiments.faults import Faults, apply_faults
+
+    spec = get_domain("namo")
+    st = parse_strategy("hpn", base_planner=spec.planner, time_limit=240.0)
+    ep = spec.scenario("domain1")(6)
+    apply_faults(ep, Faults(sigma_per_m=0.1))
+    m = run_episode(ep, st, 6)
+    assert m.outcome.value == "reached", m.reason

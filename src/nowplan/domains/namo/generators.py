@@ -55,7 +55,7 @@ def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -
     trigger, or always for aggressive replanning) computes a new path.
     """
     b = bindings.get(B)
-    if not isinstance(b, Pt) or belief.planning_loop():
+    if not isinstance(b, Pt) or belief.planning_loop(context):
         return
     fs = foresight(context)
     seg = belief.params.segment
