@@ -29,7 +29,7 @@ from nowplan.acting.progress import (
     Cycle, CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason,
 )
 from nowplan.acting.strategy import Strategy, check_supported
-from nowplan.belief.protocols import check_belief
+from nowplan.belief.protocols import HasHeuristic, check_belief
 from nowplan.belief.symbolic import SymbolicBelief
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
@@ -189,10 +189,12 @@ class Executive:
         return f
 
     def context(self) -> PlanningContext:
-        """What the planner and generators see: the plan stack only with foresight on."""
-        if self.strategy.foresight:
-            return PlanningContext(tuple(f.plan for f in self.stack), {"foresight": True})
-        return PlanningContext((), {"foresight": False})
+        """What the planner and generators see: the plan stack only with foresight on; a flat strategy's
+        planner also gets the domain's goal-distance estimate, as the online policy's flat planner does."""
+        extras: dict[str, Any] = {"foresight": self.strategy.foresight}
+        if not self.strategy.hierarchical and isinstance(self.belief, HasHeuristic):
+            extras["heuristic"] = self.belief.planning_heuristic
+        return PlanningContext(tuple(f.plan for f in self.stack) if self.strategy.foresight else (), extras)
 
     # -- planning --------------------------------------------------------------
     def make_plan(self, goal: Goal, levels: LevelMap, parent: Frame) -> Plan | None:

@@ -53,7 +53,7 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-LOOP_LIMIT = 1500  # move-generator calls without a belief update that signal a planning loop
+LOOP_LIMIT = 1500  # move-generator calls in one planning call (one belief) that signal a planning loop
 # A move stopped by a contact: the robot's centre could not go on to a point at most this far ahead
 # along the commanded path (the controller checks its path in steps of about this length) ...
 CONTACT_AHEAD = 0.05
@@ -126,18 +126,30 @@ class NamoBelief:
 
         return fingerprint(self)
 
-    def planning_loop(self) -> bool:
-        """Has the planner asked for moves far more often than any plan needs, with nothing done since?
+    @property
+    def planning_heuristic(self) -> Any:
+        """The planner's goal-distance estimate from this belief (:mod:`nowplan.domains.namo.heuristic`)."""
+        from nowplan.domains.namo.heuristic import estimate
 
-        Refinements that fail while the belief does not change would make the
-        executive plan the same thing again and again; past this bound the
-        move generator gives up, so the run ends (no plan) instead of looping.
+        return estimate
+
+    def planning_loop(self, call: object = None) -> bool:
+        """Has one planning call (``call``: its context) asked for moves far more often than any plan needs?
+
+        Past this bound the move generator gives up for that call, so a search
+        that keeps asking for moves from an unchanged belief ends (no plan)
+        instead of running to its time limit.  The count is per planning call:
+        a search that gave up must not leave the next call (the level above
+        replanning after a failed refinement) without any move, which turned
+        one hard refinement into "no plan for the goal".  Repeated calls
+        without an action are bounded by the executive (``max_refinements``).
         """
         c = self.cache()
-        n = int(c.get("move_calls", 0)) + 1
-        c["move_calls"] = n
+        key = ("move_calls", id(call))
+        n = c[key][1] + 1 if key in c else 1
+        c[key] = (call, n)  # (the call kept alive with its count: its id is not reused meanwhile)
         if n == LOOP_LIMIT:
-            log.warning("planning loop: %d move requests without acting; giving up on this belief", n)
+            log.warning("planning loop: %d move requests in one planning call; its move generator gives up", n)
         return n >= LOOP_LIMIT
 
     def _bump(self, percept: bool = False) -> None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator, Mapping
+from functools import lru_cache
 from typing import Any
 
 from nowplan.core.atoms import Goal, Var
@@ -54,7 +55,7 @@ def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -
     trigger, or always for aggressive replanning) computes a new path.
     """
     b = bindings.get(B)
-    if not isinstance(b, Pt) or belief.planning_loop():
+    if not isinstance(b, Pt) or belief.planning_loop(context):
         return
     fs = foresight(context)
     seg = belief.params.segment
@@ -202,8 +203,12 @@ def gen_look_obj(bindings: Bindings, goal: Goal, belief: NamoBelief, context: An
     yield {V: v, AT: est.center, N: n, PRE: prior_needed(want, meas, n)}
 
 
+@lru_cache(maxsize=65536)
 def _sigma_to_clear(region: Region, box: Box, k: float) -> float:
-    """The largest standard deviation whose k-sigma shadow of ``box`` stays out of ``region`` (0: none)."""
+    """The largest standard deviation whose k-sigma shadow of ``box`` stays out of ``region`` (0: none).
+
+    A pure function of its (immutable) arguments, memoised: the planner asks it for the same region
+    and estimate at every node that needs the region clear."""
     if region.hits_box(box, 0.0):
         return 0.0
     lo, hi = 0.0, 4.0 / max(k, 1e-6)
@@ -222,6 +227,16 @@ def gen_look_landmark(bindings: Bindings, goal: Goal, belief: NamoBelief, contex
     """Look at the nearest landmark in sight of where the robot will be."""
     want = float(bindings.get(E, belief.params.eps_loc))
     v = robot_at_in(goal) or belief.nominal()
+    key = ("look_landmark", v, want)
+    c = belief.cache()  # the same view point and tolerance at many nodes of one search
+    if key not in c:
+        c[key] = _landmarks_in_sight(belief, v, want)
+    for name in c[key]:
+        yield {V: v, LM: name}
+
+
+def _landmarks_in_sight(belief: NamoBelief, v: Pt, want: float) -> list[str]:
+    """The (at most two) nearest landmarks a look from ``v`` sees, if one look localises to ``want``."""
     geom = belief.geom
     options = []
     for name, p in geom.landmarks:
@@ -234,8 +249,7 @@ def gen_look_landmark(bindings: Bindings, goal: Goal, belief: NamoBelief, contex
             continue
         if _posterior(belief.robot_sigma, belief.sensor.landmark_sigma) <= want:
             options.append((d, name))
-    for _, name in sorted(options)[:2]:
-        yield {V: v, LM: name}
+    return [name for _, name in sorted(options)[:2]]
 
 
 def gen_look_clear(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -> Out:

@@ -80,11 +80,16 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
         unseeable = (m.survey is not None and not belief.is_observed(m.survey)
                      and belief.futile_looks.get((m.pick_conf, f"look:{m.survey}")) == belief.percept)
         away = not belief.at(m.pick_conf)  # the grasp pushed the robot off its pick configuration
-        if unseeable or away or not (belief.clear(spot[SPOT], spot[ONLY], belief.params.eps_clear)
-                             and belief.clear(m.survey or spot[SPOT], spot[ONLY], belief.params.eps_clear)):
-            # the planned placement is no longer possible (something is there now, or its carry volume
-            # cannot be observed from here): place it elsewhere from here
-            hard: tuple[Region, ...] = tuple(hard_regions(goal, held, region)) if region.radius > 0 else ()
+        # where the goal being planned needs the object not to be: the region cleared, regions it needs
+        # clear of the object, later manipulations' volumes (a plan made after the grasp, e.g. replanning
+        # after every action, routes its moves without knowing where the object was meant to go)
+        hard: tuple[Region, ...] = tuple(r for r in hard_regions(goal, held, region) if r.radius > 0)
+        in_the_way = any(r.hits_box(spot[PLACE]) for r in hard)
+        if unseeable or away or in_the_way or not (
+                belief.clear(spot[SPOT], spot[ONLY], belief.params.eps_clear)
+                and belief.clear(m.survey or spot[SPOT], spot[ONLY], belief.params.eps_clear)):
+            # the planned placement is no longer possible (something is there now, its carry volume
+            # cannot be observed from here, or the plan needs that place clear): place it elsewhere from here
             options = []
             for fog_ok, through in ((False, False), (True, False), (True, True)):
                 options = _manip_options(belief, held, m.home, hard, tuple(taboo_regions(context)), 2,
