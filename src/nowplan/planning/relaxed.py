@@ -352,6 +352,18 @@ class LazyRelaxed:
         self._dead |= seen
         return True
 
+    def known(self, f: int) -> float:
+        """``f``'s cost as explored so far, without exploring: 0 if not reached, ``inf`` if dead.
+
+        Every estimate that counts ``f`` gives at least this (h_max, LM-cut and
+        h_add are at least the largest cost of a fact they count) while the
+        costs stand; they only fall as more is explored.
+        """
+        v = self.val.get(f)
+        if v is not None:
+            return v
+        return math.inf if f in self._seen and self.dead(f) else 0.0
+
     # -- internals -------------------------------------------------------------
     def _final(self, f: int) -> float:
         v = self.val.get(f)
