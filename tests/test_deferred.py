@@ -129,7 +129,6 @@ def test_deferral_expands_what_eager_search_expands(family, data):
         eager, deferred = runs
         assert deferred.status is eager.status, (name, deferred.reason, eager.reason)
         assert deferred.expanded == eager.expanded, name
-        assert deferred.generated <= eager.generated, name
         assert _steps(deferred) == _steps(eager), name
         if deferred.status is PlanStatus.SOLVED:
             check_contract(case, levels, deferred, concrete=name == "flat")

@@ -37,6 +37,7 @@ import math
 from collections.abc import Callable, Hashable, Iterable
 
 from nowplan.core.operators import Action
+from nowplan.planning.lmcut_lazy import lmcut_part
 
 # a relaxed achiever of a fact: the action, its cost and its kept preconditions' fact ids
 Supporter = tuple[Action, float, tuple[int, ...]]
@@ -187,58 +188,7 @@ class LazyRelaxed:
         return hit
 
     def _lmcut(self, goal: list[int]) -> float:
-        facts, acts, init = self._relevant(goal)
-        cost = {a: self._cost[a] for a in acts}
-        users: dict[int, list[int]] = {}
-        for a in acts:
-            for p in self._pre[a]:
-                users.setdefault(p, []).append(a)
-        targets = {a: [t for t in self._targets[a] if t in facts] for a in acts}
-        achieved: dict[int, list[int]] = {}
-        for a in acts:
-            for t in targets[a]:
-                achieved.setdefault(t, []).append(a)
-        total = 0.0
-        for _ in range(len(acts) + 1):
-            h, pcf = self._hmax_over(init, acts, cost, users, targets)
-            top = max(goal, key=lambda u: h.get(u, math.inf))
-            g = h.get(top, math.inf)
-            if g == 0.0 or g == math.inf:
-                break
-            zone, todo = {top}, [top]  # facts from which the goal is reached at zero cost
-            while todo:
-                e = todo.pop()
-                for a in achieved.get(e, ()):
-                    x = pcf.get(a)
-                    if cost[a] == 0.0 and x is not None and x >= 0 and x not in zone:
-                        zone.add(x)
-                        todo.append(x)
-            by_pcf: dict[int, list[int]] = {}
-            for a, x in pcf.items():
-                by_pcf.setdefault(x, []).append(a)
-            reach = set(init)
-            reach.add(-1)
-            todo = [*init, -1]
-            cut: list[int] = []
-            while todo:
-                x = todo.pop()
-                for a in by_pcf.get(x, ()):
-                    into = False
-                    for e in targets[a]:
-                        if e in zone:
-                            into = True
-                        elif e not in reach:
-                            reach.add(e)
-                            todo.append(e)
-                    if into:
-                        cut.append(a)
-            if not cut:
-                break
-            m = min(cost[a] for a in cut)
-            total += m
-            for a in cut:
-                cost[a] -= m
-        return total
+        return lmcut_part(self, goal)
 
     def _relevant(self, goal: list[int]) -> tuple[set[int], list[int], list[int]]:
         """The facts behind ``goal``, the actions achieving them that can fire, and the facts that hold."""
@@ -265,46 +215,6 @@ class LazyRelaxed:
                         facts.add(p)
                         stack.append(p)
         return facts, acts, init
-
-    def _hmax_over(
-        self,
-        init: list[int],
-        acts: list[int],
-        cost: dict[int, float],
-        users: dict[int, list[int]],
-        targets: dict[int, list[int]],
-    ) -> tuple[dict[int, float], dict[int, int]]:
-        """h_max of the facts with ``cost``; each fired action's most expensive precondition (-1: none)."""
-        h: dict[int, float] = {}
-        pcf: dict[int, int] = {}
-        missing = {a: len(self._pre[a]) for a in acts}
-        heap: list[tuple[float, int, int]] = []
-        tick = 0
-        for f in init:
-            heap.append((0.0, tick, f))
-            tick += 1
-        for a in acts:
-            if not self._pre[a]:
-                pcf[a] = -1
-                for t in targets[a]:
-                    heap.append((cost[a], tick, t))
-                    tick += 1
-        heapq.heapify(heap)
-        while heap:
-            v, _, f = heapq.heappop(heap)
-            if f in h:
-                continue
-            h[f] = v
-            for a in users.get(f, ()):
-                missing[a] -= 1
-                if missing[a] == 0:
-                    pcf[a] = f  # popped last: the most expensive precondition
-                    x = cost[a] + v
-                    for t in targets[a]:
-                        if t not in h:
-                            heapq.heappush(heap, (x, tick, t))
-                            tick += 1
-        return h, pcf
 
     def plan_of(self, f: int) -> frozenset[int]:
         """The actions of ``f``'s relaxed plan (best supporters, recursively)."""
