@@ -9,7 +9,6 @@ that read the goal) HPN's executed actions are compared with deferral on and off
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 import pytest
@@ -22,7 +21,7 @@ from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.operators import Operator, Precondition
 from nowplan.core.atoms import Var
 from nowplan.core.state import State
-from nowplan.planning.deferred import bound, group
+from nowplan.planning.deferred import Reach
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.regression import PlannerConfig, plan
 from nowplan.planning.regression_search import _Search
@@ -41,20 +40,6 @@ def _both(monkeypatch, *args):
         monkeypatch.setattr(_Search, "defer_held", defer)
         out.append(plan(*args))
     return out
-
-
-def test_bound_skips_fluents_the_action_touches():
-    unmet = [(1, 5.0), (2, 9.0), (3, 7.0)]
-    assert bound(unmet, frozenset()) == 9.0
-    assert bound(unmet, frozenset({2})) == 7.0
-    assert bound(unmet, frozenset({1, 2, 3})) == 0.0
-    assert bound([], frozenset()) == 0.0
-
-
-def test_group_by_cost_and_bound_in_stamp_order_and_drops_dead_children():
-    a, b, c, d = (((0, i, 0), f"act{i}", None, cost) for i, cost in enumerate((10.0, 1.0, 10.0, 10.0)))
-    out = group([(a, 3.0), (b, 3.0), (c, 3.0), (d, math.inf)])  # type: ignore[list-item]
-    assert out == {(10.0, 3.0): [a, c], (1.0, 3.0): [b]}
 
 
 # ------------------------------------------------------------------ a held fact that must be re-achieved
@@ -80,6 +65,22 @@ BLOCKS = Domain(
                   Atom("holding", (x,)), Atom("clear", (y,)))),
     ),
 )
+
+
+def test_reach_bounds_by_the_unmet_facts_no_achiever_names():
+    """on(a, b)'s achiever stack(a, b) names holding(a), clear(b), on(a, b), clear(a), handempty."""
+    reach = Reach(BLOCKS)
+    T = BLOCKS.facts
+    on_ab = T.id(Atom("on", ("a", "b")))
+    c, pats = reach(on_ab)
+    assert c == 1.0 and pats
+    unmet = [(Atom("holding", ("a",)), 5.0), (Atom("on", ("c", "d")), 3.0), (Atom("clear", ("c",)), 2.0)]
+    assert reach.bound(on_ab, unmet) == (1.0, 3.0)  # holding(a) is named; on(c, d) and clear(c) are not
+    assert reach.bound(on_ab, unmet[:1]) == (1.0, 0.0)
+    assert reach.bound(on_ab, []) == (1.0, 0.0)
+    ontable = T.id(Atom("ontable", ("a",)))  # putdown(a): names holding(a), ontable(a), clear(a), handempty
+    assert reach.bound(ontable, [(Atom("clear", ("c",)), 2.0), (Atom("clear", ("a",)), 4.0)]) == (1.0, 2.0)
+    assert reach(on_ab) is reach(on_ab)  # kept per domain
 
 
 @pytest.mark.parametrize("heuristic", ["lmcut", "hmax", "hadd"])

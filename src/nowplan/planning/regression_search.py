@@ -23,7 +23,7 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.config import PlannerConfig, _clock
 from nowplan.planning.context import PlanningContext
-from nowplan.planning.deferred import Deferred, Item, Stamp, Touched, bound, group
+from nowplan.planning.deferred import Deferred, Expansion, Reach, Stamp
 from nowplan.planning.ground_task import GroundTask
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
@@ -279,7 +279,7 @@ class _Search:
         hvals = self.hadd.values.__getitem__ if isinstance(self.hadd, KernelHadd) and not callable(self.domain_h) else None
         relaxed = self.relaxed if not callable(self.domain_h) else None
         defer = self.defer_held and relaxed is not None and relaxed.kind in ("max", "lmcut", "add")
-        touched = Touched(T)
+        reach = Reach(self.domain) if defer else None
         exp = 0
         regress_, forbidden, inf, push, fholds = regress, self.forbidden_first, math.inf, heapq.heappush, self.fholds
 
@@ -329,9 +329,14 @@ class _Search:
 
         while frontier:
             item = heapq.heappop(frontier)[4]
-            if isinstance(item, Deferred):
-                for st, act, info, cost in item.items:
-                    make(item.node, item.focus, item.g, item.index, item.goal_of, False, act, info, cost, st)
+            if isinstance(item, Deferred):  # ground the held targets and make their successors
+                x = item.expansion
+                for ti, target in item.targets:
+                    for j, (act, info, cost) in enumerate(self._successors(target, x.goal_of)):
+                        if id(act) in x.tried or self._listed_before(x, act, info, ti) is not None:
+                            continue  # made already, or an earlier target's (made when that one is)
+                        x.tried.add(id(act))
+                        make(x.node, x.focus, x.g, x.index, x.goal_of, False, act, info, cost, (x.number, ti, j))
                 continue
             node = item
             if node in closed:
@@ -358,26 +363,58 @@ class _Search:
             index = NodeIndex(T, fs)
             goal_of = _GoalOf(T, fs)
             legacy = not root_ok and fs == root
-            later: list[tuple[Item, float]] = []
-            costs: list[tuple[int, float]] | None = None  # (fluent, explored cost) of the node's unmet facts
             tried: set[int] = set()  # by identity: the grounder makes one object per instance
+            here: Expansion | None = None
+            later: dict[tuple[float, float], list[tuple[int, int]]] = {}  # held targets by their bound
+            unmet_costs: list[tuple[Atom, float]] | None = None
             for ti, target in enumerate(allowed):
-                held = defer and not legacy and fholds(target)
+                if reach is not None and not legacy and fholds(target):
+                    if unmet_costs is None:
+                        assert relaxed is not None
+                        unmet_costs = [(T.atoms[f], relaxed.known(f)) for f in fs if not fholds(f)]
+                    c, b = reach.bound(target, unmet_costs)
+                    if b != inf:  # else every child keeps a fact proven unreachable
+                        later.setdefault((c, b), []).append((ti, target))
+                    continue
                 for j, (act, info, cost) in enumerate(self._successors(target, goal_of)):
                     if id(act) in tried:
                         continue
+                    st = (exp, ti, j)
+                    if later:  # a held target before this one may list it: eager search made it there
+                        if here is None:
+                            here = Expansion(node, focus, gcost, index, goal_of, allowed, tried, exp)
+                        earlier = self._listed_before(here, act, info, ti)
+                        if earlier is not None:
+                            st = (exp, earlier[0], earlier[1])
                     tried.add(id(act))
-                    if held:
-                        if costs is None:
-                            assert relaxed is not None
-                            costs = [(fluent[f], relaxed.known(f)) for f in fs if not fholds(f)]
-                        later.append((((exp, ti, j), act, info, cost), bound(costs, touched(info))))
-                        continue
-                    make(node, focus, gcost, index, goal_of, legacy, act, info, cost, (exp, ti, j))
-            for (cost, b), items in group(later).items():  # (g + cost + w·b, b) is at most a child's (f, h)
-                push(frontier, (gcost + cost + weight * b, b, items[0][0], next(counter),
-                                Deferred(node, focus, gcost, index, goal_of, items)))
+                    make(node, focus, gcost, index, goal_of, legacy, act, info, cost, st)
+            if later:
+                if here is None:
+                    here = Expansion(node, focus, gcost, index, goal_of, allowed, tried, exp)
+                for (c, b), targets in later.items():  # (g + c + w·b, b) is at most each child's (f, h)
+                    push(frontier, (gcost + c + weight * b, b, (exp, targets[0][0], 0), next(counter),
+                                    Deferred(here, targets)))
         return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
+
+    def _listed_before(self, x: Expansion, act: Action, info: ActionFacts, ti: int) -> tuple[int, int] | None:
+        """``(target, achiever)`` where ``act`` comes first among the held targets before ``x.allowed[ti]``."""
+        T = self.table
+        best: tuple[int, int] | None = None
+        by_fluent, pos = x.index.by_fluent, x.pos
+        for e in info.all_effs:
+            o = by_fluent.get(T.fluent[e])
+            if o is None:
+                continue
+            p = pos.get(o)
+            if p is None or p >= ti or (best is not None and p >= best[0]) or not self.fholds(o):
+                continue
+            if o != e and not T.entails(e, o):
+                continue
+            for j, tpl in enumerate(self._successors(o, x.goal_of)):
+                if tpl[0] is act:
+                    best = (p, j)
+                    break
+        return best
 
     def _path(
         self,

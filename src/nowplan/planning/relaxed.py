@@ -125,7 +125,9 @@ class LazyRelaxed:
         from the facts that hold into the goal zone of the justification graph
         (each action's most expensive precondition), add the cheapest cost in
         the cut and take it off every action of the cut.  Admissible where
-        h_max is; facts not reached and not proven dead count 0.
+        h_max is; facts not reached and not proven dead count 0.  Ties are
+        broken by fact id throughout, so equal sets of facts get equal values
+        whatever order they were built in (the cuts are kept per set).
         """
         val = self.val
         goal: list[int] = []
@@ -137,6 +139,7 @@ class LazyRelaxed:
                 goal.append(f)
         if not goal:
             return 0.0
+        goal.sort()  # by fact id: the cut's choice among equally costly goal facts does not follow set order
         key = frozenset(goal)
         hit = self._cuts.get(key)
         if hit is not None:
