@@ -288,7 +288,15 @@ class LazyRelaxed:
         return self._achieved_by.get(g, ())
 
     def _ensure(self, f: int, context: frozenset[int]) -> None:
-        if f in self._seen and (f not in self._dependent or not self.recontext):
+        if f not in self._seen:
+            if f not in self._users and self.holds(f):
+                # a fact that holds, asked for first: it costs 0 and no explored action waits for it
+                # (what _explore would do; a subgoal holds many such facts)
+                self._seen.add(f)
+                self.facts_explored += 1
+                self.val[f] = 0.0
+                return
+        elif f not in self._dependent or not self.recontext:
             return
         if f in self.val and self.val[f] == 0.0:
             return
