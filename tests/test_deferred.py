@@ -169,3 +169,16 @@ def _belief(prob):
     from nowplan.belief.symbolic import SymbolicBelief
 
     return SymbolicBelief(prob.init)
+
+
+def test_an_action_of_infinite_cost_is_never_kept():
+    """Eager search skips a child whose cost is infinite (ng >= best_g); so does the stamped search."""
+    dom = Domain(
+        "inf", {"p": Predicate("p", 0), "q": Predicate("q", 0)},
+        (Operator("never", (), (), (Atom("p", ()),), cost=lambda b, s: float("inf")),
+         Operator("step", (), (), (Atom("p", ()),), cost=1.0)),
+    )
+    cfg = PlannerConfig(heuristic="lmcut", lazy_relaxation=True, engine="regression")
+    res = plan(dom, {}, State([Atom("q", ())]), Goal.of([Atom("p", ()), Atom("q", ())]), flat_levels(), cfg)
+    assert res.status is PlanStatus.SOLVED and res.plan is not None
+    assert [s.action.name for s in res.plan.steps[1:]] == ["step"]

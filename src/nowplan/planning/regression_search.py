@@ -300,7 +300,7 @@ class _Search:
             child = (pre, focus)
             ng = gcost + cost
             old = best_g.get(child, inf)
-            if ng > old:
+            if ng > old or ng == inf:  # (an infinite cost: never kept, as eager search's ng >= old)
                 return
             if ng == old:  # eager generation keeps the path it made first
                 if st >= born[child]:
