@@ -9,7 +9,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from nowplan.core.atoms import Atom, Goal, Var
+from nowplan.core.atoms import Atom, Var
 from nowplan.core.domain import Domain, Predicate
 from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.operators import Operator, Precondition

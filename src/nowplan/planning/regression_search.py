@@ -200,7 +200,12 @@ class _Search:
         return self._true_ids
 
     def satisfied(self, fs: frozenset[int]) -> bool:
-        return all(self.fholds(f) for f in fs)
+        known = self._fholds.get
+        for f in fs:
+            r = known(f)
+            if not (self.fholds(f) if r is None else r):
+                return False
+        return True
 
     def h(self, fs: frozenset[int]) -> float:
         if callable(self.domain_h):

@@ -93,8 +93,10 @@ class LazyRelaxed:
         return self._final(f)
 
     def estimate(self, fs: frozenset[int]) -> float:
+        seen, dependent, recontext = self._seen, self._dependent, self.recontext
         for f in fs:
-            self._ensure(f, fs)
+            if f not in seen or (recontext and f in dependent):  # (what _ensure returns at once on)
+                self._ensure(f, fs)
         if self.kind == "lmcut":
             return self.lmcut(fs)
         if self.kind == "ff":
@@ -132,10 +134,11 @@ class LazyRelaxed:
         val = self.val
         goal: list[int] = []
         for f in fs:
-            v = self._final(f)
-            if v == math.inf:
-                return v
-            if v > 0.0 and f in val:
+            v = val.get(f)
+            if v is None:  # not reached: dead (no estimate) or unknown (counts 0)
+                if self._final(f) == math.inf:
+                    return math.inf
+            elif v > 0.0:
                 goal.append(f)
         if not goal:
             return 0.0
