@@ -199,6 +199,44 @@ def summarize(paths: list[Path]) -> None:
         print(row)
 
 
+def fit(paths: list[Path]) -> None:
+    """Per tag and regime: mean plan CPU, calls and CPU per call by size, and their fitted growth n^k.
+
+    ``k`` is the least-squares slope of log(mean) against log(packages) over the sizes
+    (HPN rows only); rows of one tag and problem that repeat keep the last.
+    """
+    import math
+    import statistics as st
+    from collections import defaultdict
+
+    runs: dict[tuple[str, str, int], dict[str, Any]] = {}
+    for path in paths:
+        for line in path.read_text().splitlines():
+            r = json.loads(line)
+            if r["domain"] == "marsupial" and r["strategy"] == "hpn":
+                runs[(r.get("tag", ""), r["problem"], r["trial"])] = r
+    by: dict[tuple[str, str], dict[int, list[dict[str, Any]]]] = defaultdict(lambda: defaultdict(list))
+    for (tag, problem, _), r in runs.items():
+        regime, _, size = problem.rpartition("-")
+        by[(tag, regime)][int(size)].append(r)
+
+    def slope(xs: list[float], ys: list[float]) -> float:
+        lx, ly = [math.log(x) for x in xs], [math.log(y) for y in ys]
+        mx, my = st.mean(lx), st.mean(ly)
+        return sum((a - mx) * (b - my) for a, b in zip(lx, ly, strict=True)) / sum((a - mx) ** 2 for a in lx)
+
+    print("| tag | regime | packages: plan CPU s (calls, ms per call) | plan CPU n^k | calls n^k | per call n^k |")
+    print("|---|---|---|---|---|---|")
+    for (tag, regime), sizes in sorted(by.items()):
+        ns = sorted(sizes)
+        cpu = [st.mean(r["plan_cpu"] for r in sizes[n]) for n in ns]
+        calls = [st.mean(r["calls"] for r in sizes[n]) for n in ns]
+        per = [1000 * c / k for c, k in zip(cpu, calls, strict=True)]
+        cells = ", ".join(f"{n}: {c:.3f} ({k:.0f}, {q:.2f})" for n, c, k, q in zip(ns, cpu, calls, per, strict=True))
+        fits = [f"{slope(ns, ys):.2f}" if len(ns) > 1 else "" for ys in (cpu, calls, per)]
+        print(f"| {tag} | {regime} | {cells} | {' | '.join(fits)} |")
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--regimes", default="single,both")
@@ -216,9 +254,12 @@ def main() -> int:
     ap.add_argument("--logistics-planner", default="", help="logistics PlannerConfig overrides")
     ap.add_argument("--tag", default="", help="a label stored in each row")
     ap.add_argument("--summarize", type=Path, nargs="+", help="print tables from stored rows and stop")
+    ap.add_argument("--fit", action="store_true",
+                    help="with --summarize: HPN's growth per tag and regime (fitted exponents of plan CPU, "
+                         "calls and CPU per call against the number of packages)")
     args = ap.parse_args()
     if args.summarize:
-        summarize(args.summarize)
+        (fit if args.fit else summarize)(args.summarize)
         return 0
     if args.planner:
         import dataclasses

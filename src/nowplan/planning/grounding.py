@@ -70,6 +70,7 @@ class Grounder:
         self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
         self.signature: Hashable = None  # the objects and static facts (with a belief that lists facts)
         self._shared_answers: dict[Atom, list[Action]] | None = None  # generator-free achievers, per problem
+        self._no_gen: dict[Atom, bool] = {}  # atoms no operator with generators achieves (see _no_generator)
         if self._facts_ok:
             self.signature = self._signature()
         if self.memo and self._facts_ok:
@@ -78,6 +79,7 @@ class Grounder:
             shared = _shared(domain, self.signature)
             self._op_cache, self._fills = shared.op_cache, shared.fills
             self._shared_answers = shared.answers
+            self._no_gen = shared.no_gen
         # per predicate: the operators (in order) with an effect of it, and those effects
         self._by_pred, self._gen_by_pred, self._gen_by_pred_nonempty = _effects_by_predicate(domain)
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
@@ -131,8 +133,8 @@ class Grounder:
         cached = self._cache.get(target)
         if cached is not None:
             return cached
-        if self._shared_answers is not None and target.predicate not in self._gen_by_pred_nonempty:
-            # no generator achieves this predicate: the answer depends on the static facts only
+        if self._shared_answers is not None and self._no_generator(target):
+            # no operator with generators achieves this atom: the answer depends on the static facts only
             cached = self._shared_answers.get(target)
             if cached is not None:
                 self._cache[target] = cached
@@ -170,7 +172,7 @@ class Grounder:
         # generators see the goal: keep the answer per atom only when none that reads it takes part
         if not gen_entries or free and self.memo:
             self._cache[target] = out
-            if not gen_entries and self._shared_answers is not None:
+            if self._shared_answers is not None and self._no_generator(target):
                 self._shared_answers[target] = out
         elif key is not None:
             self._gen_cache[key] = out
@@ -180,7 +182,24 @@ class Grounder:
 
     def shares_answer(self, target: Atom) -> bool:
         """Is ``target``'s answer the one every call of this problem gets (no generator achieves it)?"""
-        return self._shared_answers is not None and target.predicate not in self._gen_by_pred_nonempty
+        return self._shared_answers is not None and self._no_generator(target)
+
+    def _no_generator(self, target: Atom) -> bool:
+        """Can no effect of an operator with generators entail ``target`` (kept per problem)?
+
+        Then its achievers depend on the objects and static facts only, even
+        where operators with generators change its predicate (marsupial's Load
+        clears ``at(p, l)``, so every ``at`` goal was grounded again per call).
+        """
+        if target.predicate not in self._gen_by_pred_nonempty:
+            return True
+        store = self._no_gen
+        r = store.get(target)
+        if r is None:
+            r = store[target] = not any(
+                unify_effect(e, target, self.domain) is not None
+                for _, _, effs in self._gen_by_pred[target.predicate] for e in effs)
+        return r
 
     def use_task(self, task: GroundTask) -> None:
         """Answer generator-free achievers from ``task`` (this problem's ground task, same static facts)."""

@@ -12,7 +12,7 @@ import heapq
 import itertools
 import logging
 import math
-from collections.abc import Hashable, Mapping, Sequence
+from collections.abc import Callable, Hashable, Mapping, Sequence
 from typing import Any
 
 from nowplan.belief.protocols import ListsFacts
@@ -23,6 +23,7 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.config import PlannerConfig, _clock
 from nowplan.planning.context import PlanningContext
+from nowplan.planning.deferred import Deferred, Expansion, Reach, Stamp
 from nowplan.planning.ground_task import GroundTask
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
@@ -31,7 +32,7 @@ from nowplan.planning.heuristics import ground_task, relax_unsupported
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.preimage import preimage, static_drop
 from nowplan.planning.relaxed import LazyRelaxed, Supporter
-from nowplan.planning.subgoals import NodeIndex, action_facts, regress
+from nowplan.planning.subgoals import ActionFacts, NodeIndex, action_facts, regress
 from nowplan.planning.successors import Successors
 
 # the planner's logger: its fallbacks are reported where they always were
@@ -58,6 +59,9 @@ def _log_fallback(domain: str, heuristic: str, why: str) -> None:
 
 class _Search:
     """A* over subgoals as frozensets of fact ids (:mod:`nowplan.planning.subgoals`)."""
+
+    # defer the successors of facts that hold (nowplan.planning.deferred); False makes them all at once (tests)
+    defer_held = True
 
     def __init__(
         self,
@@ -196,7 +200,12 @@ class _Search:
         return self._true_ids
 
     def satisfied(self, fs: frozenset[int]) -> bool:
-        return all(self.fholds(f) for f in fs)
+        known = self._fholds.get
+        for f in fs:
+            r = known(f)
+            if not (self.fholds(f) if r is None else r):
+                return False
+        return True
 
     def h(self, fs: frozenset[int]) -> float:
         if callable(self.domain_h):
@@ -244,7 +253,12 @@ class _Search:
         order: Sequence[Atom] | None = None,
         protect: frozenset[Atom] = frozenset(),
     ) -> tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str]:
-        """A* from ``goal``; ``order`` = serialization, ``protect`` = monotonic atoms."""
+        """A* from ``goal``; ``order`` = serialization, ``protect`` = monotonic atoms.
+
+        With a relaxed estimate that bounds (h_max, LM-cut, h_add over the lazy
+        relaxation), the successors of the facts that already hold are deferred
+        (:mod:`nowplan.planning.deferred`): made only when their entry comes first.
+        """
         T = self.table
         fluent = T.fluent
         root = T.ids_of(goal.atoms)
@@ -258,16 +272,78 @@ class _Search:
         Node = tuple[frozenset[int], int]
         start: Node = (root, focus0)
         h0 = self.h(root)
-        frontier: list[tuple[float, float, int, Node]] = [(self.config.weight * h0, h0, next(counter), start)]
+        # entries (f, h, stamp, seq, node or Deferred): the stamp is eager generation's order (deferred)
+        first: Stamp = (-1, 0, 0)
+        frontier: list[tuple[float, float, Stamp, int, Node | Deferred]] = [
+            (self.config.weight * h0, h0, first, next(counter), start)]
         best_g: dict[Node, float] = {start: 0.0}
+        born: dict[Node, Stamp] = {start: first}
         parent: dict[Node, tuple[Node, Action] | None] = {start: None}
         closed: set[Node] = set()
         levels, drop, weight = self.levels, self.drop, self.config.weight
         hvals = self.hadd.values.__getitem__ if isinstance(self.hadd, KernelHadd) and not callable(self.domain_h) else None
+        relaxed = self.relaxed if not callable(self.domain_h) else None
+        defer = self.defer_held and relaxed is not None and relaxed.kind in ("max", "lmcut", "add")
+        reach = Reach(self.domain) if defer else None
         exp = 0
-        regress_, forbidden, inf, push = regress, self.forbidden_first, math.inf, heapq.heappush
+        regress_, forbidden, inf, push, fholds = regress, self.forbidden_first, math.inf, heapq.heappush, self.fholds
+
+        def make(node: Node, focus: int, gcost: float, index: NodeIndex, goal_of: Callable[[], Goal], legacy: bool,
+                 act: Action, info: ActionFacts, cost: float, st: Stamp) -> None:
+            """Regress ``node`` through ``act`` and push the child (eager search's body for one successor)."""
+            if guard and any(guard.get(fluent[e], e) != e for e in info.all_effs):
+                return
+            if not legacy:
+                pre = regress_(T, index, info)
+            else:
+                g = preimage(goal_of(), act, levels.level(act), self.domain, drop)
+                pre = None if g is None else T.ids_of(g.atoms)
+            if pre is None:
+                return
+            if forbidden and act.key in forbidden and self.satisfied(pre):
+                return  # it would be the plan's first step: learnt not to be refinable from here
+            child = (pre, focus)
+            ng = gcost + cost
+            old = best_g.get(child, inf)
+            if ng > old or ng == inf:  # (an infinite cost: never kept, as eager search's ng >= old)
+                return
+            if ng == old:  # eager generation keeps the path it made first
+                if st >= born[child]:
+                    return
+                born[child] = st
+                parent[child] = (node, act)
+                if child in closed:
+                    return
+            elif child in closed:
+                return
+            else:
+                best_g[child] = ng
+                born[child] = st
+                parent[child] = (node, act)
+            self.generated += 1
+            if hvals is not None:
+                try:  # the kernel's values: every fact valued, 0 where it holds
+                    hh = sum(map(hvals, pre))
+                except IndexError:
+                    hh = self.h(pre)
+            else:
+                hh = self.h(pre)
+            if hh == inf:
+                return  # an atom of the pre-image is unreachable
+            push(frontier, (ng + weight * hh, hh, st, next(counter), child))
+
         while frontier:
-            _, _, _, node = heapq.heappop(frontier)
+            item = heapq.heappop(frontier)[4]
+            if isinstance(item, Deferred):  # ground the held targets and make their successors
+                x = item.expansion
+                for ti, target in item.targets:
+                    for j, (act, info, cost) in enumerate(self._successors(target, x.goal_of)):
+                        if id(act) in x.tried or self._listed_before(x, act, info, ti) is not None:
+                            continue  # made already, or an earlier target's (made when that one is)
+                        x.tried.add(id(act))
+                        make(x.node, x.focus, x.g, x.index, x.goal_of, False, act, info, cost, (x.number, ti, j))
+                continue
+            node = item
             if node in closed:
                 continue
             closed.add(node)
@@ -275,7 +351,7 @@ class _Search:
             if order_ids is not None:
                 # shift the focus down once the non-focused part already holds
                 if focus > 0:
-                    unmet = [f for f in fs if not self.fholds(f)]
+                    unmet = [f for f in fs if not fholds(f)]
                     while focus > 0 and hidden[focus].issuperset(unmet):
                         focus -= 1
             if self.satisfied(fs):
@@ -293,40 +369,57 @@ class _Search:
             goal_of = _GoalOf(T, fs)
             legacy = not root_ok and fs == root
             tried: set[int] = set()  # by identity: the grounder makes one object per instance
-            for target in allowed:
-                for act, info, cost in self._successors(target, goal_of):
+            here: Expansion | None = None
+            later: dict[tuple[float, float], list[tuple[int, int]]] = {}  # held targets by their bound
+            unmet_costs: list[tuple[Atom, float]] | None = None
+            for ti, target in enumerate(allowed):
+                if reach is not None and not legacy and fholds(target):
+                    if unmet_costs is None:
+                        assert relaxed is not None
+                        unmet_costs = [(T.atoms[f], relaxed.known(f)) for f in fs if not fholds(f)]
+                    c, b = reach.bound(target, unmet_costs)
+                    if b != inf:  # else every child keeps a fact proven unreachable
+                        later.setdefault((c, b), []).append((ti, target))
+                    continue
+                for j, (act, info, cost) in enumerate(self._successors(target, goal_of)):
                     if id(act) in tried:
                         continue
+                    st = (exp, ti, j)
+                    if later:  # a held target before this one may list it: eager search made it there
+                        if here is None:
+                            here = Expansion(node, focus, gcost, index, goal_of, allowed, tried, exp)
+                        earlier = self._listed_before(here, act, info, ti)
+                        if earlier is not None:
+                            st = (exp, earlier[0], earlier[1])
                     tried.add(id(act))
-                    if guard and any(guard.get(fluent[e], e) != e for e in info.all_effs):
-                        continue
-                    if not legacy:
-                        pre = regress_(T, index, info)
-                    else:
-                        g = preimage(goal_of(), act, levels.level(act), self.domain, drop)
-                        pre = None if g is None else T.ids_of(g.atoms)
-                    if pre is None:
-                        continue
-                    if forbidden and act.key in forbidden and self.satisfied(pre):
-                        continue  # it would be the plan's first step: learnt not to be refinable from here
-                    child = (pre, focus)
-                    ng = gcost + cost
-                    if child in closed or ng >= best_g.get(child, inf):
-                        continue
-                    best_g[child] = ng
-                    parent[child] = (node, act)
-                    self.generated += 1
-                    if hvals is not None:
-                        try:  # the kernel's values: every fact valued, 0 where it holds
-                            hh = sum(map(hvals, pre))
-                        except IndexError:
-                            hh = self.h(pre)
-                    else:
-                        hh = self.h(pre)
-                    if hh == inf:
-                        continue  # an atom of the pre-image is unreachable
-                    push(frontier, (ng + weight * hh, hh, next(counter), child))
+                    make(node, focus, gcost, index, goal_of, legacy, act, info, cost, st)
+            if later:
+                if here is None:
+                    here = Expansion(node, focus, gcost, index, goal_of, allowed, tried, exp)
+                for (c, b), targets in later.items():  # (g + c + w·b, b) is at most each child's (f, h)
+                    push(frontier, (gcost + c + weight * b, b, (exp, targets[0][0], 0), next(counter),
+                                    Deferred(here, targets)))
         return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
+
+    def _listed_before(self, x: Expansion, act: Action, info: ActionFacts, ti: int) -> tuple[int, int] | None:
+        """``(target, achiever)`` where ``act`` comes first among the held targets before ``x.allowed[ti]``."""
+        T = self.table
+        best: tuple[int, int] | None = None
+        by_fluent, pos = x.index.by_fluent, x.pos
+        for e in info.all_effs:
+            o = by_fluent.get(T.fluent[e])
+            if o is None:
+                continue
+            p = pos.get(o)
+            if p is None or p >= ti or (best is not None and p >= best[0]) or not self.fholds(o):
+                continue
+            if o != e and not T.entails(e, o):
+                continue
+            for j, tpl in enumerate(self._successors(o, x.goal_of)):
+                if tpl[0] is act:
+                    best = (p, j)
+                    break
+        return best
 
     def _path(
         self,

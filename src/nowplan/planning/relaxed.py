@@ -37,6 +37,7 @@ import math
 from collections.abc import Callable, Hashable, Iterable
 
 from nowplan.core.operators import Action
+from nowplan.planning.lmcut_lazy import lmcut_part
 
 # a relaxed achiever of a fact: the action, its cost and its kept preconditions' fact ids
 Supporter = tuple[Action, float, tuple[int, ...]]
@@ -92,8 +93,10 @@ class LazyRelaxed:
         return self._final(f)
 
     def estimate(self, fs: frozenset[int]) -> float:
+        seen, dependent, recontext = self._seen, self._dependent, self.recontext
         for f in fs:
-            self._ensure(f, fs)
+            if f not in seen or (recontext and f in dependent):  # (what _ensure returns at once on)
+                self._ensure(f, fs)
         if self.kind == "lmcut":
             return self.lmcut(fs)
         if self.kind == "ff":
@@ -124,18 +127,22 @@ class LazyRelaxed:
         from the facts that hold into the goal zone of the justification graph
         (each action's most expensive precondition), add the cheapest cost in
         the cut and take it off every action of the cut.  Admissible where
-        h_max is; facts not reached and not proven dead count 0.
+        h_max is; facts not reached and not proven dead count 0.  Ties are
+        broken by fact id throughout, so equal sets of facts get equal values
+        whatever order they were built in (the cuts are kept per set).
         """
         val = self.val
         goal: list[int] = []
         for f in fs:
-            v = self._final(f)
-            if v == math.inf:
-                return v
-            if v > 0.0 and f in val:
+            v = val.get(f)
+            if v is None:  # not reached: dead (no estimate) or unknown (counts 0)
+                if self._final(f) == math.inf:
+                    return math.inf
+            elif v > 0.0:
                 goal.append(f)
         if not goal:
             return 0.0
+        goal.sort()  # by fact id: the cut's choice among equally costly goal facts does not follow set order
         key = frozenset(goal)
         hit = self._cuts.get(key)
         if hit is not None:
@@ -187,58 +194,7 @@ class LazyRelaxed:
         return hit
 
     def _lmcut(self, goal: list[int]) -> float:
-        facts, acts, init = self._relevant(goal)
-        cost = {a: self._cost[a] for a in acts}
-        users: dict[int, list[int]] = {}
-        for a in acts:
-            for p in self._pre[a]:
-                users.setdefault(p, []).append(a)
-        targets = {a: [t for t in self._targets[a] if t in facts] for a in acts}
-        achieved: dict[int, list[int]] = {}
-        for a in acts:
-            for t in targets[a]:
-                achieved.setdefault(t, []).append(a)
-        total = 0.0
-        for _ in range(len(acts) + 1):
-            h, pcf = self._hmax_over(init, acts, cost, users, targets)
-            top = max(goal, key=lambda u: h.get(u, math.inf))
-            g = h.get(top, math.inf)
-            if g == 0.0 or g == math.inf:
-                break
-            zone, todo = {top}, [top]  # facts from which the goal is reached at zero cost
-            while todo:
-                e = todo.pop()
-                for a in achieved.get(e, ()):
-                    x = pcf.get(a)
-                    if cost[a] == 0.0 and x is not None and x >= 0 and x not in zone:
-                        zone.add(x)
-                        todo.append(x)
-            by_pcf: dict[int, list[int]] = {}
-            for a, x in pcf.items():
-                by_pcf.setdefault(x, []).append(a)
-            reach = set(init)
-            reach.add(-1)
-            todo = [*init, -1]
-            cut: list[int] = []
-            while todo:
-                x = todo.pop()
-                for a in by_pcf.get(x, ()):
-                    into = False
-                    for e in targets[a]:
-                        if e in zone:
-                            into = True
-                        elif e not in reach:
-                            reach.add(e)
-                            todo.append(e)
-                    if into:
-                        cut.append(a)
-            if not cut:
-                break
-            m = min(cost[a] for a in cut)
-            total += m
-            for a in cut:
-                cost[a] -= m
-        return total
+        return lmcut_part(self, goal)
 
     def _relevant(self, goal: list[int]) -> tuple[set[int], list[int], list[int]]:
         """The facts behind ``goal``, the actions achieving them that can fire, and the facts that hold."""
@@ -265,46 +221,6 @@ class LazyRelaxed:
                         facts.add(p)
                         stack.append(p)
         return facts, acts, init
-
-    def _hmax_over(
-        self,
-        init: list[int],
-        acts: list[int],
-        cost: dict[int, float],
-        users: dict[int, list[int]],
-        targets: dict[int, list[int]],
-    ) -> tuple[dict[int, float], dict[int, int]]:
-        """h_max of the facts with ``cost``; each fired action's most expensive precondition (-1: none)."""
-        h: dict[int, float] = {}
-        pcf: dict[int, int] = {}
-        missing = {a: len(self._pre[a]) for a in acts}
-        heap: list[tuple[float, int, int]] = []
-        tick = 0
-        for f in init:
-            heap.append((0.0, tick, f))
-            tick += 1
-        for a in acts:
-            if not self._pre[a]:
-                pcf[a] = -1
-                for t in targets[a]:
-                    heap.append((cost[a], tick, t))
-                    tick += 1
-        heapq.heapify(heap)
-        while heap:
-            v, _, f = heapq.heappop(heap)
-            if f in h:
-                continue
-            h[f] = v
-            for a in users.get(f, ()):
-                missing[a] -= 1
-                if missing[a] == 0:
-                    pcf[a] = f  # popped last: the most expensive precondition
-                    x = cost[a] + v
-                    for t in targets[a]:
-                        if t not in h:
-                            heapq.heappush(heap, (x, tick, t))
-                            tick += 1
-        return h, pcf
 
     def plan_of(self, f: int) -> frozenset[int]:
         """The actions of ``f``'s relaxed plan (best supporters, recursively)."""
@@ -352,6 +268,18 @@ class LazyRelaxed:
         self._dead |= seen
         return True
 
+    def known(self, f: int) -> float:
+        """``f``'s cost as explored so far, without exploring: 0 if not reached, ``inf`` if dead.
+
+        Every estimate that counts ``f`` gives at least this (h_max, LM-cut and
+        h_add are at least the largest cost of a fact they count) while the
+        costs stand; they only fall as more is explored.
+        """
+        v = self.val.get(f)
+        if v is not None:
+            return v
+        return math.inf if f in self._seen and self.dead(f) else 0.0
+
     # -- internals -------------------------------------------------------------
     def _final(self, f: int) -> float:
         v = self.val.get(f)
@@ -363,7 +291,15 @@ class LazyRelaxed:
         return self._achieved_by.get(g, ())
 
     def _ensure(self, f: int, context: frozenset[int]) -> None:
-        if f in self._seen and (f not in self._dependent or not self.recontext):
+        if f not in self._seen:
+            if f not in self._users and self.holds(f):
+                # a fact that holds, asked for first: it costs 0 and no explored action waits for it
+                # (what _explore would do; a subgoal holds many such facts)
+                self._seen.add(f)
+                self.facts_explored += 1
+                self.val[f] = 0.0
+                return
+        elif f not in self._dependent or not self.recontext:
             return
         if f in self.val and self.val[f] == 0.0:
             return

@@ -77,12 +77,42 @@ def _pre(x: Atom, crit: int) -> Precondition:
 # -- the derived fluent ------------------------------------------------------------------
 
 
+class _ByFirst:
+    """A belief's facts of one predicate by their first argument, rebuilt only when its list changes.
+
+    A belief over an immutable state hands back the same list while the state
+    stands, so the test and the generators below look one object up instead of
+    scanning every package's fact (which made each test cost grow with the
+    number of packages); a belief that makes a new list each time gets a new index.
+    """
+
+    __slots__ = ("predicate", "_facts", "_by")
+
+    def __init__(self, predicate: str) -> None:
+        self.predicate = predicate
+        self._facts: Any = None
+        self._by: dict[Any, list[tuple[Any, ...]]] = {}
+
+    def __call__(self, belief: Any) -> dict[Any, list[tuple[Any, ...]]]:
+        facts = belief.facts(self.predicate)
+        if facts is not self._facts:
+            by: dict[Any, list[tuple[Any, ...]]] = {}
+            for args in facts:
+                if args:
+                    by.setdefault(args[0], []).append(args)
+            self._facts, self._by = facts, by
+        return self._by
+
+
+_AT, _IN = _ByFirst("at"), _ByFirst("in")
+
+
 def same_city_holds(belief: Any, args: tuple[Any, ...], value: Any) -> bool:
     """``same_city(p, v)``: ``p`` is inside ``v`` or on the ground where ``v`` can go."""
     pkg, veh = args
     truth = bool(belief.value(("in", (pkg, veh))))
     if not truth:
-        truth = any(x[0] == pkg and belief.value(("reachable", (x[1], veh))) for x in belief.facts("at"))
+        truth = any(belief.value(("reachable", (x[1], veh))) for x in _AT(belief).get(pkg, ()))
     return truth == bool(value)
 
 
@@ -248,12 +278,10 @@ class Where:
 
     def place_now(self, belief: Any, pkg: str) -> str | None:
         """Where the package is (or the place of the vehicle carrying it)."""
-        for args in belief.facts("at"):
-            if args[0] == pkg:
-                return str(args[1])
-        for args in belief.facts("in"):
-            if args[0] == pkg:
-                return self.place_now(belief, str(args[1]))
+        for args in _AT(belief).get(pkg, ()):
+            return str(args[1])
+        for args in _IN(belief).get(pkg, ()):
+            return self.place_now(belief, str(args[1]))
         return None
 
     def wanted(self, bind: Mapping[Var, Any], goal: Any) -> tuple[str, ...]:

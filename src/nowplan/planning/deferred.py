@@ -1,0 +1,131 @@
+"""Deferred successors in the regression search: the achievers of facts that already hold.
+
+A subgoal of HPN's calls holds every goal fact of the objects the call does
+not touch (a package already delivered, or waiting where it is); they hold in
+the belief, yet A* regresses through each of their achievers too (the last
+step of a plan may have to re-achieve a fact an earlier step undid), and
+each such successor costs grounding, a pre-image, new facts to explore and
+an estimate.  Their number grows with the number of such objects, while they
+are almost never expanded: a step that re-achieves a fact that holds adds
+its own cost to every unmet fact's.
+
+So when a node is expanded, the successors of the facts it asks for that do
+not hold are made at once, and the facts that hold are put, ungrounded, into
+:class:`Deferred` frontier entries, with a lower bound on their children's
+``(f, h)``: ``(g + c + weight · b, b)``, where ``c`` is the cheapest fixed
+cost of an operator with an effect that can entail the fact and ``b`` is the
+largest explored cost of an unmet fact of the node that no effect or
+precondition of such an operator can name (:class:`Reach`): the regression
+keeps that fact in the child as it is, and the relaxed estimates the search
+uses with deferral (h_max, LM-cut, h_add) are at least its cost.  An entry is
+opened (its facts grounded, their successors made) only when it comes first
+in the frontier, so the search expands what it would have expanded eagerly,
+in the same order: a child is stamped with the order in which eager
+generation makes it, ``(expansion, target, achiever)`` (an action listed by
+several facts of a node counts under the first, as eager search's dedup
+does), and the stamp breaks ties as eager generation's counter did (also
+between two equally cheap paths to one subgoal).  The relaxation's
+exploration is lazy, so its costs can fall between an expansion and the
+opening of its entries; a bound that turns out too high only changes the
+order, never a plan's validity.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from typing import Any
+
+from nowplan.core.atoms import Atom, Var
+from nowplan.core.domain import Domain
+from nowplan.planning.grounding_index import unify_effect
+from nowplan.planning.subgoals import NodeIndex
+
+# eager generation order of a child: (parent's expansion number, target index, achiever index)
+Stamp = tuple[int, int, int]
+_ANY = object()  # a pattern's argument that any value matches
+Pattern = tuple[str, tuple[Any, ...]]
+
+
+class Expansion:
+    """One expanded node's context, shared by its deferred entries."""
+
+    __slots__ = ("node", "focus", "g", "index", "goal_of", "allowed", "pos", "tried", "number")
+
+    def __init__(self, node: Any, focus: int, g: float, index: NodeIndex, goal_of: Callable[[], Any],
+                 allowed: list[int], tried: set[int], number: int) -> None:
+        self.node = node
+        self.focus = focus  # the children's focus (serialization)
+        self.g = g
+        self.index = index
+        self.goal_of = goal_of
+        self.allowed = allowed  # the targets, in eager generation's order
+        self.pos = {f: i for i, f in enumerate(allowed)}
+        self.tried = tried  # ids of the actions made (or found wanting) for this node
+        self.number = number  # the expansion's number (first part of its children's stamps)
+
+
+class Deferred:
+    """Held targets ``(index, fact)`` of one expansion, sharing one priority bound (a frontier entry)."""
+
+    __slots__ = ("expansion", "targets")
+
+    def __init__(self, expansion: Expansion, targets: list[tuple[int, int]]) -> None:
+        self.expansion = expansion
+        self.targets = targets
+
+
+class Reach:
+    """Per fact: the cheapest fixed cost of an operator that can achieve it, and what such operators name.
+
+    The patterns are the fluents of every effect and precondition of the
+    operators with an effect that can entail the fact, with the variables the
+    entailment binds filled in (others match any value).  Kept per domain.
+    """
+
+    def __init__(self, domain: Domain) -> None:
+        self.domain = domain
+        self.atoms = domain.facts.atoms
+        hit = domain.facts.derived.get("deferral reach")
+        if hit is None or hit[0] is not domain.operators:
+            hit = domain.facts.derived["deferral reach"] = (domain.operators, {})
+        self._memo: dict[int, tuple[float, tuple[Pattern, ...]]] = hit[1]
+
+    def __call__(self, f: int) -> tuple[float, tuple[Pattern, ...]]:
+        hit = self._memo.get(f)
+        if hit is None:
+            hit = self._memo[f] = self._reach(self.atoms[f])
+        return hit
+
+    def _reach(self, target: Atom) -> tuple[float, tuple[Pattern, ...]]:
+        cheapest = math.inf
+        pats: list[Pattern] = []
+        for op in self.domain.operators:
+            binds = [b for b in (unify_effect(e, target, self.domain) for e in op.effects) if b is not None]
+            if not binds:
+                continue
+            cheapest = min(cheapest, 0.0 if callable(op.cost) else max(float(op.cost), 0.0))
+            named = [*op.effects, *(p.atom for p in op.preconditions)]
+            for b in binds:
+                for a in named:
+                    args = tuple(b.get(x, _ANY) if isinstance(x, Var) else x for x in a.args)
+                    pats.append((a.predicate, args))
+        return (0.0 if cheapest == math.inf else cheapest), tuple(dict.fromkeys(pats))
+
+    def bound(self, f: int, unmet: Sequence[tuple[Atom, float]]) -> tuple[float, float]:
+        """``(c, b)`` for target ``f`` and the node's unmet ``(atom, explored cost)`` pairs."""
+        c, pats = self(f)
+        b = 0.0
+        for a, v in unmet:
+            if v > b and not _named(a, pats):
+                b = v
+        return c, b
+
+
+def _named(a: Atom, pats: tuple[Pattern, ...]) -> bool:
+    """Does a pattern name ``a``'s fluent?"""
+    n = len(a.args)
+    for pred, args in pats:
+        if pred == a.predicate and len(args) == n and all(x is _ANY or x == y for x, y in zip(args, a.args)):
+            return True
+    return False
