@@ -40,27 +40,44 @@ instead of ~150 ms (benchmarks/results/classical_lmspeed).
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Iterable
 
 from nowplan.planning.axioms import relaxed_task
 from nowplan.planning.lm_orders import (
     Mutex,
+    fact_adders,
     disjunctive_landmarks,
     first_achievers as possible_first,
     prime_first_achievers,
     reasonable_orders,
     relaxed_order,
+    relaxed_reached,
 )
 from nowplan.planning.task import Task
 
 
-def landmark_sets(task: Task) -> list[frozenset[int] | None]:
-    """``LM(f)`` for each fact id (``None`` where the relaxation never reaches f)."""
+def landmark_sets(task: Task, goal: Iterable[int] | None = None) -> list[frozenset[int] | None]:
+    """``LM(f)`` for each fact id (``None`` where the relaxation never reaches f).
+
+    With ``goal``, only the facts of the goal's *cone* get their set (the rest
+    stay ``None``): the goal facts not true now, the preconditions not true now
+    of every action adding a cone fact, and so on.  ``LM(f)`` of a cone fact
+    depends only on the cone's actions (its achievers, their preconditions'
+    sets, and ``{p}`` for a precondition true now), so the cone's sets are the
+    whole task's.  An HPN call whose goal holds but for a few atoms explores a
+    small part of the task.
+    """
     nf = len(task.facts)
     lm: list[frozenset[int] | None] = [None] * nf
-    for f in task.init:
+    init = task.init
+    for f in init:
         lm[f] = frozenset((f,))
     pre, add, by_pre = task.pre, task.add, task.by_pre
     order = relaxed_order(task)  # breadth first: the order in which actions become applicable
+    cone: set[int] | None = None
+    if goal is not None:
+        cone = _cone(task, goal)
+        order = [a for a in order if a in cone]
     # fixpoint: shrink each fact's set by every achiever's union, re-examining dependants on change;
     # in that order most sets are final the first time (the fixpoint does not depend on the order)
     work = deque(order)
@@ -73,7 +90,7 @@ def landmark_sets(task: Task) -> list[frozenset[int] | None]:
             continue
         union: frozenset[int] = frozenset().union(*sets)  # type: ignore[arg-type]
         for e in add[a]:
-            if e in task.init:
+            if e in init:
                 continue
             cand = union | {e}
             old = lm[e]
@@ -81,22 +98,39 @@ def landmark_sets(task: Task) -> list[frozenset[int] | None]:
             if new != old:
                 lm[e] = new
                 for b in by_pre.get(e, ()):
-                    if b not in pending:
+                    if b not in pending and (cone is None or b in cone):
                         pending.add(b)
                         work.append(b)
     return lm
 
 
-def first_achievers(task: Task, lm: list[frozenset[int] | None], facts: frozenset[int]) -> dict[int, list[int]]:
+def _cone(task: Task, goal: Iterable[int]) -> set[int]:
+    """The actions adding a fact of the goal's cone (see :func:`landmark_sets`)."""
+    adders, pre, init = fact_adders(task), task.pre, task.init
+    stack = [g for g in set(goal) if g not in init]
+    facts = set(stack)
+    acts: set[int] = set()
+    while stack:
+        f = stack.pop()
+        for a in adders.get(f, ()):
+            if a in acts:
+                continue
+            acts.add(a)
+            for p in pre[a]:
+                if p not in init and p not in facts:
+                    facts.add(p)
+                    stack.append(p)
+    return acts
+
+
+def first_achievers(task: Task, facts: frozenset[int]) -> dict[int, list[int]]:
     """Fact -> the actions that may first make it true: they add it, do not need it, are relaxed-reachable."""
-    pre = task.pre
+    pre, adders, reached = task.pre, fact_adders(task), relaxed_reached(task)
     out: dict[int, list[int]] = {}
-    for a, adds in enumerate(task.add):
-        if any(lm[p] is None for p in pre[a]):
-            continue
-        for e in adds:
-            if e in facts and e not in pre[a]:
-                out.setdefault(e, []).append(a)
+    for e in sorted(facts):
+        acts = [a for a in adders.get(e, ()) if e not in pre[a] and all(p in reached for p in pre[a])]
+        if acts:
+            out[e] = acts
     return out
 
 
@@ -113,7 +147,7 @@ class LandmarkCount:
         mutex = task.memo.get("mutex")
         task = relaxed_task(task)  # derived facts are reached by the rules (relaxed actions of cost 0)
         self.task = task
-        lm = landmark_sets(task)
+        lm = landmark_sets(task, task.goal)  # the goal's cone: what the graph reads
         found: set[int] = set()
         self.unreachable = False
         for g in task.goal:
@@ -136,9 +170,11 @@ class LandmarkCount:
                 self.of_fact.setdefault(f, []).append(i)
         # actions that make each landmark true
         self.achievers: dict[int, list[int]] = {}
-        for a, adds in enumerate(task.add[:nactions]):
-            for i in sorted({i for e in adds for i in self.of_fact.get(e, ())}):
-                self.achievers.setdefault(i, []).append(a)
+        adders = fact_adders(task)
+        for i, d in enumerate(self.sets):
+            acts = sorted({a for f in d for a in adders.get(f, ()) if a < nactions})
+            if acts:
+                self.achievers[i] = acts
         self.evaluations = 0
 
     def _orderings(self, task: Task, lm: list[frozenset[int] | None]) -> dict[int, list[int]]:
@@ -153,7 +189,7 @@ class LandmarkCount:
         """
         pre, init = task.pre, task.init
         index = {next(iter(d)): i for i, d in enumerate(self.sets)}
-        achievers = first_achievers(task, lm, self.landmarks)
+        achievers = first_achievers(task, self.landmarks)
         before: dict[int, list[int]] = {}
         for l2 in sorted(self.landmarks):
             acts = achievers.get(l2)

@@ -52,19 +52,22 @@ def first_achievers(task: Task, facts: frozenset[int], lm: LMSets | None = None)
 
     With the fact landmarks of every fact (``lm``, Zhu and Givan's sets) a
     single fact ``L`` needs no exploration: a precondition ``p`` is reachable
-    without ``L`` exactly when ``L`` is not in ``LM(p)``.
+    without ``L`` exactly when ``L`` is not in ``LM(p)``.  ``lm`` may be the
+    sets of a goal's cone only (``landmark_sets(task, goal)``) when ``L`` is a
+    landmark of that goal not true now: the preconditions of its adders are
+    then in the cone.
     """
     pre, add, by_pre = task.pre, task.add, task.by_pre
     if lm is not None and len(facts) == 1:
         (f,) = facts
         if f not in task.init:
-            return [a for a in _adders(task).get(f, ())
+            return [a for a in fact_adders(task).get(f, ())
                     if all(lm[p] is not None and f not in lm[p] for p in pre[a])]  # type: ignore[operator]
     memo = task.memo.setdefault("first_achievers", {})
     hit = memo.get(facts)
     if hit is not None:
         return list(hit)
-    adders = _adders(task)
+    adders = fact_adders(task)
     banned_ids = sorted({a for f in facts for a in adders.get(f, ())})
     banned = [False] * len(pre)
     for a in banned_ids:
@@ -110,8 +113,9 @@ def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LM
     fixpoint, computed from "unreached" (``None``) downwards as
     :func:`nowplan.planning.landmarks.landmark_sets` does.  The first
     achievers of ``F_k`` are its adders whose preconditions are reachable
-    and carry no bit ``k``.  ``lm`` (the fact landmark sets) says which facts
-    the relaxation reaches at all.
+    and carry no bit ``k``.  The actions the relaxation applies are those of
+    :func:`relaxed_order` (``lm``, the fact landmark sets, is not read: a goal's
+    cone leaves most facts out).
     """
     memo = task.memo.setdefault("first_achievers", {})
     todo = sorted({f for f in families if f not in memo}, key=sorted)
@@ -127,10 +131,13 @@ def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LM
         need[f] = bit_of.get(f, 0)
     amask = [0] * len(pre)
     for f, bits in bit_of.items():
-        for a in _adders(task).get(f, ()):
+        for a in fact_adders(task).get(f, ()):
             amask[a] |= bits
-    reachable = [all(lm[p] is not None for p in ps) for ps in pre]
-    work = deque(a for a in relaxed_order(task) if reachable[a])
+    order = relaxed_order(task)
+    reachable = [False] * len(pre)  # the relaxation applies it: every precondition is reached (lm[p] is not None)
+    for a in order:
+        reachable[a] = True
+    work = deque(order)
     pending = set(work)
     while work:
         a = work.popleft()
@@ -156,7 +163,7 @@ def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LM
                     if b not in pending and reachable[b]:
                         pending.add(b)
                         work.append(b)
-    adders = _adders(task)
+    adders = fact_adders(task)
     for k, fam in enumerate(todo):
         bit = 1 << k
         acts = sorted({a for f in fam for a in adders.get(f, ())})
@@ -187,11 +194,20 @@ def relaxed_order(task: Task) -> list[int]:
                     if missing[a] == 0:
                         order.append(a)
         hit = task.memo["relaxed_order"] = order
+        task.memo["relaxed_reached"] = frozenset(reached)
     assert isinstance(hit, list)
     return hit
 
 
-def _adders(task: Task) -> dict[int, list[int]]:
+def relaxed_reached(task: Task) -> frozenset[int]:
+    """The facts the delete relaxation reaches (with :func:`relaxed_order`, made once per task)."""
+    relaxed_order(task)
+    hit = task.memo["relaxed_reached"]
+    assert isinstance(hit, frozenset)
+    return hit
+
+
+def fact_adders(task: Task) -> dict[int, list[int]]:
     """Fact -> the actions that add it, ascending (made once per task)."""
     hit = task.memo.get("adders")
     if hit is None:
