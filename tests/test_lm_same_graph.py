@@ -23,7 +23,9 @@ from lm_reference import ReferenceLandmarkCount
 from nowplan.core.levels import flat_levels
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning.landmarks import LandmarkCount
-from nowplan.planning.lm_orders import fact_adders
+from nowplan.planning.axioms import relaxed_task
+from nowplan.planning.hff import RelaxedHeuristic
+from nowplan.planning.lm_orders import fact_adders, relaxed_order
 from nowplan.planning.task import Task, build_task
 from test_lm_first_achievers import tasks
 
@@ -49,9 +51,16 @@ def _graph(lc: Any) -> tuple[Any, ...]:
 
 
 def _same(task: Task, orders: bool = True) -> None:
-    new = _graph(LandmarkCount(_copy(task), orders))
     old = _graph(ReferenceLandmarkCount(_copy(task), orders))
-    assert new == old
+    assert _graph(LandmarkCount(_copy(task), orders)) == old
+    t = _copy(task)
+    native = RelaxedHeuristic(t).native
+    if native is not None:  # the relaxed exploration by the kernel: the same order, the same graph
+        expected = relaxed_order(_copy(relaxed_task(t)))
+        assert native.relaxed_order(t.init)[0] == expected
+        assert "relaxed_order" not in relaxed_task(t).memo
+        assert _graph(LandmarkCount(t, orders, native)) == old
+        assert relaxed_task(t).memo["relaxed_order"] == expected
 
 
 def _variants(task: Task, seed: int) -> list[Task]:
@@ -91,6 +100,16 @@ def test_shipped_problems_keep_the_graph(domain: str, problem: str) -> None:
     task = _pddl(SHIPPED / domain / "domain.pddl", SHIPPED / domain / problem)
     for k, t in enumerate(_variants(task, 1)):
         _same(t, orders=k != 1)
+
+
+AXIOMS = Path(__file__).resolve().parent / "data" / "pddl_axioms"
+
+
+@pytest.mark.parametrize("name", ["doors-p01", "doors-p02", "grid-p01", "grid-p02"])
+def test_tasks_with_derived_predicates_keep_the_graph(name: str) -> None:
+    task = _pddl(AXIOMS / f"{name.split('-')[0]}-domain.pddl", AXIOMS / f"{name}.pddl")
+    assert task.axioms
+    _same(task)
 
 
 @pytest.mark.parametrize("domain", CLASSICAL_DOMAINS)

@@ -41,6 +41,7 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 from nowplan.planning.axioms import relaxed_task
 from nowplan.planning.lm_orders import (
@@ -52,8 +53,12 @@ from nowplan.planning.lm_orders import (
     reasonable_orders,
     relaxed_order,
     relaxed_reached,
+    set_relaxed_order,
 )
 from nowplan.planning.task import Task
+
+if TYPE_CHECKING:
+    from nowplan.planning._kernel import Kernel
 
 
 def landmark_sets(task: Task, goal: Iterable[int] | None = None) -> list[frozenset[int] | None]:
@@ -142,10 +147,12 @@ class LandmarkCount:
     is accepted (its index in the accepted set) once one of its facts holds.
     """
 
-    def __init__(self, task: Task, orders: bool = True) -> None:
+    def __init__(self, task: Task, orders: bool = True, native: Kernel | None = None) -> None:
         nactions = len(task.pre)
         mutex = task.memo.get("mutex")
         task = relaxed_task(task)  # derived facts are reached by the rules (relaxed actions of cost 0)
+        if native is not None:  # the kernel of this relaxed task (h_FF's): the relaxed exploration in C
+            set_relaxed_order(task, native)
         self.task = task
         lm = landmark_sets(task, task.goal)  # the goal's cone: what the graph reads
         found: set[int] = set()

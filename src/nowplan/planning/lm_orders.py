@@ -39,8 +39,12 @@ import itertools
 import operator
 from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING
 
 from nowplan.planning.task import FactMutex, Task
+
+if TYPE_CHECKING:
+    from nowplan.planning._kernel import Kernel
 
 MAX_DISJUNCTION = 4  # facts of one disjunctive landmark
 
@@ -200,6 +204,15 @@ def relaxed_order(task: Task) -> list[int]:
         task.memo["relaxed_reached"] = frozenset(reached)
     assert isinstance(hit, list)
     return hit
+
+
+def set_relaxed_order(task: Task, native: Kernel) -> None:
+    """Memoise :func:`relaxed_order` and :func:`relaxed_reached` from the compiled kernel (same results);
+    ``native`` is built on ``task``'s actions (its rules included)."""
+    if "relaxed_order" not in task.memo:
+        order, reached = native.relaxed_order(task.init)
+        task.memo["relaxed_order"] = order
+        task.memo["relaxed_reached"] = frozenset(reached)
 
 
 def relaxed_reached(task: Task) -> frozenset[int]:
