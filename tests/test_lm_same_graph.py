@@ -25,7 +25,7 @@ from nowplan.io.pddl_read import load_pddl
 from nowplan.planning.landmarks import LandmarkCount
 from nowplan.planning.axioms import relaxed_task
 from nowplan.planning.hff import RelaxedHeuristic
-from nowplan.planning.lm_orders import fact_adders, relaxed_order
+from nowplan.planning.lm_orders import fact_adders, prime_first_achievers, relaxed_order
 from nowplan.planning.task import Task, build_task
 from test_lm_first_achievers import tasks
 
@@ -154,3 +154,20 @@ def test_patched_adders_index_is_the_built_one(task: Task, data: st.DataObject) 
             for e in adds:
                 expected.setdefault(e, []).append(a)
         assert fact_adders(t) == expected
+
+
+@settings(max_examples=300, deadline=None)
+@given(task=tasks(), data=st.data())
+def test_kernel_first_achievers_are_python_s(task: Task, data: st.DataObject) -> None:
+    """The labelled propagation in C gives the Python propagation's first achievers (more than 64 sets too)."""
+    native = RelaxedHeuristic(task).native
+    if native is None:
+        pytest.skip("no compiled kernel")
+    n = len(task.facts)
+    families = data.draw(st.lists(st.frozensets(st.integers(0, n - 1), min_size=1, max_size=4), max_size=6))
+    families += [frozenset((f,)) for f in range(n)] * data.draw(st.sampled_from([0, 1]))
+    families += [frozenset({f, (f * 7 + k) % n}) for f in range(n) for k in range(5)] * data.draw(st.sampled_from([0, 1]))
+    py, c = _copy(task), _copy(task)
+    prime_first_achievers(py, families, [])
+    prime_first_achievers(c, families, [], native)
+    assert c.memo["first_achievers"] == py.memo["first_achievers"]

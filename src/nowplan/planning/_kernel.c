@@ -5,7 +5,7 @@
  * over bitset states, the stratified evaluation of the rules of derived
  * predicates after every action (_kernel_axioms.h, axioms.py),
  * every fact's relaxed cost for the regression search's h_add (_kernel_costs.h)
- * and the relaxation's breadth-first action order for the landmark graph (_kernel_relaxed.h).
+ * and the relaxation's breadth-first action order and first achievers for the landmark graph (_kernel_relaxed.h).
  *
  * It mirrors nowplan/planning/hff.py, forward.py, lama.py, anytime.py and pngs.py (the reference: both
  * paths must give the same h, the same preferred operators, the same plan
@@ -526,6 +526,8 @@ static PyMethodDef Kernel_methods[] = {
      "limit states, states, complete, stopped)"},
     {"relaxed_order", (PyCFunction)Kernel_relaxed_order, METH_O,
      "relaxed_order(state) -> (actions in the delete relaxation's breadth-first order, reached facts ascending)"},
+    {"first_achievers", (PyCFunction)Kernel_first_achievers, METH_VARARGS,
+     "first_achievers(state, order, families) -> each fact set's first achievers ascending (order: relaxed_order's)"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -51,3 +51,109 @@ done:
     PyMem_Free(reached);
     return out;
 }
+
+/* first_achievers(state, order, families) -> for each fact set, its first achievers ascending
+ * (mirrors nowplan/planning/lm_orders.py prime_first_achievers: the labelled propagation, a bit per
+ * set, over the actions of order, the relaxation's breadth-first order from state). */
+static PyObject *Kernel_first_achievers(Kernel *k, PyObject *args) {
+    PyObject *state, *order_o, *fams_o, *out = NULL;
+    if (!PyArg_ParseTuple(args, "OOO", &state, &order_o, &fams_o)) return NULL;
+    int32_t ns = load_state(k, state);
+    if (ns < 0) return NULL;
+    int32_t na = k->na, nf = k->nf, norder = 0;
+    Py_ssize_t nfam_s = PyObject_Length(fams_o);
+    if (nfam_s < 0) return NULL;
+    if (nfam_s >= INT32_MAX / 2) { PyErr_SetString(PyExc_ValueError, "too many fact sets"); return NULL; }
+    int32_t nfam = (int32_t)nfam_s, W = (nfam + 63) / 64;
+    size_t w = (size_t)(W ? W : 1);
+    int32_t *order = NULL, *queue = NULL;
+    CSR fam = {NULL, NULL};
+    uint64_t *bitof = NULL, *amask = NULL, *need = NULL, *u = NULL;
+    uint8_t *has = NULL, *reach = NULL, *pend = NULL;
+    if (build_list(order_o, na, "order", &order, &norder) < 0) goto done;
+    if (build_csr(fams_o, nfam, nf, "families", &fam) < 0) goto done;
+    if (!(bitof = xcalloc((size_t)nf * w, 8)) || !(amask = xcalloc((size_t)na * w, 8)) ||
+        !(need = xcalloc((size_t)nf * w, 8)) || !(u = xcalloc(w, 8)) || !(has = xcalloc((size_t)nf, 1)) ||
+        !(reach = xcalloc((size_t)na, 1)) || !(pend = xcalloc((size_t)na, 1)) ||
+        !(queue = xcalloc((size_t)na, sizeof(int32_t))))
+        goto done;
+    for (int32_t q = 0; q < nfam; q++)
+        for (int32_t j = fam.off[q]; j < fam.off[q + 1]; j++) bitof[(size_t)fam.v[j] * w + (q >> 6)] |= (uint64_t)1 << (q & 63);
+    for (int32_t a = 0; a < na; a++)
+        for (int32_t j = k->add.off[a]; j < k->add.off[a + 1]; j++)
+            for (size_t x = 0; x < w; x++) amask[(size_t)a * w + x] |= bitof[(size_t)k->add.v[j] * w + x];
+    for (int32_t i = 0; i < ns; i++) {
+        int32_t f = k->sf[i];
+        has[f] = 1;
+        memcpy(&need[(size_t)f * w], &bitof[(size_t)f * w], w * 8);
+    }
+    /* the queue: a ring of at most na pending actions, first in first out */
+    int32_t head = 0, count = 0;
+    for (int32_t i = 0; i < norder; i++) {
+        int32_t a = order[i];
+        reach[a] = 1;
+        if (!pend[a]) { pend[a] = 1; queue[(head + count++) % na] = a; }
+    }
+    while (count > 0) {
+        int32_t a = queue[head];
+        head = (head + 1) % na;
+        count--;
+        pend[a] = 0;
+        memcpy(u, &amask[(size_t)a * w], w * 8);
+        int unreached = 0;
+        for (int32_t j = k->pre.off[a]; j < k->pre.off[a + 1]; j++) {
+            int32_t p = k->pre.v[j];
+            if (!has[p]) { unreached = 1; break; }
+            for (size_t x = 0; x < w; x++) u[x] |= need[(size_t)p * w + x];
+        }
+        if (unreached) continue;
+        for (int32_t j = k->add.off[a]; j < k->add.off[a + 1]; j++) {
+            int32_t e = k->add.v[j];
+            if (BIT(k->bits, e)) continue;  /* true now: its label stays */
+            uint64_t *ne = &need[(size_t)e * w];
+            int changed = 0;
+            if (!has[e]) { has[e] = 1; memcpy(ne, u, w * 8); changed = 1; }
+            else
+                for (size_t x = 0; x < w; x++) {
+                    uint64_t v = ne[x] & u[x];
+                    if (v != ne[x]) { ne[x] = v; changed = 1; }
+                }
+            if (!changed) continue;
+            for (int32_t t = k->bypre.off[e]; t < k->bypre.off[e + 1]; t++) {
+                int32_t b = k->bypre.v[t];
+                if (!pend[b] && reach[b]) { pend[b] = 1; queue[(head + count++) % na] = b; }
+            }
+        }
+    }
+    if (!(out = PyList_New(nfam))) goto done;
+    for (int32_t q = 0; q < nfam; q++) {
+        PyObject *l = PyList_New(0);
+        if (l == NULL) { Py_CLEAR(out); goto done; }
+        PyList_SET_ITEM(out, q, l);
+    }
+    for (int32_t a = 0; a < na; a++) {
+        if (!reach[a]) continue;
+        for (int32_t q = 0; q < nfam; q++) {
+            if (!((amask[(size_t)a * w + (q >> 6)] >> (q & 63)) & 1u)) continue;
+            int needs = 0;
+            for (int32_t j = k->pre.off[a]; j < k->pre.off[a + 1] && !needs; j++)
+                needs = (int)((need[(size_t)k->pre.v[j] * w + (q >> 6)] >> (q & 63)) & 1u);
+            if (needs) continue;
+            PyObject *x = PyLong_FromLong(a);
+            if (x == NULL || PyList_Append(PyList_GET_ITEM(out, q), x) < 0) { Py_XDECREF(x); Py_CLEAR(out); goto done; }
+            Py_DECREF(x);
+        }
+    }
+done:
+    free_csr(&fam);
+    PyMem_Free(order);
+    PyMem_Free(queue);
+    PyMem_Free(bitof);
+    PyMem_Free(amask);
+    PyMem_Free(need);
+    PyMem_Free(u);
+    PyMem_Free(has);
+    PyMem_Free(reach);
+    PyMem_Free(pend);
+    return out;
+}

@@ -151,6 +151,7 @@ class LandmarkCount:
         nactions = len(task.pre)
         mutex = task.memo.get("mutex")
         task = relaxed_task(task)  # derived facts are reached by the rules (relaxed actions of cost 0)
+        self.native = native
         if native is not None:  # the kernel of this relaxed task (h_FF's): the relaxed exploration in C
             set_relaxed_order(task, native)
         self.task = task
@@ -214,7 +215,7 @@ class LandmarkCount:
         found = disjunctive_landmarks(task, self.landmarks, lm_sets)
         # the sets whose first achievers need an exploration: one propagation for them all
         prime_first_achievers(task, [d for d, _ in found] + [frozenset((f,)) for f in self.landmarks
-                                                             if f in task.init], lm_sets)
+                                                             if f in task.init], lm_sets, self.native)
         for d, lm in found:
             if d in of_set:
                 self.before.setdefault(of_set[d], []).append(index[lm])

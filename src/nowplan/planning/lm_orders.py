@@ -103,7 +103,8 @@ def first_achievers(task: Task, facts: frozenset[int], lm: LMSets | None = None)
     return out
 
 
-def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LMSets) -> None:
+def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LMSets,
+                          native: Kernel | None = None) -> None:
     """Find the first achievers of every fact set in ``families`` at once and memoise them for
     :func:`first_achievers` (same results as its exploration, one per set).
 
@@ -122,11 +123,17 @@ def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LM
     achievers of ``F_k`` are its adders whose preconditions are reachable
     and carry no bit ``k``.  The actions the relaxation applies are those of
     :func:`relaxed_order` (``lm``, the fact landmark sets, is not read: a goal's
-    cone leaves most facts out).
+    cone leaves most facts out).  With ``native`` (the compiled kernel of
+    ``task``'s actions) the propagation runs in C, with the same results.
     """
     memo = task.memo.setdefault("first_achievers", {})
     todo = sorted({f for f in families if f not in memo}, key=sorted)
     if not todo:
+        return
+    if native is not None:
+        found = native.first_achievers(task.init, relaxed_order(task), [sorted(f) for f in todo])
+        for fam, acts in zip(todo, found, strict=True):
+            memo[fam] = tuple(acts)
         return
     pre, add, by_pre, init = task.pre, task.add, task.by_pre, task.init
     bit_of: dict[int, int] = {}
