@@ -363,18 +363,23 @@ def reasonable_orders(task: Task, sets: Sequence[frozenset[int]], before: Mappin
         return any(mutex_sets(sets[p], fb) for p in parents.get(a, ()) if fb not in sets[p])
 
     out: dict[int, list[int]] = {}
+    init = task.init
+    singles = [a for a in range(n) if len(sets[a]) == 1]
+    singles_not_now = [a for a in singles if not sets[a] & init]
     for b in range(n):
         if len(sets[b]) != 1:
             continue
         (fb,) = sets[b]
-        if fb in goal:
-            candidates = {a for a in range(n) if a != b and len(sets[a]) == 1}
+        b_now = fb in init
+        if fb in goal:  # every fact landmark (none true now when fb is: both true now is no ordering)
+            candidates: Iterable[int] = [a for a in (singles_not_now if b_now else singles) if a != b]
         else:
-            candidates = {a for c in before.get(b, ()) for a in parents.get(c, ()) if a != b}
-        for a in sorted(candidates):
-            if a in before.get(b, ()) or b in before.get(a, ()):
+            candidates = sorted({a for c in before.get(b, ()) for a in parents.get(c, ()) if a != b})
+        before_b = before.get(b, ())
+        for a in candidates:
+            if a in before_b or b in before.get(a, ()):
                 continue  # already ordered necessarily
-            if sets[a] & task.init and fb in task.init:
+            if b_now and sets[a] & init:
                 continue
             if interferes(a, b):
                 out.setdefault(b, []).append(a)
