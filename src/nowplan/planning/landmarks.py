@@ -35,6 +35,17 @@ landmarks come from one labelled propagation for all of them
 (:func:`nowplan.planning.lm_orders.prime_first_achievers`), not one relaxed
 exploration each: on a 2,560-action logistics task the graph takes ~40 ms
 instead of ~150 ms (benchmarks/results/classical_lmspeed).
+
+The executive builds a graph per planner call (a few hundred per HPN run),
+mostly for goals that hold but for an atom or two, so the per-call build
+reads only what the graph needs: the landmark sets of the goal's cone
+(:func:`landmark_sets` with ``goal``), first achievers from the adders index
+(patched from the previous call's, :func:`nowplan.planning.lm_orders.fact_adders`)
+and, given lama's compiled kernel, the relaxed exploration and the labelled
+propagation in C.  The graph is the same (tests/test_lm_same_graph.py against
+a frozen copy of the earlier construction); on auto-HPN over logistics with 40
+packages (201 calls) the construction fell from 10.7 s to about 1.5 s under
+cProfile, planning CPU 3.05 s to 1.24 s.
 """
 
 from __future__ import annotations
