@@ -44,8 +44,8 @@ reads only what the graph needs: the landmark sets of the goal's cone
 and, given lama's compiled kernel, the relaxed exploration and the labelled
 propagation in C.  The graph is the same (tests/test_lm_same_graph.py against
 a frozen copy of the earlier construction); on auto-HPN over logistics with 40
-packages (201 calls) the construction fell from 10.7 s to about 1.5 s under
-cProfile, planning CPU 3.05 s to 1.24 s.
+packages (201 calls) the construction fell from 14.1 s to 1.5 s under
+cProfile, planning CPU from 3.05 s to 1.24 s (benchmarks/results/lm_per_call).
 """
 
 from __future__ import annotations

@@ -258,7 +258,7 @@ _RECENT_ADDERS: deque[tuple[tuple[tuple[int, ...], ...], dict[int, list[int]]]] 
 
 def _patched_adders(rows: tuple[tuple[int, ...], ...]) -> dict[int, list[int]] | None:
     """The adders index of ``rows`` from a recent one differing in at most an eighth of the rows."""
-    for old_rows, old in _RECENT_ADDERS:
+    for old_rows, old in list(_RECENT_ADDERS):  # a snapshot: iteration never sees the deque change
         if len(old_rows) != len(rows):
             continue
         diff = list(itertools.compress(itertools.count(), map(operator.ne, rows, old_rows)))
