@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 from lm_reference import ReferenceLandmarkCount
 from nowplan.core.levels import flat_levels
 from nowplan.io.pddl_read import load_pddl
-from nowplan.planning.landmarks import LandmarkCount
+from nowplan.planning.landmarks import LandmarkCount, landmark_sets
 from nowplan.planning.axioms import relaxed_task
 from nowplan.planning.hff import RelaxedHeuristic
 from nowplan.planning.lm_orders import fact_adders, prime_first_achievers, relaxed_order
@@ -58,6 +58,7 @@ def _same(task: Task, orders: bool = True) -> None:
     if native is not None:  # the relaxed exploration by the kernel: the same order, the same graph
         expected = relaxed_order(_copy(relaxed_task(t)))
         assert native.relaxed_order(t.init)[0] == expected
+        assert native.landmark_sets(t.init, expected) == landmark_sets(_copy(relaxed_task(t)))
         assert "relaxed_order" not in relaxed_task(t).memo
         assert _graph(LandmarkCount(t, orders, native)) == old
         assert relaxed_task(t).memo["relaxed_order"] == expected
@@ -171,3 +172,14 @@ def test_kernel_first_achievers_are_python_s(task: Task, data: st.DataObject) ->
     prime_first_achievers(py, families, [])
     prime_first_achievers(c, families, [], native)
     assert c.memo["first_achievers"] == py.memo["first_achievers"]
+
+
+@settings(max_examples=300, deadline=None)
+@given(task=tasks(), data=st.data())
+def test_kernel_landmark_sets_are_python_s(task: Task, data: st.DataObject) -> None:
+    """Zhu and Givan's fixpoint in C gives the Python sets, over the whole task and over a goal's cone."""
+    native = RelaxedHeuristic(task).native
+    if native is None:
+        pytest.skip("no compiled kernel")
+    goal = data.draw(st.lists(st.integers(0, len(task.facts) - 1), max_size=3)) if data.draw(st.booleans()) else None
+    assert landmark_sets(_copy(task), goal, native) == landmark_sets(_copy(task), goal)

@@ -5,7 +5,8 @@
  * over bitset states, the stratified evaluation of the rules of derived
  * predicates after every action (_kernel_axioms.h, axioms.py),
  * every fact's relaxed cost for the regression search's h_add (_kernel_costs.h)
- * and the relaxation's breadth-first action order and first achievers for the landmark graph (_kernel_relaxed.h).
+ * and the relaxation's breadth-first action order, fact landmarks and first achievers for the landmark
+ * graph (_kernel_relaxed.h).
  *
  * It mirrors nowplan/planning/hff.py, forward.py, lama.py, anytime.py and pngs.py (the reference: both
  * paths must give the same h, the same preferred operators, the same plan
@@ -528,6 +529,8 @@ static PyMethodDef Kernel_methods[] = {
      "relaxed_order(state) -> (actions in the delete relaxation's breadth-first order, reached facts ascending)"},
     {"first_achievers", (PyCFunction)Kernel_first_achievers, METH_VARARGS,
      "first_achievers(state, order, families) -> each fact set's first achievers ascending (order: relaxed_order's)"},
+    {"landmark_sets", (PyCFunction)Kernel_landmark_sets, METH_VARARGS,
+     "landmark_sets(state, order) -> every fact's landmark set (frozenset, None: not reached) over order's actions"},
     {NULL, NULL, 0, NULL},
 };
 

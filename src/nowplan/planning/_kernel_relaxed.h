@@ -157,3 +157,110 @@ done:
     PyMem_Free(pend);
     return out;
 }
+
+/* landmark_sets(state, order) -> LM(f) for every fact: a frozenset, or None where the propagation over
+ * the actions of order (the relaxation's breadth-first order, or a part of it) never reaches f.
+ * Mirrors nowplan/planning/landmarks.py landmark_sets (Zhu and Givan's fixpoint; sorted arrays). */
+static PyObject *Kernel_landmark_sets(Kernel *k, PyObject *args) {
+    PyObject *state, *order_o, *out = NULL;
+    if (!PyArg_ParseTuple(args, "OO", &state, &order_o)) return NULL;
+    int32_t ns = load_state(k, state);
+    if (ns < 0) return NULL;
+    int32_t na = k->na, nf = k->nf, norder = 0;
+    int32_t *order = NULL, *queue = NULL, *len = NULL, *buf = NULL, **set = NULL;
+    uint32_t *stamp = NULL, cur = 0;
+    uint8_t *has = NULL, *pend = NULL, *inorder = NULL;
+    if (build_list(order_o, na, "order", &order, &norder) < 0) goto done;
+    if (!(set = xcalloc((size_t)nf, sizeof(int32_t *))) || !(len = xcalloc((size_t)nf, sizeof(int32_t))) ||
+        !(buf = xcalloc((size_t)nf + 1, sizeof(int32_t))) || !(stamp = xcalloc((size_t)nf, sizeof(uint32_t))) ||
+        !(has = xcalloc((size_t)nf, 1)) || !(pend = xcalloc((size_t)na, 1)) || !(inorder = xcalloc((size_t)na, 1)) ||
+        !(queue = xcalloc((size_t)na, sizeof(int32_t))))
+        goto done;
+    for (int32_t i = 0; i < ns; i++) {
+        int32_t f = k->sf[i];
+        if (!(set[f] = PyMem_Malloc(sizeof(int32_t)))) { PyErr_NoMemory(); goto done; }
+        set[f][0] = f;
+        len[f] = 1;
+        has[f] = 1;
+    }
+    int32_t head = 0, count = 0;
+    for (int32_t i = 0; i < norder; i++) {
+        int32_t a = order[i];
+        inorder[a] = 1;
+        if (!pend[a]) { pend[a] = 1; queue[(head + count++) % na] = a; }
+    }
+    while (count > 0) {
+        int32_t a = queue[head];
+        head = (head + 1) % na;
+        count--;
+        pend[a] = 0;
+        int ready = 1;
+        for (int32_t j = k->pre.off[a]; j < k->pre.off[a + 1] && ready; j++) ready = has[k->pre.v[j]];
+        if (!ready) continue;
+        if (++cur == 0) { memset(stamp, 0, sizeof(uint32_t) * (size_t)nf); cur = 1; }
+        int32_t nb = 0;  /* the union of the preconditions' sets, marked with cur */
+        for (int32_t j = k->pre.off[a]; j < k->pre.off[a + 1]; j++) {
+            int32_t p = k->pre.v[j];
+            for (int32_t i = 0; i < len[p]; i++) {
+                int32_t x = set[p][i];
+                if (stamp[x] != cur) { stamp[x] = cur; buf[nb++] = x; }
+            }
+        }
+        for (int32_t j = k->add.off[a]; j < k->add.off[a + 1]; j++) {
+            int32_t e = k->add.v[j];
+            if (BIT(k->bits, e)) continue;  /* true now: LM(e) = {e} */
+            int changed;
+            if (!has[e]) {
+                int32_t n = nb + (stamp[e] != cur);
+                int32_t *arr = PyMem_Malloc(sizeof(int32_t) * (size_t)(n ? n : 1));
+                if (arr == NULL) { PyErr_NoMemory(); goto done; }
+                memcpy(arr, buf, sizeof(int32_t) * (size_t)nb);
+                if (n > nb) arr[nb] = e;
+                qsort(arr, (size_t)n, sizeof(int32_t), cmp_i32);
+                set[e] = arr;
+                len[e] = n;
+                has[e] = 1;
+                changed = 1;
+            } else {  /* LM(e) & (union | {e}): shrinks in place, stays sorted */
+                int32_t m = 0, *old = set[e];
+                for (int32_t i = 0; i < len[e]; i++)
+                    if (stamp[old[i]] == cur || old[i] == e) old[m++] = old[i];
+                changed = m != len[e];
+                len[e] = m;
+            }
+            if (!changed) continue;
+            for (int32_t t = k->bypre.off[e]; t < k->bypre.off[e + 1]; t++) {
+                int32_t b = k->bypre.v[t];
+                if (!pend[b] && inorder[b]) { pend[b] = 1; queue[(head + count++) % na] = b; }
+            }
+        }
+    }
+    if (!(out = PyList_New(nf))) goto done;
+    for (int32_t f = 0; f < nf; f++) {
+        PyObject *item;
+        if (!has[f]) {
+            item = Py_None;
+            Py_INCREF(item);
+        } else {
+            PyObject *ids = id_list(set[f], len[f]);
+            if (ids == NULL) { Py_CLEAR(out); goto done; }
+            item = PyFrozenSet_New(ids);
+            Py_DECREF(ids);
+            if (item == NULL) { Py_CLEAR(out); goto done; }
+        }
+        PyList_SET_ITEM(out, f, item);
+    }
+done:
+    if (set != NULL)
+        for (int32_t f = 0; f < nf; f++) PyMem_Free(set[f]);
+    PyMem_Free(set);
+    PyMem_Free(order);
+    PyMem_Free(queue);
+    PyMem_Free(len);
+    PyMem_Free(buf);
+    PyMem_Free(stamp);
+    PyMem_Free(has);
+    PyMem_Free(pend);
+    PyMem_Free(inorder);
+    return out;
+}

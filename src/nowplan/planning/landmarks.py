@@ -72,7 +72,8 @@ if TYPE_CHECKING:
     from nowplan.planning._kernel import Kernel
 
 
-def landmark_sets(task: Task, goal: Iterable[int] | None = None) -> list[frozenset[int] | None]:
+def landmark_sets(task: Task, goal: Iterable[int] | None = None, native: Kernel | None = None
+                  ) -> list[frozenset[int] | None]:
     """``LM(f)`` for each fact id (``None`` where the relaxation never reaches f).
 
     With ``goal``, only the facts of the goal's *cone* get their set (the rest
@@ -81,19 +82,22 @@ def landmark_sets(task: Task, goal: Iterable[int] | None = None) -> list[frozens
     depends only on the cone's actions (its achievers, their preconditions'
     sets, and ``{p}`` for a precondition true now), so the cone's sets are the
     whole task's.  An HPN call whose goal holds but for a few atoms explores a
-    small part of the task.
+    small part of the task.  With ``native`` (the compiled kernel of ``task``'s
+    actions) the fixpoint runs in C, with the same sets.
     """
+    order = relaxed_order(task)  # breadth first: the order in which actions become applicable
+    cone: set[int] | None = None
+    if goal is not None:
+        cone = _cone(task, goal)
+        order = [a for a in order if a in cone]
+    if native is not None:
+        return native.landmark_sets(task.init, order)
     nf = len(task.facts)
     lm: list[frozenset[int] | None] = [None] * nf
     init = task.init
     for f in init:
         lm[f] = frozenset((f,))
     pre, add, by_pre = task.pre, task.add, task.by_pre
-    order = relaxed_order(task)  # breadth first: the order in which actions become applicable
-    cone: set[int] | None = None
-    if goal is not None:
-        cone = _cone(task, goal)
-        order = [a for a in order if a in cone]
     # fixpoint: shrink each fact's set by every achiever's union, re-examining dependants on change;
     # in that order most sets are final the first time (the fixpoint does not depend on the order)
     work = deque(order)
@@ -166,7 +170,7 @@ class LandmarkCount:
         if native is not None:  # the kernel of this relaxed task (h_FF's): the relaxed exploration in C
             set_relaxed_order(task, native)
         self.task = task
-        lm = landmark_sets(task, task.goal)  # the goal's cone: what the graph reads
+        lm = landmark_sets(task, task.goal, native)  # the goal's cone: what the graph reads
         found: set[int] = set()
         self.unreachable = False
         for g in task.goal:
