@@ -41,11 +41,11 @@ mostly for goals that hold but for an atom or two, so the per-call build
 reads only what the graph needs: the landmark sets of the goal's cone
 (:func:`landmark_sets` with ``goal``), first achievers from the adders index
 (patched from the previous call's, :func:`nowplan.planning.lm_orders.fact_adders`)
-and, given lama's compiled kernel, the relaxed exploration and the labelled
-propagation in C.  The graph is the same (tests/test_lm_same_graph.py against
-a frozen copy of the earlier construction); on auto-HPN over logistics with 40
-packages (201 calls) the construction fell from 14.1 s to 1.5 s under
-cProfile, planning CPU from 3.05 s to 1.24 s (benchmarks/results/lm_per_call).
+and, given lama's compiled kernel, the relaxed exploration, the fixpoint and the
+labelled propagation in C.  The graph is the same (tests/test_lm_same_graph.py
+against a frozen copy of the earlier construction); on auto-HPN over logistics
+with 40 packages (201 calls) the construction fell from 12.1 s to 1.2 s under
+cProfile, planning CPU from 2.9 s to 1.2 s (benchmarks/results/lm_per_call).
 """
 
 from __future__ import annotations
