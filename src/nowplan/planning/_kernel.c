@@ -4,7 +4,9 @@
  * (_kernel_wastar.h) and the plan neighborhood graph search (_kernel_pngs.h)
  * over bitset states, the stratified evaluation of the rules of derived
  * predicates after every action (_kernel_axioms.h, axioms.py),
- * and every fact's relaxed cost for the regression search's h_add (_kernel_costs.h).
+ * every fact's relaxed cost for the regression search's h_add (_kernel_costs.h)
+ * and the relaxation's breadth-first action order, fact landmarks and first achievers for the landmark
+ * graph (_kernel_relaxed.h).
  *
  * It mirrors nowplan/planning/hff.py, forward.py, lama.py, anytime.py and pngs.py (the reference: both
  * paths must give the same h, the same preferred operators, the same plan
@@ -20,7 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define KERNEL_API 8
+#define KERNEL_API 9
 #define BIT(b, f) (((b)[(f) >> 6] >> ((f) & 63)) & 1u)
 #define SETBIT(b, f) ((b)[(f) >> 6] |= (uint64_t)1 << ((f) & 63))
 #define CLRBIT(b, f) ((b)[(f) >> 6] &= ~((uint64_t)1 << ((f) & 63)))
@@ -502,6 +504,7 @@ static PyObject *Kernel_close(Kernel *k, PyObject *state) {
 #include "_kernel_wastar.h"
 #include "_kernel_pngs.h"
 #include "_kernel_costs.h"
+#include "_kernel_relaxed.h"
 
 static PyMethodDef Kernel_methods[] = {
     {"evaluate", (PyCFunction)Kernel_evaluate, METH_O,
@@ -522,6 +525,12 @@ static PyMethodDef Kernel_methods[] = {
     {"neighborhood", (PyCFunction)(void (*)(void))Kernel_neighborhood, METH_VARARGS | METH_KEYWORDS,
      "neighborhood(init, plan, limit, cost, stop) -> (cheapest plan in the plan's neighborhood graph of at most "
      "limit states, states, complete, stopped)"},
+    {"relaxed_order", (PyCFunction)Kernel_relaxed_order, METH_O,
+     "relaxed_order(state) -> (actions in the delete relaxation's breadth-first order, reached facts ascending)"},
+    {"first_achievers", (PyCFunction)Kernel_first_achievers, METH_VARARGS,
+     "first_achievers(state, order, families) -> each fact set's first achievers ascending (order: relaxed_order's)"},
+    {"landmark_sets", (PyCFunction)Kernel_landmark_sets, METH_VARARGS,
+     "landmark_sets(state, order) -> every fact's landmark set (frozenset, None: not reached) over order's actions"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -43,7 +43,7 @@ def lama_search(
     if task.unsolvable:
         return ForwardResult(PlanStatus.UNSOLVABLE, None, task.unsolvable)
     ff = RelaxedHeuristic(task, "ff", cost_type)
-    lm = LandmarkCount(task)
+    lm = LandmarkCount(task, native=ff.native)
     if ff.native is not None:
         sets = [sorted(d) for d in lm.sets]
         before = [lm.before.get(i, []) for i in range(len(sets))]

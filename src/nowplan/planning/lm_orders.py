@@ -34,10 +34,17 @@ that could be carried along are still in room A.
 
 from __future__ import annotations
 
+import bisect
+import itertools
+import operator
 from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING
 
 from nowplan.planning.task import FactMutex, Task
+
+if TYPE_CHECKING:
+    from nowplan.planning._kernel import Kernel
 
 MAX_DISJUNCTION = 4  # facts of one disjunctive landmark
 
@@ -52,19 +59,22 @@ def first_achievers(task: Task, facts: frozenset[int], lm: LMSets | None = None)
 
     With the fact landmarks of every fact (``lm``, Zhu and Givan's sets) a
     single fact ``L`` needs no exploration: a precondition ``p`` is reachable
-    without ``L`` exactly when ``L`` is not in ``LM(p)``.
+    without ``L`` exactly when ``L`` is not in ``LM(p)``.  ``lm`` may be the
+    sets of a goal's cone only (``landmark_sets(task, goal)``) when ``L`` is a
+    landmark of that goal not true now: the preconditions of its adders are
+    then in the cone.
     """
     pre, add, by_pre = task.pre, task.add, task.by_pre
     if lm is not None and len(facts) == 1:
         (f,) = facts
         if f not in task.init:
-            return [a for a in _adders(task).get(f, ())
+            return [a for a in fact_adders(task).get(f, ())
                     if all(lm[p] is not None and f not in lm[p] for p in pre[a])]  # type: ignore[operator]
     memo = task.memo.setdefault("first_achievers", {})
     hit = memo.get(facts)
     if hit is not None:
         return list(hit)
-    adders = _adders(task)
+    adders = fact_adders(task)
     banned_ids = sorted({a for f in facts for a in adders.get(f, ())})
     banned = [False] * len(pre)
     for a in banned_ids:
@@ -93,7 +103,8 @@ def first_achievers(task: Task, facts: frozenset[int], lm: LMSets | None = None)
     return out
 
 
-def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LMSets) -> None:
+def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LMSets,
+                          native: Kernel | None = None) -> None:
     """Find the first achievers of every fact set in ``families`` at once and memoise them for
     :func:`first_achievers` (same results as its exploration, one per set).
 
@@ -110,12 +121,19 @@ def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LM
     fixpoint, computed from "unreached" (``None``) downwards as
     :func:`nowplan.planning.landmarks.landmark_sets` does.  The first
     achievers of ``F_k`` are its adders whose preconditions are reachable
-    and carry no bit ``k``.  ``lm`` (the fact landmark sets) says which facts
-    the relaxation reaches at all.
+    and carry no bit ``k``.  The actions the relaxation applies are those of
+    :func:`relaxed_order` (``lm``, the fact landmark sets, is not read: a goal's
+    cone leaves most facts out).  With ``native`` (the compiled kernel of
+    ``task``'s actions) the propagation runs in C, with the same results.
     """
     memo = task.memo.setdefault("first_achievers", {})
     todo = sorted({f for f in families if f not in memo}, key=sorted)
     if not todo:
+        return
+    if native is not None:
+        found = native.first_achievers(task.init, relaxed_order(task), [sorted(f) for f in todo])
+        for fam, acts in zip(todo, found, strict=True):
+            memo[fam] = tuple(acts)
         return
     pre, add, by_pre, init = task.pre, task.add, task.by_pre, task.init
     bit_of: dict[int, int] = {}
@@ -127,10 +145,13 @@ def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LM
         need[f] = bit_of.get(f, 0)
     amask = [0] * len(pre)
     for f, bits in bit_of.items():
-        for a in _adders(task).get(f, ()):
+        for a in fact_adders(task).get(f, ()):
             amask[a] |= bits
-    reachable = [all(lm[p] is not None for p in ps) for ps in pre]
-    work = deque(a for a in relaxed_order(task) if reachable[a])
+    order = relaxed_order(task)
+    reachable = [False] * len(pre)  # the relaxation applies it: every precondition is reached (lm[p] is not None)
+    for a in order:
+        reachable[a] = True
+    work = deque(order)
     pending = set(work)
     while work:
         a = work.popleft()
@@ -156,7 +177,7 @@ def prime_first_achievers(task: Task, families: Sequence[frozenset[int]], lm: LM
                     if b not in pending and reachable[b]:
                         pending.add(b)
                         work.append(b)
-    adders = _adders(task)
+    adders = fact_adders(task)
     for k, fam in enumerate(todo):
         bit = 1 << k
         acts = sorted({a for f in fam for a in adders.get(f, ())})
@@ -187,21 +208,80 @@ def relaxed_order(task: Task) -> list[int]:
                     if missing[a] == 0:
                         order.append(a)
         hit = task.memo["relaxed_order"] = order
+        task.memo["relaxed_reached"] = frozenset(reached)
     assert isinstance(hit, list)
     return hit
 
 
-def _adders(task: Task) -> dict[int, list[int]]:
-    """Fact -> the actions that add it, ascending (made once per task)."""
+def set_relaxed_order(task: Task, native: Kernel) -> None:
+    """Memoise :func:`relaxed_order` and :func:`relaxed_reached` from the compiled kernel (same results);
+    ``native`` is built on ``task``'s actions (its rules included)."""
+    if "relaxed_order" not in task.memo:
+        order, reached = native.relaxed_order(task.init)
+        task.memo["relaxed_order"] = order
+        task.memo["relaxed_reached"] = frozenset(reached)
+
+
+def relaxed_reached(task: Task) -> frozenset[int]:
+    """The facts the delete relaxation reaches (with :func:`relaxed_order`, made once per task)."""
+    relaxed_order(task)
+    hit = task.memo["relaxed_reached"]
+    assert isinstance(hit, frozenset)
+    return hit
+
+
+def fact_adders(task: Task) -> dict[int, list[int]]:
+    """Fact -> the actions that add it, ascending (made once per task; the lists are shared, read only).
+
+    The index depends on ``task.add`` alone.  The executive's calls on one
+    problem differ in a few rows (the actions their level maps override), so
+    the index of a recent task with as many actions is patched where rows
+    differ instead of built again from every action.
+    """
     hit = task.memo.get("adders")
     if hit is None:
-        hit = {}
-        for a, adds in enumerate(task.add):
-            for e in adds:
-                hit.setdefault(e, []).append(a)
+        rows = tuple(task.add)
+        hit = _patched_adders(rows)
+        if hit is None:
+            hit = {}
+            for a, adds in enumerate(rows):
+                for e in adds:
+                    hit.setdefault(e, []).append(a)
+        _RECENT_ADDERS.appendleft((rows, hit))
         task.memo["adders"] = hit
     assert isinstance(hit, dict)
     return hit
+
+
+_RECENT_ADDERS: deque[tuple[tuple[tuple[int, ...], ...], dict[int, list[int]]]] = deque(maxlen=4)
+
+
+def _patched_adders(rows: tuple[tuple[int, ...], ...]) -> dict[int, list[int]] | None:
+    """The adders index of ``rows`` from a recent one differing in at most an eighth of the rows."""
+    for old_rows, old in list(_RECENT_ADDERS):  # a snapshot: iteration never sees the deque change
+        if len(old_rows) != len(rows):
+            continue
+        diff = list(itertools.compress(itertools.count(), map(operator.ne, rows, old_rows)))
+        if len(diff) > len(rows) // 8:
+            continue
+        new = dict(old)
+        touched: dict[int, list[int]] = {}
+        for k in diff:
+            for e in old_rows[k]:
+                if e not in touched:
+                    touched[e] = list(new[e])
+                touched[e].remove(k)
+            for e in rows[k]:
+                if e not in touched:
+                    touched[e] = list(new.get(e, ()))
+                bisect.insort(touched[e], k)
+        for e, acts in touched.items():
+            if acts:
+                new[e] = acts
+            else:
+                del new[e]
+        return new
+    return None
 
 
 def disjunctive_landmarks(task: Task, landmarks: Iterable[int], lm: LMSets | None = None
@@ -283,18 +363,23 @@ def reasonable_orders(task: Task, sets: Sequence[frozenset[int]], before: Mappin
         return any(mutex_sets(sets[p], fb) for p in parents.get(a, ()) if fb not in sets[p])
 
     out: dict[int, list[int]] = {}
+    init = task.init
+    singles = [a for a in range(n) if len(sets[a]) == 1]
+    singles_not_now = [a for a in singles if not sets[a] & init]
     for b in range(n):
         if len(sets[b]) != 1:
             continue
         (fb,) = sets[b]
-        if fb in goal:
-            candidates = {a for a in range(n) if a != b and len(sets[a]) == 1}
+        b_now = fb in init
+        if fb in goal:  # every fact landmark (none true now when fb is: both true now is no ordering)
+            candidates: Iterable[int] = [a for a in (singles_not_now if b_now else singles) if a != b]
         else:
-            candidates = {a for c in before.get(b, ()) for a in parents.get(c, ()) if a != b}
-        for a in sorted(candidates):
-            if a in before.get(b, ()) or b in before.get(a, ()):
+            candidates = sorted({a for c in before.get(b, ()) for a in parents.get(c, ()) if a != b})
+        before_b = before.get(b, ())
+        for a in candidates:
+            if a in before_b or b in before.get(a, ()):
                 continue  # already ordered necessarily
-            if sets[a] & task.init and fb in task.init:
+            if b_now and sets[a] & init:
                 continue
             if interferes(a, b):
                 out.setdefault(b, []).append(a)

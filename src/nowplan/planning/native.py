@@ -21,7 +21,7 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
-API = 8  # the kernel's interface version this code expects (KERNEL_API in _kernel.c)
+API = 9  # the kernel's interface version this code expects (KERNEL_API in _kernel.c)
 ENV = "NOWPLAN_PURE_PYTHON"
 
 _loaded: tuple[type[Kernel] | None, str] | None = None
