@@ -5,6 +5,16 @@
 sit at the domain's top (most abstract) level.  ``NextLevel(α, ω)`` lowers
 ω's level just enough to add its next criticality class; an instance whose
 level keeps all its preconditions is primitive (concrete).
+
+``NextLevel`` also lowers a *floor* for ω's operator: in the plans that refine ω,
+no instance of that operator is more abstract than ω has become.  Without it a
+refinement can swap ω for a sibling instance that still hides the preconditions
+just exposed (pieces: refining ``move_arm(a, b)`` plans ``move_arm(c, b)`` from a
+cell ``c`` nearer ``b``, whose ``arm_at(c)`` is hidden again), and each such swap
+pushes another plan: a refinement recursion as long as there are siblings.  With
+the floor every refinement lowers one operator's floor by at least one criticality
+class, so a chain of refinements is at most as deep as the operators have criticality
+classes in all.
 """
 
 from __future__ import annotations
@@ -20,12 +30,25 @@ ActionKey = tuple[str, tuple[object, ...]]
 class LevelMap:
     top: int
     overrides: frozenset[tuple[ActionKey, int]] = frozenset()
+    # operator name -> the most abstract level any of its instances has (set by next_level)
+    floors: frozenset[tuple[str, int]] = frozenset()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "_table", dict(self.overrides))
+        object.__setattr__(self, "_floors", dict(self.floors))
 
     def level(self, action: Action) -> int:
-        return self._table.get(action.key, self.top)  # type: ignore[attr-defined, no-any-return]
+        lv: int = self._table.get(action.key, self.top)  # type: ignore[attr-defined]
+        floors: dict[str, int] = self._floors  # type: ignore[attr-defined]
+        if floors:
+            fl = floors.get(action.key[0])
+            if fl is not None and fl < lv:
+                return fl
+        return lv
+
+    def floor(self, operator: str) -> int | None:
+        """The most abstract level an instance of ``operator`` has here (None: no floor)."""
+        return self._floors.get(operator)  # type: ignore[attr-defined, no-any-return]
 
     def is_primitive(self, action: Action) -> bool:
         return action.is_primitive(self.level(action))
@@ -36,7 +59,11 @@ class LevelMap:
         lower = [c for c in action.operator.criticalities if c <= cur]
         new = (max(lower) - 1) if lower else cur
         rest = frozenset((k, v) for k, v in self.overrides if k != action.key)
-        return LevelMap(self.top, rest | {(action.key, new)})
+        name = action.key[0]
+        fl = self.floor(name)
+        floors = self.floors if fl is not None and fl <= new else frozenset(
+            {(n, v) for n, v in self.floors if n != name} | {(name, new)})
+        return LevelMap(self.top, rest | {(action.key, new)}, floors)
 
     def describe(self, action: Action) -> int:
         """How many criticality classes of ω are still hidden at its level (0 = primitive)."""

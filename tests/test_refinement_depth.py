@@ -1,0 +1,121 @@
+"""The depth of a chain of refinements is bounded by the hierarchy, not by the world's size.
+
+Refining an abstract step ``ω`` plans its pre-image one criticality class more concretely
+(``NextLevel``).  When only the instance ``ω`` was made more concrete, the planner below
+could use a sibling instance of the same operator that still hides the preconditions just
+exposed: a robot that must be at ``x`` to move to ``y`` refines ``move(x, y)`` into an
+abstract ``move(w, x)`` followed by the concrete ``move(x, y)``, then refines ``move(w, x)``
+the same way, one push per cell back to the robot (pieces: the arm's moves, 64 plans deep).
+The operator's floor in the level map (``nowplan.core.levels``) makes every instance of the
+refined operator as concrete as ``ω`` below it, so the whole path is planned at once.
+"""
+
+from __future__ import annotations
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from nowplan.acting.metrics import Outcome
+from nowplan.acting.run import run_episode
+from nowplan.acting.strategy import parse_strategy
+from nowplan.belief.symbolic import SymbolicBelief
+from nowplan.core.atoms import AtMostOne, Goal, Var, atom
+from nowplan.core.domain import Domain, Predicate, Problem
+from nowplan.core.levels import LevelMap
+from nowplan.core.operators import Operator, Precondition
+from nowplan.core.state import State
+from nowplan.domains.registry import Episode
+from nowplan.trace import Trace
+from nowplan.worlds.symbolic import SymbolicWorld
+
+x, y = Var("x"), Var("y")
+
+
+def _cells(n: int) -> list[str]:
+    return [f"c{i:02d}" for i in range(n)]
+
+
+def line(n: int) -> Episode:
+    """A corridor of ``n`` cells; ``move(x, y)`` between neighbours hides ``at(x)`` at the top level."""
+    preds = {"at": Predicate("at", 1), "link": Predicate("link", 2)}
+    ops = (Operator("move", (x, y), (Precondition(atom("link", x, y), 1), Precondition(atom("at", x), 0)),
+                    (atom("at", x, value=False), atom("at", y))),)
+    dom = Domain("line", preds, ops, conflicts=(AtMostOne(("at",)),))
+    cells = _cells(n)
+    facts = [atom("at", cells[0])]
+    for p, q in zip(cells, cells[1:]):
+        facts += [atom("link", p, q), atom("link", q, p)]
+    init = State(facts)
+    prob = Problem(dom, {c: None for c in cells}, init, Goal.of([atom("at", cells[-1])]))
+    return Episode(prob, SymbolicWorld(dom, init), SymbolicBelief(init))
+
+
+def free(n: int) -> Episode:
+    """``n`` cells on a line; ``move(x, y)`` between any two costs the distance (the pieces arm's way):
+    at the top level an abstract move from the cell nearest the goal is always the cheapest step."""
+    preds = {"at": Predicate("at", 1), "other": Predicate("other", 2)}
+    cells = _cells(n)
+    pos = {c: i for i, c in enumerate(cells)}
+
+    def travel(b: object, belief: object) -> float:
+        return float(abs(pos[str(b[x])] - pos[str(b[y])]))  # type: ignore[index]
+
+    ops = (Operator("move", (x, y), (Precondition(atom("other", x, y), 1), Precondition(atom("at", x), 0)),
+                    (atom("at", x, value=False), atom("at", y)), cost=travel),)
+    dom = Domain("free", preds, ops, conflicts=(AtMostOne(("at",)),))
+    facts = [atom("at", cells[0])] + [atom("other", p, q) for p in cells for q in cells if p != q]
+    init = State(facts)
+    prob = Problem(dom, {c: None for c in cells}, init, Goal.of([atom("at", cells[-1])]))
+    return Episode(prob, SymbolicWorld(dom, init), SymbolicBelief(init))
+
+
+def _deepest(tr: Trace) -> int:
+    return max(e["depth"] for e in tr.of("push"))
+
+
+def test_line_is_refined_in_one_concrete_plan_not_a_push_per_cell():
+    # before the floor: the stack grew by one plan per cell (here 30 > the 16 allowed) and the
+    # run ended with "plan stack deeper than 16"
+    for strategy in ("hpn", "hpn+aggressive"):
+        tr = Trace()
+        ep = line(30)
+        m = run_episode(ep, parse_strategy(strategy, max_depth=16), trace=tr)
+        assert m.outcome is Outcome.REACHED, (strategy, m.reason)
+        assert m.actions == 29  # the shortest path
+        assert _deepest(tr) <= 3, strategy  # root, the abstract plan, its concrete refinement
+
+
+def test_free_moves_refine_to_the_direct_move():
+    # before the floor: each refinement swapped the step for an abstract move from a cell
+    # nearer the goal (one push each) and walked the arm back cell by cell
+    tr = Trace()
+    ep = free(20)
+    m = run_episode(ep, parse_strategy("hpn", max_depth=12), trace=tr)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert m.actions == 1 and m.execution_cost == 19.0  # the one direct move
+    assert _deepest(tr) <= 3
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.lists(st.integers(0, 4), min_size=1, max_size=3), min_size=1, max_size=3),
+       st.lists(st.tuples(st.integers(0, 2), st.integers(0, 5)), max_size=30))
+def test_a_chain_of_refinements_is_bounded_by_the_criticality_classes(crits, picks):
+    """Refining, along one chain, any instance not yet primitive lowers one operator's floor by at
+    least one class: the chain is no longer than the operators' classes in all, whatever the instances."""
+    ops = [Operator(f"op{i}", (x,), tuple(Precondition(atom(f"p{i}_{j}", x), c) for j, c in enumerate(cs)),
+                    (atom(f"e{i}", x),)) for i, cs in enumerate(crits)]
+    top = max(c for cs in crits for c in cs) - 1
+    bound = sum(len(op.criticalities) for op in ops)
+    lm = LevelMap(top)
+    depth = 0
+    for which, obj in picks:
+        act = ops[which % len(ops)].instantiate({x: f"o{obj}"})
+        if lm.is_primitive(act):
+            continue
+        nxt = lm.next_level(act)
+        assert nxt.level(act) < lm.level(act)
+        # every instance of the operator is now at most as abstract as act
+        assert nxt.level(ops[which % len(ops)].instantiate({x: "fresh"})) <= nxt.level(act)
+        lm = nxt
+        depth += 1
+        assert depth <= bound
