@@ -93,14 +93,20 @@ def test_levels_abs_and_next_level():
     lm3 = lm2.next_level(act)
     assert lm3.is_primitive(act) and len(act.preconditions(lm3.level(act))) == 3
     assert lm3.next_level(act) == lm3  # nothing more to add
-    # another instance of the same operator is at most as abstract as the refined one (the
-    # operator's floor), in the refinement below lm2 and lm3; the map above is untouched
+    # another instance of the same operator is untouched by NextLevel
     other = op.instantiate({x: "p"})
-    assert lm.level(other) == 2 and lm2.level(other) == 1 and lm3.level(other) == -1
-    assert lm3.floor("op") == -1 and lm.floor("op") is None
+    assert lm3.level(other) == 2 and lm3.floor("op") is None
+    # refining act (the executive's levels for act's refinement) floors the operator: below
+    # it no instance is more abstract than act has become; the map above is untouched
+    r2 = lm.refinement(act)
+    r3 = r2.refinement(act)
+    assert r2.level(act) == 1 and r3.level(act) == -1
+    assert lm.level(other) == 2 and r2.level(other) == 1 and r3.level(other) == -1
+    assert r3.floor("op") == -1 and lm.floor("op") is None
+    assert r3.next_level(other).floor("op") == -1  # NextLevel keeps the floors it finds
     # an instance of another operator keeps the top level
     op2 = Operator("op2", (x,), (Precondition(atom("a", x), 3), Precondition(atom("c", x), 0)), (atom("e", x),))
-    assert lm3.level(op2.instantiate({x: "o"})) == 2
+    assert r3.level(op2.instantiate({x: "o"})) == 2
     # an instance's own level below the floor stands: a map with op's floor at 1 and act at -1
     mixed = LevelMap(2, frozenset({(act.key, -1)}), frozenset({("op", 1)}))
     assert mixed.level(act) == -1 and mixed.level(other) == 1

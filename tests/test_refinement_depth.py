@@ -6,7 +6,7 @@ could use a sibling instance of the same operator that still hides the precondit
 exposed: a robot that must be at ``x`` to move to ``y`` refines ``move(x, y)`` into an
 abstract ``move(w, x)`` followed by the concrete ``move(x, y)``, then refines ``move(w, x)``
 the same way, one push per cell back to the robot (pieces: the arm's moves, 64 plans deep).
-The operator's floor in the level map (``nowplan.core.levels``) makes every instance of the
+The operator's floor in the level map (``LevelMap.refinement``) makes every instance of the
 refined operator as concrete as ``ω`` below it, so the whole path is planned at once.
 """
 
@@ -112,7 +112,7 @@ def test_a_chain_of_refinements_is_bounded_by_the_criticality_classes(crits, pic
         act = ops[which % len(ops)].instantiate({x: f"o{obj}"})
         if lm.is_primitive(act):
             continue
-        nxt = lm.next_level(act)
+        nxt = lm.refinement(act)
         assert nxt.level(act) < lm.level(act)
         # every instance of the operator is now at most as abstract as act
         assert nxt.level(ops[which % len(ops)].instantiate({x: "fresh"})) <= nxt.level(act)

@@ -453,7 +453,7 @@ class Executive:
                     self.trace.emit("note", plan_id=f.plan_id, text=f"executive: gave up: {why}")
                     self.pop("failed")
                     continue
-                levels = f.plan.levels if action is None else f.plan.levels.next_level(action)
+                levels = f.plan.levels if action is None else f.plan.levels.refinement(action)
                 if f.root:
                     levels = self.base_levels
                 if key in self._flat_steps:

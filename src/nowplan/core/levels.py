@@ -6,7 +6,8 @@ sit at the domain's top (most abstract) level.  ``NextLevel(α, ω)`` lowers
 ω's level just enough to add its next criticality class; an instance whose
 level keeps all its preconditions is primitive (concrete).
 
-``NextLevel`` also lowers a *floor* for ω's operator: in the plans that refine ω,
+Refining ω (:meth:`LevelMap.refinement`, seed 002 Alg. 1 line 7 and Alg. 2 line 14) also
+lowers a *floor* for ω's operator: in the plans that refine ω,
 no instance of that operator is more abstract than ω has become.  Without it a
 refinement can swap ω for a sibling instance that still hides the preconditions
 just exposed (pieces: refining ``move_arm(a, b)`` plans ``move_arm(c, b)`` from a
@@ -59,11 +60,18 @@ class LevelMap:
         lower = [c for c in action.operator.criticalities if c <= cur]
         new = (max(lower) - 1) if lower else cur
         rest = frozenset((k, v) for k, v in self.overrides if k != action.key)
+        return LevelMap(self.top, rest | {(action.key, new)}, self.floors)
+
+    def refinement(self, action: Action) -> LevelMap:
+        """The levels at which the abstract step ω is refined: :meth:`next_level`, and ω's operator
+        floored at ω's new level (no instance of it more abstract in the plans below)."""
+        out = self.next_level(action)
+        new = out.level(action)
         name = action.key[0]
         fl = self.floor(name)
-        floors = self.floors if fl is not None and fl <= new else frozenset(
-            {(n, v) for n, v in self.floors if n != name} | {(name, new)})
-        return LevelMap(self.top, rest | {(action.key, new)}, floors)
+        if fl is not None and fl <= new:
+            return out
+        return LevelMap(out.top, out.overrides, frozenset({(n, v) for n, v in self.floors if n != name} | {(name, new)}))
 
     def describe(self, action: Action) -> int:
         """How many criticality classes of ω are still hidden at its level (0 = primitive)."""
