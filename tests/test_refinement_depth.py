@@ -96,6 +96,12 @@ def test_free_moves_refine_to_the_direct_move():
     assert _deepest(tr) <= 3
 
 
+def test_a_stack_deeper_than_allowed_says_what_was_refined():
+    m = run_episode(line(5), parse_strategy("hpn", max_depth=2))
+    assert m.outcome is Outcome.LIMIT
+    assert m.reason.startswith("plan stack deeper than 2 (refining (move c03 c04) of plan 1)"), m.reason
+
+
 @settings(max_examples=60, deadline=None)
 @given(st.lists(st.lists(st.integers(0, 4), min_size=1, max_size=3), min_size=1, max_size=3),
        st.lists(st.tuples(st.integers(0, 2), st.integers(0, 5)), max_size=30))

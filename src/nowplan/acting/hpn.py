@@ -437,7 +437,12 @@ class Executive:
             )
             if action is None or not f.plan.levels.is_primitive(action):
                 if len(self.stack) >= self.strategy.max_depth:
-                    outcome, reason = Outcome.LIMIT, f"plan stack deeper than {self.strategy.max_depth}"
+                    # refinements floor the refined operator (LevelMap.refinement), so a chain is
+                    # bounded by the criticality classes; a hierarchy with more than this is stopped here
+                    outcome, reason = Outcome.LIMIT, (
+                        f"plan stack deeper than {self.strategy.max_depth} (refining "
+                        f"{action.pddl() if action is not None else 'a goal'} of plan {f.plan_id}); "
+                        "raise Strategy.max_depth if the hierarchy has that many criticality classes")
                     break
                 key = self.refinement_key(f)
                 self._refinements[key] += 1
