@@ -12,6 +12,7 @@ refined operator as concrete as ``ω`` below it, so the whole path is planned at
 
 from __future__ import annotations
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -73,6 +74,7 @@ def _deepest(tr: Trace) -> int:
     return max(e["depth"] for e in tr.of("push"))
 
 
+@pytest.mark.timeout(120)  # a refinement recursion fails the test
 def test_line_is_refined_in_one_concrete_plan_not_a_push_per_cell():
     # before the floor: the stack grew by one plan per cell (here 30 > the 16 allowed) and the
     # run ended with "plan stack deeper than 16"
@@ -85,6 +87,7 @@ def test_line_is_refined_in_one_concrete_plan_not_a_push_per_cell():
         assert _deepest(tr) <= 3, strategy  # root, the abstract plan, its concrete refinement
 
 
+@pytest.mark.timeout(120)
 def test_free_moves_refine_to_the_direct_move():
     # before the floor: each refinement swapped the step for an abstract move from a cell
     # nearer the goal (one push each) and walked the arm back cell by cell
@@ -102,6 +105,7 @@ def test_a_stack_deeper_than_allowed_says_what_was_refined():
     assert m.reason.startswith("plan stack deeper than 2 (refining (move c03 c04) of plan 1)"), m.reason
 
 
+@pytest.mark.timeout(120, method="thread")  # see pyproject.toml
 @settings(max_examples=60, deadline=None)
 @given(st.lists(st.lists(st.integers(0, 4), min_size=1, max_size=3), min_size=1, max_size=3),
        st.lists(st.tuples(st.integers(0, 2), st.integers(0, 5)), max_size=30))
