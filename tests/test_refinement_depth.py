@@ -129,3 +129,18 @@ def test_a_chain_of_refinements_is_bounded_by_the_criticality_classes(crits, pic
         lm = nxt
         depth += 1
         assert depth <= bound
+
+
+@pytest.mark.timeout(300)
+@pytest.mark.parametrize(("strategy", "seed"), [("hpn", 5), pytest.param("hpn+aggressive", 7, marks=pytest.mark.slow)])
+def test_pieces_arm_moves_are_refined_in_one_plan(strategy, seed):
+    # at 2771927: hpn seed 5 reached a stack 64 plans deep; hpn+aggressive seed 7 ended after
+    # 5 actions with "plan stack deeper than 64" (the arm walked back cell by cell)
+    from nowplan.domains.registry import get_domain
+
+    spec = get_domain("pieces")
+    tr = Trace()
+    m = run_episode(spec.scenario("tiny-disturbed")(seed), parse_strategy(strategy, base_planner=spec.planner),
+                    seed=seed, trace=tr)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert _deepest(tr) <= 4  # root, the pieces' plan, a piece's move, the arm's move
