@@ -96,17 +96,17 @@ def test_levels_abs_and_next_level():
     # another instance of the same operator is untouched by NextLevel
     other = op.instantiate({x: "p"})
     assert lm3.level(other) == 2 and lm3.floor("op") is None
-    # refining act (the executive's levels for act's refinement) floors the operator: below
-    # it no instance is more abstract than act has become; the map above is untouched
-    r2 = lm.refinement(act)
-    r3 = r2.refinement(act)
-    assert r2.level(act) == 1 and r3.level(act) == -1
-    assert lm.level(other) == 2 and r2.level(other) == 1 and r3.level(other) == -1
-    assert r3.floor("op") == -1 and lm.floor("op") is None
-    assert r3.next_level(other).floor("op") == -1  # NextLevel keeps the floors it finds
-    # an instance of another operator keeps the top level
+    # a plan below lm3 with an instance of op more abstract than act (refined above it) floors op at
+    # act's level; instances of other operators, or as concrete as act, change nothing
     op2 = Operator("op2", (x,), (Precondition(atom("a", x), 3), Precondition(atom("c", x), 0)), (atom("e", x),))
-    assert r3.level(op2.instantiate({x: "o"})) == 2
+    third = op.instantiate({x: "q"})
+    assert lm3.floored([act, op2.instantiate({x: "o"})]) is lm3
+    fl = lm3.floored([other, act])
+    assert fl.floor("op") == -1 and fl.level(other) == fl.level(third) == -1 and fl.is_primitive(other)
+    assert fl.overrides == lm3.overrides and lm.floored([other]) is lm
+    assert fl.next_level(op2.instantiate({x: "o"})).floor("op") == -1  # NextLevel keeps the floors
+    # an instance of another operator keeps the top level
+    assert fl.level(op2.instantiate({x: "o"})) == 2
     # an instance's own level below the floor stands: a map with op's floor at 1 and act at -1
     mixed = LevelMap(2, frozenset({(act.key, -1)}), frozenset({("op", 1)}))
     assert mixed.level(act) == -1 and mixed.level(other) == 1

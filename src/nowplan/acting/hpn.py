@@ -379,6 +379,26 @@ class Executive:
         acts = tuple(s.action.key if s.action is not None else None for s in f.plan.steps)
         return (acts, f.plan.goal, f.i)
 
+    def _no_sibling_swap(self, new: Plan, goal: Goal, levels: LevelMap, parent: Frame) -> Plan | None:
+        """A refinement whose plan has a step more abstract than an instance of the same operator
+        refined above it (a sibling that hides the precondition just exposed, which would be
+        refined in turn, one plan per sibling) is planned again with that operator floored
+        (:meth:`LevelMap.floored`), until no step is: chains of refinements stay as short as the
+        hierarchy.  Each round floors one more operator or lowers a floor, so the rounds are bounded."""
+        plan: Plan | None = new
+        while plan is not None:
+            floored = levels.floored(s.action for s in plan.steps if s.action is not None)
+            if floored is levels:
+                return plan
+            self._made.pop(id(plan), None)
+            self.trace.emit("note", plan_id=parent.plan_id,
+                            text="executive: the refinement's plan swaps in a more abstract instance of an "
+                                 "operator refined above it; planning it again with that operator floored "
+                                 f"({', '.join(f'{n} <= {v}' for n, v in sorted(floored.floors))})")
+            levels = floored
+            plan = self.make_plan(goal, levels, parent)
+        return None
+
     def _check_cycle(self) -> None:
         """refine-flat: a symbolic state reached a third time means the hierarchical plans cycle
         (refinements that succeed but undo each other); plan the current root goal concretely."""
@@ -437,8 +457,8 @@ class Executive:
             )
             if action is None or not f.plan.levels.is_primitive(action):
                 if len(self.stack) >= self.strategy.max_depth:
-                    # refinements floor the refined operator (LevelMap.refinement), so a chain is
-                    # bounded by the criticality classes; a hierarchy with more than this is stopped here
+                    # refinements floor the operators refined above them (_no_sibling_swap), so a chain
+                    # is bounded by the criticality classes; a hierarchy with more is stopped here
                     outcome, reason = Outcome.LIMIT, (
                         f"plan stack deeper than {self.strategy.max_depth} (refining "
                         f"{action.pddl() if action is not None else 'a goal'} of plan {f.plan_id}); "
@@ -458,12 +478,14 @@ class Executive:
                     self.trace.emit("note", plan_id=f.plan_id, text=f"executive: gave up: {why}")
                     self.pop("failed")
                     continue
-                levels = f.plan.levels if action is None else f.plan.levels.refinement(action)
+                levels = f.plan.levels if action is None else f.plan.levels.next_level(action)
                 if f.root:
                     levels = self.base_levels
                 if key in self._flat_steps:
                     levels = flat_levels()
                 new = self.make_plan(step.goal, levels, f)
+                if new is not None and action is not None:
+                    new = self._no_sibling_swap(new, step.goal, levels, f)
                 if new is None:
                     consecutive_failures += 1
                     if f.root and self.strategy.refine_flat and key not in self._flat_steps:

@@ -6,20 +6,20 @@ sit at the domain's top (most abstract) level.  ``NextLevel(α, ω)`` lowers
 ω's level just enough to add its next criticality class; an instance whose
 level keeps all its preconditions is primitive (concrete).
 
-Refining ω (:meth:`LevelMap.refinement`, seed 002 Alg. 1 line 7 and Alg. 2 line 14) also
-lowers a *floor* for ω's operator: in the plans that refine ω,
-no instance of that operator is more abstract than ω has become.  Without it a
-refinement can swap ω for a sibling instance that still hides the preconditions
-just exposed (pieces: refining ``move_arm(a, b)`` plans ``move_arm(c, b)`` from a
-cell ``c`` nearer ``b``, whose ``arm_at(c)`` is hidden again), and each such swap
-pushes another plan: a refinement recursion as long as there are siblings.  With
-the floor every refinement lowers one operator's floor by at least one criticality
-class, so a chain of refinements is at most as deep as the operators have criticality
-classes in all.
+A map also has *floors*: operator -> the most abstract level any instance of it has.  The
+executive sets them (:meth:`LevelMap.floored`) when a plan made to refine ω contains an
+instance of an operator more abstract than an instance of it refined higher up the chain, and
+plans that refinement again.  Without floors a refinement can swap the step just made more
+concrete for a sibling instance that hides the exposed precondition again (pieces: refining
+``move_arm(a, b)`` chose an abstract ``move_arm(c, b)`` from a cell ``c`` nearer ``b``, then
+the same from ``c``), one pushed plan per sibling.  With them, along a chain of refinements
+each push lowers the lowest refined level of one operator by at least one criticality class,
+so the chain is no deeper than the operators have classes in all.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from nowplan.core.operators import Action
@@ -62,16 +62,23 @@ class LevelMap:
         rest = frozenset((k, v) for k, v in self.overrides if k != action.key)
         return LevelMap(self.top, rest | {(action.key, new)}, self.floors)
 
-    def refinement(self, action: Action) -> LevelMap:
-        """The levels at which the abstract step ω is refined: :meth:`next_level`, and ω's operator
-        floored at ω's new level (no instance of it more abstract in the plans below)."""
-        out = self.next_level(action)
-        new = out.level(action)
-        name = action.key[0]
-        fl = self.floor(name)
-        if fl is not None and fl <= new:
-            return out
-        return LevelMap(out.top, out.overrides, frozenset({(n, v) for n, v in self.floors if n != name} | {(name, new)}))
+    def floored(self, actions: Iterable[Action]) -> LevelMap:
+        """This map with a floor for each operator of which one of ``actions`` is more abstract than an
+        instance already lowered here (an override, i.e. refined higher up the chain), at that
+        instance's level; ``self`` when there is none."""
+        lowest: dict[str, int] = {}
+        for key, lv in self.overrides:
+            if lv < lowest.get(key[0], self.top):
+                lowest[key[0]] = lv
+        floors: dict[str, int] = dict(self._floors)  # type: ignore[attr-defined]
+        changed = False
+        for a in actions:
+            name = a.key[0]
+            lo = lowest.get(name)
+            if lo is not None and self.level(a) > lo:
+                floors[name] = lo
+                changed = True
+        return LevelMap(self.top, self.overrides, frozenset(floors.items())) if changed else self
 
     def describe(self, action: Action) -> int:
         """How many criticality classes of ω are still hidden at its level (0 = primitive)."""
