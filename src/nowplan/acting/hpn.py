@@ -28,6 +28,7 @@ from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import (
     Cycle, CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason,
 )
+from nowplan.acting.refine import refine_without_swaps
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import check_belief
 from nowplan.belief.symbolic import SymbolicBelief
@@ -195,6 +196,10 @@ class Executive:
         return PlanningContext((), {"foresight": False})
 
     # -- planning --------------------------------------------------------------
+    def forget_plan(self, plan: Plan) -> None:
+        """A plan made but not to be pushed (a refinement planned again, acting/refine.py)."""
+        self._made.pop(id(plan), None)
+
     def make_plan(self, goal: Goal, levels: LevelMap, parent: Frame) -> Plan | None:
         """Plan for ``goal`` at ``levels`` from the current belief; ``None`` on failure (traced)."""
         if self._pending_trigger is not None:
@@ -379,26 +384,6 @@ class Executive:
         acts = tuple(s.action.key if s.action is not None else None for s in f.plan.steps)
         return (acts, f.plan.goal, f.i)
 
-    def _no_sibling_swap(self, new: Plan, goal: Goal, levels: LevelMap, parent: Frame) -> Plan | None:
-        """A refinement whose plan has a step more abstract than an instance of the same operator
-        refined above it (a sibling that hides the precondition just exposed, which would be
-        refined in turn, one plan per sibling) is planned again with that operator floored
-        (:meth:`LevelMap.floored`), until no step is: chains of refinements stay as short as the
-        hierarchy.  Each round floors one more operator or lowers a floor, so the rounds are bounded."""
-        plan: Plan | None = new
-        while plan is not None:
-            floored = levels.floored(s.action for s in plan.steps if s.action is not None)
-            if floored is levels:
-                return plan
-            self._made.pop(id(plan), None)
-            self.trace.emit("note", plan_id=parent.plan_id,
-                            text="executive: the refinement's plan swaps in a more abstract instance of an "
-                                 "operator refined above it; planning it again with that operator floored "
-                                 f"({', '.join(f'{n} <= {v}' for n, v in sorted(floored.floors))})")
-            levels = floored
-            plan = self.make_plan(goal, levels, parent)
-        return None
-
     def _check_cycle(self) -> None:
         """refine-flat: a symbolic state reached a third time means the hierarchical plans cycle
         (refinements that succeed but undo each other); plan the current root goal concretely."""
@@ -457,7 +442,7 @@ class Executive:
             )
             if action is None or not f.plan.levels.is_primitive(action):
                 if len(self.stack) >= self.strategy.max_depth:
-                    # refinements floor the operators refined above them (_no_sibling_swap), so a chain
+                    # refinements floor the operators refined above them (acting/refine.py), so a chain
                     # is bounded by the criticality classes; a hierarchy with more is stopped here
                     outcome, reason = Outcome.LIMIT, (
                         f"plan stack deeper than {self.strategy.max_depth} (refining "
@@ -485,7 +470,7 @@ class Executive:
                     levels = flat_levels()
                 new = self.make_plan(step.goal, levels, f)
                 if new is not None and action is not None:
-                    new = self._no_sibling_swap(new, step.goal, levels, f)
+                    new = refine_without_swaps(self, new, step.goal, levels, f)
                 if new is None:
                     consecutive_failures += 1
                     if f.root and self.strategy.refine_flat and key not in self._flat_steps:
