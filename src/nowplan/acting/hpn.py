@@ -196,12 +196,23 @@ class Executive:
         return PlanningContext((), {"foresight": False})
 
     # -- planning --------------------------------------------------------------
-    def forget_plan(self, plan: Plan) -> None:
-        """A plan made but not to be pushed (a refinement planned again, acting/refine.py)."""
-        self._made.pop(id(plan), None)
+    def reject_plan(self, plan: Plan, parent: Frame, reason: str) -> None:
+        """A plan made but not to be pushed (a refinement planned again, acting/refine.py): traced and
+        counted as a planner call that gave no plan to push (``plan_failed``, status ``rejected``)."""
+        meta = self._made.pop(id(plan), {})
+        self.metrics.plans_made -= 1
+        self.metrics.plan_failures += 1
+        self.trace.emit("plan_failed", parent=parent.plan_id, parent_step=parent.i,
+                        goal=[str(a) for a in plan.goal], status="rejected", reason=reason,
+                        cpu_s=meta.get("cpu_s", 0.0))
 
-    def make_plan(self, goal: Goal, levels: LevelMap, parent: Frame) -> Plan | None:
-        """Plan for ``goal`` at ``levels`` from the current belief; ``None`` on failure (traced)."""
+    def made_with(self, plan: Plan) -> dict[str, Any]:
+        """What the planner reported for a plan made but not pushed yet (method, cpu_s, expanded)."""
+        return self._made.get(id(plan), {})
+
+    def make_plan(self, goal: Goal, levels: LevelMap, parent: Frame, max_nodes: int | None = None) -> Plan | None:
+        """Plan for ``goal`` at ``levels`` from the current belief (at most ``max_nodes`` expansions
+        if given); ``None`` on failure (traced)."""
         if self._pending_trigger is not None:
             self.metrics.replans += 1
             self.trace.emit(
@@ -214,6 +225,10 @@ class Executive:
         cfg = self.strategy.planner
         for m in self.mechanisms:
             cfg = m.planner_config(self, parent, goal, cfg) or cfg
+        if max_nodes is not None and max_nodes < cfg.max_nodes:
+            from dataclasses import replace
+
+            cfg = replace(cfg, max_nodes=max_nodes, shortcut_nodes=min(cfg.shortcut_nodes, max_nodes))
         if remaining < cfg.time_limit:
             from dataclasses import replace
 

@@ -15,8 +15,9 @@ level map), the refinement is planned again with that operator *floored* at that
 (:meth:`nowplan.core.levels.LevelMap.floored`; the floor then holds in every plan below),
 until no step is.  Along a chain every push then lowers the lowest refined level of one
 operator by at least one class, so the chain is no deeper than the operators have
-criticality classes in all; a plan with no such step (marsupial, logistics as measured) is
-kept as it was made, with no extra planning.
+criticality classes in all, wherever the floored problems have plans; a plan with no such
+step is kept as it was made, with no extra planning, and so is one whose floored problem
+has no plan (then the plan stack's depth limit remains the bound).
 """
 
 from __future__ import annotations
@@ -27,25 +28,39 @@ from nowplan.core.atoms import Goal
 from nowplan.core.levels import LevelMap
 from nowplan.planning.plan import Plan
 
+# the floored attempt's node budget: 4x the nodes the plan it replaces took, at least this; a floored
+# problem harder than that (marsupial: a travel whose packing the generators cannot plan from the
+# current belief) keeps the plan as made instead of exhausting a search space per refinement
+FLOOR_NODES = 200
+
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame
 
 
-def refine_without_swaps(ex: Executive, new: Plan, goal: Goal, levels: LevelMap, parent: Frame) -> Plan | None:
+def refine_without_swaps(ex: Executive, new: Plan, goal: Goal, levels: LevelMap, parent: Frame) -> Plan:
     """``new`` (made for ``goal`` at ``levels`` to refine a step of ``parent``) if none of its steps
     is more abstract than a refined instance of its operator; else the plan made again with
-    those operators floored (None when there is none).  Each round adds or lowers a floor, so
-    the rounds are bounded by the operators' criticality classes."""
-    plan: Plan | None = new
-    while plan is not None:
+    those operators floored.  When the floored problem has no plan (marsupial: a plane that
+    cannot be packed for its travel from the current belief, the seed's generators planning in
+    the now), the plan made without the floor is kept, as seed 002 refines: the hierarchy needs
+    the sibling there, and the stack's depth limit stays the bound.  The floored attempt may expand
+    4x the nodes of the plan it would replace (at least :data:`FLOOR_NODES`).  Each round adds or lowers a
+    floor, so the rounds are bounded by the operators' criticality classes."""
+    plan = new
+    while True:
         floored = levels.floored(s.action for s in plan.steps if s.action is not None)
         if floored is levels:
             return plan
-        ex.forget_plan(plan)
+        what = ", ".join(f"{n} <= {v}" for n, v in sorted(floored.floors))
         ex.trace.emit("note", plan_id=parent.plan_id,
                       text="executive: the refinement's plan swaps in a more abstract instance of an "
-                           "operator refined above it; planning it again with that operator floored "
-                           f"({', '.join(f'{n} <= {v}' for n, v in sorted(floored.floors))})")
-        levels = floored
-        plan = ex.make_plan(goal, levels, parent)
-    return None
+                           f"operator refined above it; planning it again with that operator floored ({what})")
+        expanded = ex.made_with(plan).get("expanded")
+        budget = max(FLOOR_NODES, 4 * expanded) if isinstance(expanded, int) else None
+        again = ex.make_plan(goal, floored, parent, max_nodes=budget)
+        if again is None:
+            ex.trace.emit("note", plan_id=parent.plan_id,
+                          text=f"executive: no plan with {what}; keeping the refinement's plan as made")
+            return plan
+        ex.reject_plan(plan, parent, f"swaps in an instance more abstract than one refined above it ({what})")
+        plan, levels = again, floored
