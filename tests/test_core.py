@@ -93,6 +93,20 @@ def test_levels_abs_and_next_level():
     lm3 = lm2.next_level(act)
     assert lm3.is_primitive(act) and len(act.preconditions(lm3.level(act))) == 3
     assert lm3.next_level(act) == lm3  # nothing more to add
-    # another instance of the same operator is untouched
+    # another instance of the same operator is untouched by NextLevel
     other = op.instantiate({x: "p"})
-    assert lm3.level(other) == 2
+    assert lm3.level(other) == 2 and lm3.floor("op") is None
+    # a plan below lm3 with an instance of op more abstract than act (refined above it) floors op at
+    # act's level; instances of other operators, or as concrete as act, change nothing
+    op2 = Operator("op2", (x,), (Precondition(atom("a", x), 3), Precondition(atom("c", x), 0)), (atom("e", x),))
+    third = op.instantiate({x: "q"})
+    assert lm3.floored([act, op2.instantiate({x: "o"})]) is lm3
+    fl = lm3.floored([other, act])
+    assert fl.floor("op") == -1 and fl.level(other) == fl.level(third) == -1 and fl.is_primitive(other)
+    assert fl.overrides == lm3.overrides and lm.floored([other]) is lm
+    assert fl.next_level(op2.instantiate({x: "o"})).floor("op") == -1  # NextLevel keeps the floors
+    # an instance of another operator keeps the top level
+    assert fl.level(op2.instantiate({x: "o"})) == 2
+    # an instance's own level below the floor stands: a map with op's floor at 1 and act at -1
+    mixed = LevelMap(2, frozenset({(act.key, -1)}), frozenset({("op", 1)}))
+    assert mixed.level(act) == -1 and mixed.level(other) == 1

@@ -28,6 +28,7 @@ from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import (
     Cycle, CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason,
 )
+from nowplan.acting.refine import refine_without_swaps
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import HasHeuristic, check_belief
 from nowplan.belief.symbolic import SymbolicBelief
@@ -197,8 +198,23 @@ class Executive:
         return PlanningContext(tuple(f.plan for f in self.stack) if self.strategy.foresight else (), extras)
 
     # -- planning --------------------------------------------------------------
-    def make_plan(self, goal: Goal, levels: LevelMap, parent: Frame) -> Plan | None:
-        """Plan for ``goal`` at ``levels`` from the current belief; ``None`` on failure (traced)."""
+    def reject_plan(self, plan: Plan, parent: Frame, reason: str) -> None:
+        """A plan made but not to be pushed (a refinement planned again, acting/refine.py): traced and
+        counted as a planner call that gave no plan to push (``plan_failed``, status ``rejected``)."""
+        meta = self._made.pop(id(plan), {})
+        self.metrics.plans_made -= 1
+        self.metrics.plan_failures += 1
+        self.trace.emit("plan_failed", parent=parent.plan_id, parent_step=parent.i,
+                        goal=[str(a) for a in plan.goal], status="rejected", reason=reason,
+                        cpu_s=meta.get("cpu_s", 0.0))
+
+    def made_with(self, plan: Plan) -> dict[str, Any]:
+        """What the planner reported for a plan made but not pushed yet (method, cpu_s, expanded)."""
+        return self._made.get(id(plan), {})
+
+    def make_plan(self, goal: Goal, levels: LevelMap, parent: Frame, max_nodes: int | None = None) -> Plan | None:
+        """Plan for ``goal`` at ``levels`` from the current belief (at most ``max_nodes`` expansions
+        if given); ``None`` on failure (traced)."""
         if self._pending_trigger is not None:
             self.metrics.replans += 1
             self.trace.emit(
@@ -211,6 +227,10 @@ class Executive:
         cfg = self.strategy.planner
         for m in self.mechanisms:
             cfg = m.planner_config(self, parent, goal, cfg) or cfg
+        if max_nodes is not None and max_nodes < cfg.max_nodes:
+            from dataclasses import replace
+
+            cfg = replace(cfg, max_nodes=max_nodes, shortcut_nodes=min(cfg.shortcut_nodes, max_nodes))
         if remaining < cfg.time_limit:
             from dataclasses import replace
 
@@ -439,7 +459,12 @@ class Executive:
             )
             if action is None or not f.plan.levels.is_primitive(action):
                 if len(self.stack) >= self.strategy.max_depth:
-                    outcome, reason = Outcome.LIMIT, f"plan stack deeper than {self.strategy.max_depth}"
+                    # refinements floor the operators refined above them (acting/refine.py), so a chain
+                    # is bounded by the criticality classes; a hierarchy with more is stopped here
+                    outcome, reason = Outcome.LIMIT, (
+                        f"plan stack deeper than {self.strategy.max_depth} (refining "
+                        f"{action.pddl() if action is not None else 'a goal'} of plan {f.plan_id}); "
+                        "raise Strategy.max_depth if the hierarchy has that many criticality classes")
                     break
                 key = self.refinement_key(f)
                 self._refinements[key] += 1
@@ -461,6 +486,8 @@ class Executive:
                 if key in self._flat_steps:
                     levels = flat_levels()
                 new = self.make_plan(step.goal, levels, f)
+                if new is not None and action is not None:
+                    new = refine_without_swaps(self, new, step.goal, levels, f)
                 if new is None:
                     consecutive_failures += 1
                     if f.root and self.strategy.refine_flat and key not in self._flat_steps:

@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, Any
 
 from nowplan.core.atoms import Atom, Term, Var
 from nowplan.core.facts import FactTable
+from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action, Operator
 
 if TYPE_CHECKING:
@@ -238,6 +239,26 @@ class GroundTask:
                 for k in range(self.n)
             )
         return self._acts
+
+    def lowered(self, levels: LevelMap) -> dict[int, int]:
+        """Per action ``k`` below ``levels.top`` in ``levels`` (an instance's own level, or its
+        operator's floor) that level."""
+        top = levels.top
+        out: dict[int, int] = {}
+        for key, lv in levels.overrides:
+            k = self.index.get(key)
+            if k is not None and lv != top:
+                out[k] = lv
+        for name, fl in levels.floors:
+            if fl >= top:
+                continue
+            i = next((j for j, op in enumerate(self.operators) if op.name == name), None)
+            if i is None:
+                continue
+            for k, o in enumerate(self.op):
+                if o == i and out.get(k, top) > fl:
+                    out[k] = fl
+        return out
 
     def adders(self) -> dict[int, list[int]]:
         """Per fact id the actions (ascending) that add it."""

@@ -96,12 +96,9 @@ class KernelHadd:
         if comp is None:
             raise ValueError("KernelHadd needs the compiled kernel and numeric action costs (see kernel_hadd)")
         self.task = task
-        top = levels.top
         over: list[tuple[int, list[int]]] = []
-        for key, lv in levels.overrides:
-            k = task.index.get(key)
-            if k is not None and lv != top:
-                over.append((k, [f for f, c, _ in task.pre[k] if c > lv]))
+        for k, lv in task.lowered(levels).items():
+            over.append((k, [f for f, c, _ in task.pre[k] if c > lv]))
         self.values = comp.costs(true_now, over)  # 0 for every fact below nfacts that holds
         self.nfacts = comp.nfacts
 

@@ -129,10 +129,8 @@ class RelevantHadd:
         top = levels.top
         self.kept = task.kept(top)[0]
         self.over: dict[int, _Pre] = {}
-        for key, lv in levels.overrides:
-            k = task.index.get(key)
-            if k is not None and lv != top:
-                self.over[k] = tuple((f, t) for f, c, t in task.pre[k] if c > lv)
+        for k, lv in task.lowered(levels).items():
+            self.over[k] = tuple((f, t) for f, c, t in task.pre[k] if c > lv)
         # the facts the belief lists (``true_now``: the caller's ids of them)
         self.true_now = true_now if true_now is not None else grounder.domain.facts.ids_of(grounder.belief.atoms())
         self.cost = cost

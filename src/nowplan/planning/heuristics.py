@@ -117,10 +117,8 @@ def hadd_ids(
     top = levels.top
     kept, waiting = task.kept(top)
     over: dict[int, tuple[tuple[int, int], ...]] = {}
-    for key, lv in levels.overrides:
-        k = task.index.get(key)
-        if k is not None and lv != top:
-            over[k] = tuple((f, t) for f, c, t in task.pre[k] if c > lv)
+    for k, lv in task.lowered(levels).items():
+        over[k] = tuple((f, t) for f, c, t in task.pre[k] if c > lv)
     true_now = table_ids.ids_of(grounder.belief.atoms())
     settled = set(true_now)
     for pre in (kept, over.values()):

@@ -42,6 +42,7 @@ class Successors:
         self.cost = cost
         self.task: GroundTask | None = None  # the problem's ground task, where the search built one
         self._over_keys = frozenset(k for k, lv in levels.overrides if lv != levels.top)
+        self._over_ops = frozenset(n for n, lv in levels.floors if lv < levels.top)  # operators with a floor
         self._by_fact: dict[int, list[Template]] = {}  # this call's templates by fact id
         self._templates: dict[int, tuple[list[Action], list[Template]]] = {}
         self._shared_store: Any = False  # not looked up yet (see _shared)
@@ -60,11 +61,11 @@ class Successors:
                 T, top, drop, task = self.table, self.levels.top, self.drop, self.task
                 hit = shared[target] = [(act, action_facts(T, act, top, drop, task), self.cost(act)) for act in acts]
             out = hit
-            over = self._over_keys
-            if over and any(e[0].key in over for e in out):
+            over, ops = self._over_keys, self._over_ops
+            if (over or ops) and any(e[0].key in over or e[0].key[0] in ops for e in out):
                 T, levels, drop, task = self.table, self.levels, self.drop, self.task
-                out = [(a, action_facts(T, a, levels.level(a), drop, task), c) if a.key in over else (a, i, c)
-                       for a, i, c in out]
+                out = [(a, action_facts(T, a, levels.level(a), drop, task), c)
+                       if a.key in over or a.key[0] in ops else (a, i, c) for a, i, c in out]
             self._by_fact[target] = out
             return out
         acts = self.grounder.achievers(atom, goal_of)

@@ -36,7 +36,8 @@ from nowplan.planning.plan import PlanResult, PlanStatus
 def abstract_level(levels: LevelMap, domain: Domain) -> bool:
     """``levels`` is an untouched abstract map at which the arm's moves are not primitive."""
     move_arm = domain.operator_map["move_arm"]
-    return not levels.overrides and not all(p.criticality > levels.top for p in move_arm.preconditions)
+    return not levels.overrides and not levels.floors and not all(
+        p.criticality > levels.top for p in move_arm.preconditions)
 
 
 def means_ends_for_executive(
