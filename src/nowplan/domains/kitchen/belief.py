@@ -24,6 +24,7 @@ import numpy as np
 from nowplan.belief.determinize import worst_case_visibility
 from nowplan.belief.particles import DEFAULT_PARTICLES, PoseParticles, Region, SensorModel
 from nowplan.core.operators import Action
+from nowplan.errors import ModelError
 from nowplan.domains.kitchen import scene as S
 from nowplan.worlds.base import Observation
 
@@ -101,9 +102,36 @@ def segments_blocked(a: np.ndarray, ends: np.ndarray, centres: np.ndarray, half:
     return hit
 
 
+FINDABLE_ROUNDS = 20  # redraws of a findable prior's hidden particles before they are dropped
+
+
+def kitchen_hides(target: str, world: np.ndarray, drawers: dict[str, float], cabinet: bool) -> Any:
+    """Per row of ``world`` (positions of ``target``'s base): does the kitchen itself (a drawer's front
+    panel, the counter top, the cabinet's walls) cut the camera's ray to ``target``'s top, the
+    containers being as in ``drawers``?"""
+    centres = [np.array([0.0, S.FRONT_Y - 0.01 - drawers.get(d, 0.0), S.DRAWER_FLOOR[d] + 0.08]) for d in S.DRAWERS]
+    halves = [np.array([0.22, 0.01, 0.12])] * len(S.DRAWERS)
+    centres.append(np.array([0.0, 0.725, S.COUNTER_TOP - 0.02]))
+    halves.append(np.array([0.25, 0.275, 0.02]))
+    if cabinet:
+        for c, h in S.cabinet_boxes(drawers.get(S.CABINET, 0.0)):
+            centres.append(c)
+            halves.append(h)
+    ends = np.atleast_2d(world) + np.array([0.0, 0.0, S.SIZES[target][2] - 0.005])
+    hidden = np.zeros(len(ends), dtype=bool)
+    for c, h in zip(centres, halves, strict=True):
+        hidden |= segments_blocked(S.CAMERA, ends, c[None, :], h)[:, 0]
+    return hidden
+
+
 class KitchenBelief:
     def __init__(self, priors: dict[str, list[Region]], seed: int, sensor: SensorModel = SensorModel(),
-                 n: int = DEFAULT_PARTICLES, scene: S.Scene | None = None, cabinet: bool = False) -> None:
+                 n: int = DEFAULT_PARTICLES, scene: S.Scene | None = None, cabinet: bool = False,
+                 findable: bool = False) -> None:
+        """``findable``: every object's prior is conditioned on the object being where the camera can
+        see it once its container is open and nothing else stands in front (see :meth:`_findable_prior`);
+        without it, mass in the front strip of a drawer's tray grows with every look that misses and
+        no look can ever reduce it."""
         self.rng = np.random.default_rng(seed)
         self.prng = random.Random(seed)
         self.sensor = sensor
@@ -127,6 +155,10 @@ class KitchenBelief:
         self.version = 0
         self._modes: dict[tuple[str, int], Pose] = {}
         self._queries: dict[tuple[Any, ...], Any] = {}  # memoised tests, keyed with the version
+        if findable:
+            for o, regs in priors.items():
+                if any(r.frame in self.containers for r in regs):
+                    self._findable_prior(o, [Region(r.frame, r.lo, r.hi, S.SIZES[o][2]) for r in regs])
 
     # -- geometry ------------------------------------------------------------------
     def origins(self) -> dict[str, np.ndarray]:
@@ -162,20 +194,33 @@ class KitchenBelief:
         """Per row of ``world``: is the camera's ray to ``target``'s top there cut by the kitchen itself
         (a drawer's front panel, the counter top)?  Near the front of an open drawer an object hides
         behind the drawer's front panel."""
-        state = drawers if drawers is not None else self.drawers
-        centres = [np.array([0.0, S.FRONT_Y - 0.01 - state[d], S.DRAWER_FLOOR[d] + 0.08]) for d in S.DRAWERS]
-        halves = [np.array([0.22, 0.01, 0.12])] * len(S.DRAWERS)
-        centres.append(np.array([0.0, 0.725, S.COUNTER_TOP - 0.02]))
-        halves.append(np.array([0.25, 0.275, 0.02]))
-        if self.cabinet:
-            for c, h in S.cabinet_boxes(state.get(S.CABINET, 0.0)):
-                centres.append(c)
-                halves.append(h)
-        ends = np.atleast_2d(world) + self._top_point(target, np.zeros(3))
-        hidden = np.zeros(len(ends), dtype=bool)
-        for c, h in zip(centres, halves, strict=True):
-            hidden |= segments_blocked(S.CAMERA, ends, c[None, :], h)[:, 0]
-        return hidden
+        return kitchen_hides(target, world, drawers if drawers is not None else self.drawers, self.cabinet)
+
+    def _findable_prior(self, o: str, regions: list[Region], rounds: int = FINDABLE_ROUNDS) -> None:
+        """Condition ``o``'s prior on being findable: no particle where the kitchen itself hides it from
+        the camera even with its container open (the front strip of a drawer's tray, behind the
+        front panel).  Such particles are redrawn from the prior (at most ``rounds`` times), then dropped."""
+        pb = self.particles[o]
+        for _ in range(rounds):
+            bad = self._unfindable(o, pb)
+            if not bad.any():
+                return
+            fresh = PoseParticles.uniform(regions, int(bad.sum()), self.rng)
+            pb.frames[bad], pb.poses[bad] = fresh.frames, fresh.poses
+        bad = self._unfindable(o, pb)
+        if bad.all():
+            raise ModelError(f"the prior of {o} lies wholly where the camera cannot see it")
+        pb.reweight(~bad)
+
+    def _unfindable(self, o: str, pb: PoseParticles) -> np.ndarray:
+        bad = np.zeros(len(pb), dtype=bool)
+        for f in self.containers:
+            idx = np.flatnonzero(pb.frames == f)
+            if len(idx):
+                state = {d: (S.CABINET_OPEN if d == S.CABINET else S.DRAWER_OPEN) if d == f else 0.0
+                         for d in self.containers}
+                bad[idx] = kitchen_hides(o, S.frame_origin(f, state) + pb.poses[idx], state, self.cabinet)
+        return bad
 
     def visibility(self, target: str) -> Any:
         """P(visible | particle) for the filter: frame visibility times Π_j P(j does not block)."""

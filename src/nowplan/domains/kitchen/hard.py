@@ -43,7 +43,7 @@ from nowplan.belief.particles import Region
 from nowplan.core.atoms import Goal, atom
 from nowplan.core.domain import Problem
 from nowplan.domains.kitchen import scene as S
-from nowplan.domains.kitchen.belief import KitchenBelief, segments_blocked
+from nowplan.domains.kitchen.belief import KitchenBelief, kitchen_hides, segments_blocked
 from nowplan.domains.kitchen.model import KitchenModel
 from nowplan.domains.kitchen.world import KitchenWorld
 from nowplan.domains.registry import Episode
@@ -73,6 +73,19 @@ def hides(target: Placement, blocker: Placement, o: str, j: str) -> bool:
                     for dx, dy in ((0, 0), (1, 1), (1, -1), (-1, 1), (-1, -1))])
     cj = _world(*blocker, j, open_)
     return bool(segments_blocked(S.CAMERA, pts, cj[None, :], np.array(S.SIZES[j]))[:, 0].all())
+
+
+def findable(o: str, at: Placement) -> bool:
+    """Can the camera see ``o`` at ``at`` with its container open, the kitchen alone in the way?  (Not in
+    the front strip of a drawer's tray, behind its front panel.)  The belief's priors are conditioned on
+    it (``KitchenBelief(findable=True)``), so every placement the generator draws satisfies it too."""
+    frame, xy = at
+    if frame not in S.containers(True):
+        return True
+    state = {d: ((S.CABINET_OPEN if d == S.CABINET else S.DRAWER_OPEN) if d == frame else 0.0)
+             for d in S.containers(True)}
+    base = S.frame_origin(frame, state) + np.array([xy[0], xy[1], S.SIZES[o][2]])
+    return not bool(kitchen_hides(o, base, state, True)[0])
 
 
 def _clear(o: str, at: Placement, placed: dict[str, Placement]) -> bool:
@@ -114,7 +127,8 @@ def _place_hidden(o: str, j: str, reg: Region, rng: random.Random, placed: dict[
     for _ in range(MAX_DRAWS):
         t = (reg.frame, _uniform(o, part, rng))
         b = (reg.frame, _behind(o, j, t, rng))
-        if _inside(j, reg, b[1]) and _clear(o, t, placed) and _clear(j, b, {**placed, o: t}) and hides(t, b, o, j):
+        if (_inside(j, reg, b[1]) and findable(o, t) and findable(j, b) and _clear(o, t, placed)
+                and _clear(j, b, {**placed, o: t}) and hides(t, b, o, j)):
             return t, b
     raise ScenarioError(f"no spot for {j} hiding {o} in {reg.frame} after {MAX_DRAWS} draws")
 
@@ -122,7 +136,7 @@ def _place_hidden(o: str, j: str, reg: Region, rng: random.Random, placed: dict[
 def _place_free(o: str, reg: Region, rng: random.Random, placed: dict[str, Placement]) -> Placement:
     for _ in range(MAX_DRAWS):
         at = (reg.frame, _uniform(o, reg, rng))
-        if _clear(o, at, placed):
+        if findable(o, at) and _clear(o, at, placed):
             return at
     raise ScenarioError(f"no free spot for {o} in {reg.frame} after {MAX_DRAWS} draws")
 
@@ -173,7 +187,7 @@ def draw(task: str, index: int, seed: int = 0) -> tuple[dict[str, Placement], di
 
 def make(task: str, index: int, seed: int = 0) -> Episode:
     truth, prior, goal, bseed, wseed = draw(task, index, seed)
-    belief = KitchenBelief(prior, seed=bseed, cabinet=True)
+    belief = KitchenBelief(prior, seed=bseed, cabinet=True, findable=True)
     model = KitchenModel(belief)
     world = KitchenWorld(truth, seed=wseed, cabinet=True)
     objects: dict[str, str | None] = {o: ("tall" if o in S.TALL else "short") for o in OBJECTS}

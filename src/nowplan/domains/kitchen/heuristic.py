@@ -19,6 +19,8 @@ from nowplan.core.atoms import Atom, Goal
 from nowplan.domains.kitchen import scene as S
 
 MOVE_ACT = 2.0  # a move then the action itself
+LOOK_RADIUS = 0.04  # the δ of a look's neighbourhood (nowplan.domains.kitchen.belief.DELTA)
+LOOK_MASS = 0.01  # below this belief mass near a pose, AtPose there is a put-down, not a look
 
 
 def _unlocalized(belief: Any, o: str) -> float:
@@ -47,8 +49,28 @@ def _pick_cost(belief: Any, o: str) -> float:
     return MOVE_ACT + _unlocalized(belief, o) + _open_cost(belief, _frame_of(belief, o))
 
 
-def atom_estimate(a: Atom, belief: Any) -> float:
-    """Actions needed for one unmet atom, from the current belief (a rough additive estimate)."""
+def _localize_cost(belief: Any, o: str, p: Any) -> float:
+    """``AtPose(o) = p``: a put-down (after picking ``o`` where it is now, unless held), or, where the belief already has ``o`` near ``p``, a look (1)
+    after opening ``p``'s drawer and moving each object that hides ``p`` out of the way (pick and
+    place aside: 2 × ``MOVE_ACT`` each).  Counting 1 for every such atom let the search wander into
+    subgoals that want the block seen in a closed drawer behind another object."""
+    if belief.held == o:
+        return MOVE_ACT
+    frame = getattr(p, "frame", None)
+    if frame is None or frame == "hand" or belief.particles[o].mass_near(frame, p.rel(), LOOK_RADIUS) < LOOK_MASS:
+        return MOVE_ACT + _pick_cost(belief, o)  # picked where it is now, then put down at p
+    blockers = sum(1 for j in belief.objects if j != o and not belief.not_blocks(j, o, p))
+    return 1.0 + _open_cost(belief, frame) + 2 * MOVE_ACT * blockers
+
+
+def atom_estimate(a: Atom, belief: Any, grasped: frozenset[str] = frozenset()) -> float:
+    """Actions needed for one unmet atom, from the current belief (a rough additive estimate).
+
+    ``grasped``: objects the same subgoal wants held (an unmet ``Holding(o)``).  A tall object
+    in a drawer that must become ``Closable`` is then picked by the action that achieves both
+    atoms at once, so its pick is counted once, by ``Holding``; counting it again here made a
+    subgoal look worse for having regressed through the put-down that follows the pick.
+    """
     name, args = a.predicate, tuple(str(x) for x in a.args)
     if name == "AtConf":
         return 1.0
@@ -65,12 +87,14 @@ def atom_estimate(a: Atom, belief: Any) -> float:
             return MOVE_ACT
         return _pick_cost(belief, args[0]) + MOVE_ACT + _open_cost(belief, args[1])
     if name == "AtPose":
-        return 1.0 if belief.held != args[0] else MOVE_ACT
-    if name == "NotBlocks":
-        return 2 * MOVE_ACT
+        return _localize_cost(belief, str(a.args[0]), a.value)
+    if name == "NotBlocks":  # the blocker picked (its drawer opened) and set aside
+        return MOVE_ACT + _pick_cost(belief, args[0])
     if name == "Closable":  # each tall object inside is picked (drawer open) and put down elsewhere
         inside = [o for o in S.TALL if o in belief.particles and belief.particles[o].frame_mass(args[0]) >= 0.05]
-        return sum(_pick_cost(belief, o) + MOVE_ACT for o in inside) or 2 * MOVE_ACT
+        if inside and all(o in grasped for o in inside):
+            return 0.0
+        return sum(_pick_cost(belief, o) + MOVE_ACT for o in inside if o not in grasped) or 2 * MOVE_ACT
     if name == "Cooked":
         return _pick_cost(belief, args[0]) + 3 * MOVE_ACT
     return 1.0
@@ -82,7 +106,7 @@ def _needs_open(a: Atom, belief: Any) -> str | None:
         return str(a.args[1])
     if a.predicate == "Closable" and a.value is True and a.args[0] in S.DRAWERS:
         return str(a.args[0])
-    if a.predicate in ("Holding", "Cooked") and a.value is True and belief.held != a.args[0]:
+    if a.predicate in ("Holding", "Cooked", "NotBlocks") and a.value is True and belief.held != a.args[0]:
         f = _frame_of(belief, str(a.args[0]))
         return f if f in belief.drawers else None
     return None
@@ -95,10 +119,10 @@ def estimate(goal: Goal, belief: Any, holds: Callable[[Atom], bool]) -> float:
     held across the switch, setting it down and picking it up again: push needs a free hand)."""
     total = 0.0
     reopen: dict[str, bool] = {}  # drawer -> needed by a Holding atom
-    for a in goal.atoms:
-        if holds(a):
-            continue
-        total += atom_estimate(a, belief)
+    unmet = [a for a in goal.atoms if not holds(a)]
+    grasped = frozenset(str(a.args[0]) for a in unmet if a.predicate == "Holding" and a.value is True)
+    for a in unmet:
+        total += atom_estimate(a, belief, grasped)
         d = _needs_open(a, belief)
         if d is not None:
             reopen[d] = reopen.get(d, False) or a.predicate == "Holding"

@@ -105,6 +105,7 @@ class KitchenModel:
         # detect's BOccluded test, expanded: one NotBlocks precondition per other object (J, K, J2, …)
         extra = [Var(f"j{i}") for i in range(2, len(belief.objects) - 1)]
         self.others: tuple[Var, ...] = (J, K, *extra)
+        self.occludes = Occludes(belief)
         self.domain = self._domain()
 
     # -- streams ------------------------------------------------------------------
@@ -258,7 +259,7 @@ class KitchenModel:
             poses = [] if bel.held == o else [bel.mode_pose(o)]
             if (bel.held == o or poses[0].frame in bel.containers) and b.get(F, "counter") == "counter":
                 # o may be picked where it will have been set down (to switch drawers, say)
-                poses += self._placements(o, "counter")[:2]
+                poses += self._placements(o, "counter")[: 2 * self._level()]
             if bel.held != o:
                 poses += self.candidates(o, None, 3)
             for p in poses:
@@ -278,11 +279,9 @@ class KitchenModel:
         """Which object a ``HandEmpty`` subgoal should put down: the held one, else tall objects that
         a ``Closable`` subgoal needs out of their drawer (an object put down to be picked up again is
         placed through the pick's ``AtPose`` subgoal instead)."""
-        if bel.held is not None:
-            return [bel.held]
         want = [a.args[0] for a in getattr(goal, "atoms", ()) if a.predicate == "Closable" and a.value is True]
         tall = [o for o in bel.objects if o in S.TALL and any(bel.particles[o].frame_mass(f) >= 0.05 for f in want)]
-        return tall
+        return ([bel.held] if bel.held is not None else []) + [o for o in tall if o != bel.held]
 
     def _gone(self, goal: Any, frame: str) -> tuple[str, ...]:
         """Objects that will have left ``frame`` when a subgoal wants it ``Closable`` (tall ones in it)."""
@@ -328,16 +327,36 @@ class KitchenModel:
         for o in [b[O]] if O in b else self._to_free(goal, bel):
             frame = b[F] if F in b else "counter"
             gone = self._gone(goal, frame)
-            poses = [b[P]] if P in b else self._placements(o, frame, gone=gone)
-            if O not in b:
-                poses = poses[: 2 * self._level()]  # a few parking spots each
+            poses = [b[P]] if P in b else [p for p in self._placements(o, frame, gone=gone) if self._fits(o, p, goal)]
+            # a few parking spots each (counted among the reachable ones: a spot out of the arm's reach
+            # must not take the place of one within it)
+            left = 2 * self._level() if O not in b else len(poses)
             for p in poses:
+                if left <= 0:
+                    break
                 for g in GRASPS:
                     q = self.ik(self.grasp_target(o, p) + np.array([0, 0, 0.01]), ignore=(o, *gone), frame=p.frame,
                                 grasp=g)
                     if q is not None:
+                        left -= 1
                         yield {O: o, P: p, F: p.frame, G: g, Q: q}
                         break
+
+    def _fits(self, o: str, p: Pose, goal: Any) -> bool:
+        """Can ``o`` be set down at ``p`` for the subgoal ``goal``?  Not where it would hide what a later
+        look needs to see (``NotBlocks(o, j, q)``, the :class:`Occludes` rule) nor on a spot the subgoal
+        holds for another object (``AtPose(j) = q`` overlapping ``p``).  Sampled spots are filtered
+        before they are cut to a few, so that spots the subgoal rules out do not crowd out the rest."""
+        at = atom("AtPose", o, value=p)
+        for a in getattr(goal, "atoms", ()):
+            if a.predicate == "NotBlocks" and self.occludes(at, a):
+                return False
+            if a.predicate == "AtPose" and a.args[0] != o and isinstance(a.value, Pose) and a.value.frame == p.frame:
+                j = str(a.args[0])
+                reach = np.array(S.SIZES[o][:2]) + np.array(S.SIZES[j][:2])
+                if np.all(np.abs(a.value.rel()[:2] - p.rel()[:2]) < reach):
+                    return False
+        return True
 
     def g_aside(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         if O not in b or J not in b:
@@ -361,7 +380,8 @@ class KitchenModel:
                         break
             self._memo[key] = out
         for vals in self._memo[key]:
-            yield dict(vals)
+            if self._fits(o, vals[P], goal):
+                yield dict(vals)
 
     def _handle(self, d: str, state: float) -> Conf | None:
         """A configuration at the drawer's handle (a few approach points are tried), or at the
@@ -461,7 +481,7 @@ class KitchenModel:
                      generators=(Generator("inv-kin", (Q,), self.g_button),)),
         )
         types = {"movable": None, "short": "movable", "tall": "movable", "drawer": None}
-        return Domain("kitchen", _tests(), ops, types=types, conflicts=(*CONFLICTS, Occludes(self.b)))
+        return Domain("kitchen", _tests(), ops, types=types, conflicts=(*CONFLICTS, self.occludes))
 
     def g_button_or_handle(self, b: dict[Var, Any], goal: Any, bel: KitchenBelief, ctx: Any) -> Any:
         if b.get(D) not in bel.containers:
