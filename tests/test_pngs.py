@@ -26,24 +26,7 @@ from nowplan.planning.hff import RelaxedHeuristic
 from nowplan.planning.postprocess import eliminate_actions
 from nowplan.planning.task import Task, build_task
 
-PDDL = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl"
-PROBLEMS = sorted((d.name, p.name) for d in PDDL.iterdir() if d.is_dir() for p in d.glob("p*.pddl"))
-
-_cls, _why = native._load()
-needs_kernel = pytest.mark.skipif(_cls is None, reason=f"{_why}: only the Python code can be tested")
-
-
-@pytest.fixture
-def mode(monkeypatch: pytest.MonkeyPatch) -> Iterator[Callable[[str], None]]:
-    def set_mode(m: str) -> None:
-        monkeypatch.setenv(native.ENV, "1" if m == "python" else "0")
-
-    yield set_mode
-
-
-def pddl_task(domain: str, problem: str) -> Task:
-    p = load_pddl(str(PDDL / domain / "domain.pddl"), str(PDDL / domain / problem))
-    return build_task(p.domain, p.objects, p.init, p.goal, flat_levels(), lambda a: a.cost(p.init))
+from kernel_support import PDDL, PROBLEMS, needs_kernel, pddl_task
 
 
 def int_task(nfacts: int, actions: list[tuple[list[int], list[int], list[int], float]], init: list[int],
