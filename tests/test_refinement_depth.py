@@ -85,7 +85,9 @@ def test_line_is_refined_in_one_concrete_plan_not_a_push_per_cell():
         m = run_episode(ep, parse_strategy(strategy, max_depth=16), trace=tr)
         assert m.outcome is Outcome.REACHED, (strategy, m.reason)
         assert m.actions == 29  # the shortest path
-        assert _deepest(tr) <= 3, strategy  # root, the abstract plan, its concrete refinement
+        # root, the abstract plan, one swapped-in sibling's plan (a first swap is refined as seed 002
+        # refines), its concrete refinement; before the floors: 16 deep and failing
+        assert _deepest(tr) <= 4, strategy
 
 
 @pytest.mark.timeout(120)
@@ -97,7 +99,7 @@ def test_free_moves_refine_to_the_direct_move():
     m = run_episode(ep, parse_strategy("hpn", max_depth=12), trace=tr)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.actions == 1 and m.execution_cost == 19.0  # the one direct move
-    assert _deepest(tr) <= 3
+    assert _deepest(tr) <= 4  # as above: one swap allowed, the second floored
 
 
 def test_a_stack_deeper_than_allowed_says_what_was_refined():
@@ -150,4 +152,4 @@ def test_pieces_arm_moves_are_refined_in_one_plan(strategy, seed):
     m = run_episode(spec.scenario("tiny-disturbed")(seed), parse_strategy(strategy, base_planner=spec.planner),
                     seed=seed, trace=tr)
     assert m.outcome is Outcome.REACHED, m.reason
-    assert _deepest(tr) <= 4  # root, the pieces' plan, a piece's move, the arm's move
+    assert _deepest(tr) <= 5  # root, the pieces' plan, a piece's move, the arm's move, one swap

@@ -487,7 +487,7 @@ class Executive:
                     levels = flat_levels()
                 new = self.make_plan(step.goal, levels, f)
                 if new is not None and action is not None:
-                    new = refine_without_swaps(self, new, step.goal, levels, f)
+                    new = refine_without_swaps(self, new, step.goal, levels, f, action)
                 if new is None:
                     consecutive_failures += 1
                     if f.root and self.strategy.refine_flat and key not in self._flat_steps:
