@@ -207,8 +207,11 @@ def test_random_neighborhoods_are_valid_and_never_costlier(mode: Callable[[str],
     assert res.plan == plan or cost(task, res.plan) < cost(task, plan)
     if res.complete:  # every reachable state: no cheaper plan exists (checked by the optimal A*)
         opt = forward.search(task, method="astar", heuristic="max", cost_type="normal", weight=1.0)
-        assert opt.actions is not None
-        assert cost(task, res.plan) <= sum(task.cost[task.actions.index(a)] for a in opt.actions)
+        if math.isfinite(cost(task, res.plan)):
+            assert opt.actions is not None
+            assert cost(task, res.plan) <= sum(task.cost[task.actions.index(a)] for a in opt.actions)
+        else:  # every plan needs an action of infinite cost, which A* never applies
+            assert opt.actions is None
 
 
 @needs_kernel
@@ -221,3 +224,16 @@ def test_random_neighborhoods_are_identical(mode: Callable[[str], None], task: T
         return
     py, c = both(mode, task, plan, limit)
     assert py == c
+
+
+def test_a_plan_through_an_infinite_cost_action_is_kept_when_no_finite_plan_exists() -> None:
+    """Hypothesis found it: the only plans need an action of infinite cost; the complete
+    neighborhood keeps such a plan and the optimal A* (which never applies one) finds none."""
+    task = int_task(2, [([], [0], [], math.inf), ([], [0], [1], 0.0), ([], [1], [0], 0.0)], [], [0, 1])
+    plan = first_plan(task)
+    assert plan is not None
+    res = pngs.neighborhood_plan(task, plan, 1, task.cost)
+    assert reaches_goal(task, res.plan) and res.complete
+    assert math.isinf(cost(task, res.plan))
+    opt = forward.search(task, method="astar", heuristic="max", cost_type="normal", weight=1.0)
+    assert opt.actions is None
