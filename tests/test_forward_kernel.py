@@ -16,7 +16,7 @@ import logging
 import math
 import random
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any, cast
 
@@ -24,9 +24,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from nowplan.core.atoms import Atom
 from nowplan.core.levels import flat_levels
-from nowplan.core.operators import Action
 from nowplan.io.logistics_gen import generate_logistics
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning import anytime, forward, native
@@ -34,7 +32,7 @@ from nowplan.planning.hff import RelaxedHeuristic
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.task import Task, build_task
 
-from kernel_support import PDDL, PROBLEMS, needs_kernel, pddl_task
+from kernel_support import PDDL, PROBLEMS, int_task, needs_kernel, pddl_task
 
 _cls, _why = native._load()
 
@@ -228,19 +226,6 @@ def test_improvement_stops_at_the_same_call(mode: Callable[[str], None], stop_af
 
 
 # --------------------------------------------------------------------------- random integer tasks
-
-
-def int_task(nfacts: int, actions: list[tuple[list[int], list[int], list[int], float]], init: list[int],
-             goal: list[int]) -> Task:
-    """A task in build_task's form (sorted ids, deletes not added) with stand-in atoms and actions."""
-    pre = [tuple(sorted(set(p))) for p, _, _, _ in actions]
-    add = [tuple(sorted(set(a))) for _, a, _, _ in actions]
-    dele = [tuple(sorted(set(d) - set(a))) for (_, _, d, _), a in zip(actions, add, strict=True)]
-    facts = [Atom(f"f{i}") for i in range(nfacts)]
-    task = Task(facts, {a: i for i, a in enumerate(facts)}, cast(list[Action], list(range(len(actions)))),
-                pre, add, dele, [c for _, _, _, c in actions], frozenset(init), tuple(sorted(set(goal))))
-    task.index_preconditions()
-    return task
 
 
 COSTS = st.sampled_from([0.0, 1.0, 1.0, 2.0, 3.0, 0.5, 0.1, 2.5, 3e6, math.inf])

@@ -9,36 +9,18 @@ the compiled kernel as in the Python reference.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
-from pathlib import Path
-from typing import cast
+from collections.abc import Callable
 
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from nowplan.core.atoms import Atom
-from nowplan.core.levels import flat_levels
-from nowplan.core.operators import Action
-from nowplan.io.pddl_read import load_pddl
 from nowplan.planning import anytime, forward, native, pngs
 from nowplan.planning.hff import RelaxedHeuristic
 from nowplan.planning.postprocess import eliminate_actions
-from nowplan.planning.task import Task, build_task
+from nowplan.planning.task import Task
 
-from kernel_support import PDDL, PROBLEMS, needs_kernel, pddl_task
-
-
-def int_task(nfacts: int, actions: list[tuple[list[int], list[int], list[int], float]], init: list[int],
-             goal: list[int]) -> Task:
-    pre = [tuple(sorted(set(p))) for p, _, _, _ in actions]
-    add = [tuple(sorted(set(a))) for _, a, _, _ in actions]
-    dele = [tuple(sorted(set(d) - set(a))) for (_, _, d, _), a in zip(actions, add, strict=True)]
-    facts = [Atom(f"f{i}") for i in range(nfacts)]
-    task = Task(facts, {a: i for i, a in enumerate(facts)}, cast(list[Action], list(range(len(actions)))),
-                pre, add, dele, [c for _, _, _, c in actions], frozenset(init), tuple(sorted(set(goal))))
-    task.index_preconditions()
-    return task
+from kernel_support import PDDL, PROBLEMS, int_task, needs_kernel, pddl_task
 
 
 def cost(task: Task, plan: list[int]) -> float:
