@@ -66,7 +66,9 @@ def test_the_planned_placement_is_kept_while_the_goal_leaves_it_free() -> None:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("strategy, seed", [("online", 2), ("online+reuse", 8)])
+# online seed 8 ended "no plan for the goal" after its pick at 2771927; with fog priced by passage
+# (issue 17) seed 2 no longer picks, so online+reuse runs seed 1, which does
+@pytest.mark.parametrize("strategy, seed", [("online", 8), ("online+reuse", 1)])
 def test_the_online_policy_reaches_the_goal_after_a_pick(strategy: str, seed: int) -> None:
     from nowplan.acting.run import run_episode
     from nowplan.acting.strategy import parse_strategy
