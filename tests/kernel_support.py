@@ -5,10 +5,12 @@ The ``mode`` fixture (which code the next search uses) is in ``conftest.py``.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import cast
 
 import pytest
+from hypothesis import strategies as st
 
 from nowplan.core.atoms import Atom
 from nowplan.core.levels import flat_levels
@@ -41,3 +43,17 @@ def int_task(nfacts: int, actions: list[tuple[list[int], list[int], list[int], f
                 pre, add, dele, [c for _, _, _, c in actions], frozenset(init), tuple(sorted(set(goal))))
     task.index_preconditions()
     return task
+
+
+# costs of random actions: zero, fractions, huge and infinite ones
+COSTS = st.sampled_from([0.0, 1.0, 1.0, 2.0, 3.0, 0.5, 0.1, 2.5, 3e6, math.inf])
+
+
+@st.composite
+def int_tasks(draw: st.DrawFn) -> Task:
+    """Random small integer tasks (up to 9 facts, 14 actions)."""
+    n = draw(st.integers(1, 9))
+    fact = st.integers(0, n - 1)
+    ids = st.lists(fact, max_size=3)
+    actions = draw(st.lists(st.tuples(ids, st.lists(fact, min_size=1, max_size=3), ids, COSTS), max_size=14))
+    return int_task(n, actions, draw(st.lists(fact, max_size=4)), draw(st.lists(fact, min_size=1, max_size=3)))

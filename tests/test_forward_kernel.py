@@ -32,7 +32,7 @@ from nowplan.planning.hff import RelaxedHeuristic
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.task import Task, build_task
 
-from kernel_support import PDDL, PROBLEMS, int_task, needs_kernel, pddl_task
+from kernel_support import PDDL, PROBLEMS, int_task, int_tasks, needs_kernel, pddl_task
 
 _cls, _why = native._load()
 
@@ -226,18 +226,6 @@ def test_improvement_stops_at_the_same_call(mode: Callable[[str], None], stop_af
 
 
 # --------------------------------------------------------------------------- random integer tasks
-
-
-COSTS = st.sampled_from([0.0, 1.0, 1.0, 2.0, 3.0, 0.5, 0.1, 2.5, 3e6, math.inf])
-
-
-@st.composite
-def int_tasks(draw: st.DrawFn) -> Task:
-    n = draw(st.integers(1, 9))
-    fact = st.integers(0, n - 1)
-    ids = st.lists(fact, max_size=3)
-    actions = draw(st.lists(st.tuples(ids, st.lists(fact, min_size=1, max_size=3), ids, COSTS), max_size=14))
-    return int_task(n, actions, draw(st.lists(fact, max_size=4)), draw(st.lists(fact, min_size=1, max_size=3)))
 
 
 @needs_kernel

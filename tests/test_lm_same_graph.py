@@ -25,7 +25,7 @@ from nowplan.io.pddl_read import load_pddl
 from nowplan.planning.landmarks import LandmarkCount, landmark_sets
 from nowplan.planning.axioms import relaxed_task
 from nowplan.planning.hff import RelaxedHeuristic
-from nowplan.planning.lm_orders import fact_adders, prime_first_achievers, relaxed_order
+from nowplan.planning.lm_orders import prime_first_achievers, relaxed_order
 from nowplan.planning.task import Task, build_task
 from test_lm_first_achievers import tasks
 
@@ -136,25 +136,6 @@ def test_random_tasks_keep_the_graph(task: Task, data: st.DataObject) -> None:
     extra = data.draw(st.lists(st.sampled_from(sorted(task.init)), max_size=3)) if task.init else []
     goal = tuple(sorted(set(task.goal) | set(extra)))
     _same(_copy(task, goal=goal), orders=data.draw(st.booleans()))
-
-
-@settings(max_examples=200, deadline=None)
-@given(task=tasks(), data=st.data())
-def test_patched_adders_index_is_the_built_one(task: Task, data: st.DataObject) -> None:
-    """Tasks one after another with a few add rows changed: the index patched from a recent one is exact."""
-    n = len(task.facts)
-    add = list(task.add)
-    for _ in range(data.draw(st.integers(1, 4))):
-        if add:
-            for k in data.draw(st.lists(st.integers(0, len(add) - 1), max_size=2)):
-                add[k] = tuple(sorted(set(data.draw(st.lists(st.integers(0, n - 1), max_size=3)))))
-        t = Task(task.facts, task.index, task.actions, task.pre, list(add), task.dele, task.cost, task.init,
-                 task.goal)
-        expected: dict[int, list[int]] = {}
-        for a, adds in enumerate(add):
-            for e in adds:
-                expected.setdefault(e, []).append(a)
-        assert fact_adders(t) == expected
 
 
 @settings(max_examples=300, deadline=None)

@@ -20,7 +20,7 @@ from nowplan.planning.hff import RelaxedHeuristic
 from nowplan.planning.postprocess import eliminate_actions
 from nowplan.planning.task import Task
 
-from kernel_support import PDDL, PROBLEMS, int_task, needs_kernel, pddl_task
+from kernel_support import PDDL, PROBLEMS, int_task, int_tasks, needs_kernel, pddl_task
 
 
 def cost(task: Task, plan: list[int]) -> float:
@@ -162,18 +162,6 @@ def test_the_kernel_refuses_a_plan_that_does_not_apply(mode: Callable[[str], Non
         k.neighborhood(task.init, [7], 100, task.cost)
     with pytest.raises(ValueError):
         k.neighborhood(task.init, [0], 100, [1.0])
-
-
-COSTS = st.sampled_from([0.0, 1.0, 1.0, 2.0, 3.0, 0.5, 2.5, 3e6, math.inf])
-
-
-@st.composite
-def int_tasks(draw: st.DrawFn) -> Task:
-    n = draw(st.integers(1, 9))
-    fact = st.integers(0, n - 1)
-    ids = st.lists(fact, max_size=3)
-    actions = draw(st.lists(st.tuples(ids, st.lists(fact, min_size=1, max_size=3), ids, COSTS), max_size=14))
-    return int_task(n, actions, draw(st.lists(fact, max_size=4)), draw(st.lists(fact, min_size=1, max_size=3)))
 
 
 @pytest.mark.timeout(300, method="thread")  # hypothesis and the signal method: see pyproject.toml

@@ -66,6 +66,12 @@ def test_a_kept_structure_gives_the_task_a_fresh_build_gives() -> None:
         for f in kept.pre[k]:
             assert k in kept.by_pre[f]
     assert sorted(kept.no_pre) == [k for k in range(len(kept.actions)) if not kept.pre[k]]
+    # the adders index (landmarks read it) follows the moved rows too
+    adders: dict[int, list[int]] = {}
+    for k, row in enumerate(kept.add):
+        for f in row:
+            adders.setdefault(f, []).append(k)
+    assert kept.memo["adders"] == adders
 
 
 def test_a_negative_goal_gives_the_fresh_task() -> None:

@@ -40,7 +40,7 @@ The executive builds a graph per planner call (a few hundred per HPN run),
 mostly for goals that hold but for an atom or two, so the per-call build
 reads only what the graph needs: the landmark sets of the goal's cone
 (:func:`landmark_sets` with ``goal``), first achievers from the adders index
-(patched from the previous call's, :func:`nowplan.planning.lm_orders.fact_adders`)
+(kept with the task structure across calls, :func:`nowplan.planning.lm_orders.fact_adders`)
 and, given lama's compiled kernel, the relaxed exploration, the fixpoint and the
 labelled propagation in C.  The graph is the same (tests/test_lm_same_graph.py
 against a frozen copy of the earlier construction); on auto-HPN over logistics

@@ -34,9 +34,6 @@ that could be carried along are still in room A.
 
 from __future__ import annotations
 
-import bisect
-import itertools
-import operator
 from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING
@@ -233,55 +230,19 @@ def relaxed_reached(task: Task) -> frozenset[int]:
 def fact_adders(task: Task) -> dict[int, list[int]]:
     """Fact -> the actions that add it, ascending (made once per task; the lists are shared, read only).
 
-    The index depends on ``task.add`` alone.  The executive's calls on one
-    problem differ in a few rows (the actions their level maps override), so
-    the index of a recent task with as many actions is patched where rows
-    differ instead of built again from every action.
+    A task from :func:`nowplan.planning.task.build_task` brings it: kept with the
+    task's structure across the executive's calls, the rows its level map
+    overrides patched.
     """
     hit = task.memo.get("adders")
     if hit is None:
-        rows = tuple(task.add)
-        hit = _patched_adders(rows)
-        if hit is None:
-            hit = {}
-            for a, adds in enumerate(rows):
-                for e in adds:
-                    hit.setdefault(e, []).append(a)
-        _RECENT_ADDERS.appendleft((rows, hit))
+        hit = {}
+        for a, adds in enumerate(task.add):
+            for e in adds:
+                hit.setdefault(e, []).append(a)
         task.memo["adders"] = hit
     assert isinstance(hit, dict)
     return hit
-
-
-_RECENT_ADDERS: deque[tuple[tuple[tuple[int, ...], ...], dict[int, list[int]]]] = deque(maxlen=4)
-
-
-def _patched_adders(rows: tuple[tuple[int, ...], ...]) -> dict[int, list[int]] | None:
-    """The adders index of ``rows`` from a recent one differing in at most an eighth of the rows."""
-    for old_rows, old in list(_RECENT_ADDERS):  # a snapshot: iteration never sees the deque change
-        if len(old_rows) != len(rows):
-            continue
-        diff = list(itertools.compress(itertools.count(), map(operator.ne, rows, old_rows)))
-        if len(diff) > len(rows) // 8:
-            continue
-        new = dict(old)
-        touched: dict[int, list[int]] = {}
-        for k in diff:
-            for e in old_rows[k]:
-                if e not in touched:
-                    touched[e] = list(new[e])
-                touched[e].remove(k)
-            for e in rows[k]:
-                if e not in touched:
-                    touched[e] = list(new.get(e, ()))
-                bisect.insort(touched[e], k)
-        for e, acts in touched.items():
-            if acts:
-                new[e] = acts
-            else:
-                del new[e]
-        return new
-    return None
 
 
 def disjunctive_landmarks(task: Task, landmarks: Iterable[int], lm: LMSets | None = None

@@ -130,6 +130,7 @@ class _Structure:
     rows: _Rows  # makes an action's row at another level (the level map's overrides)
     position: dict[Any, int] = field(default_factory=dict)  # action key -> its id
     costs: list[float] | None = None  # each action's cost, where every cost is state-free
+    adders: dict[int, list[int]] | None = None  # fact -> the actions whose row adds it, ascending
 
 
 _STRUCTURES_PER_GROUNDING = 8
@@ -204,7 +205,28 @@ def build_task(
     if st.mutex is not None:
         task.memo["mutex"] = st.mutex
     task.memo["position"] = st.position
+    task.memo["adders"] = _adders(st, add, moved)
     return task
+
+
+def _adders(st: _Structure, add: list[tuple[int, ...]], moved: list[int]) -> dict[int, list[int]]:
+    """Fact -> the actions adding it (landmarks read it): the structure's, with the moved rows patched."""
+    if st.adders is None:
+        st.adders = {}
+        for k, row in enumerate(st.add):
+            for f in row:
+                st.adders.setdefault(f, []).append(k)
+    if not moved:
+        return st.adders
+    out = dict(st.adders)
+    for k in moved:
+        for f in st.add[k]:
+            out[f] = [x for x in out[f] if x != k]
+        for f in add[k]:
+            acts = list(out.get(f, ()))
+            bisect.insort(acts, k)
+            out[f] = acts
+    return {f: r for f, r in out.items() if r}
 
 
 def _unindex(by_pre: dict[int, list[int]], no_pre: list[int], pre: tuple[int, ...], k: int) -> None:
