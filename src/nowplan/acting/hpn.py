@@ -29,9 +29,9 @@ from nowplan.acting.progress import (
     Cycle, CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason,
 )
 from nowplan.acting.refine import refine_without_swaps
+from nowplan.acting.refine_flat import FlatSteps, refinement_key
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import HasHeuristic, check_belief
-from nowplan.belief.symbolic import SymbolicBelief
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap, flat_levels
@@ -44,9 +44,6 @@ from nowplan.trace import Trace
 from nowplan.worlds.base import Observation, World
 
 log = logging.getLogger(__name__)
-
-CYCLE_VISITS = 3  # refine-flat: visits of one symbolic state that count as a cycle
-
 
 @dataclass
 class Frame:
@@ -108,11 +105,8 @@ class Executive:
         self.last_observation = Observation()
         self.last_action: Action | None = None
         self.last_failed: tuple[Action, Observation] | None = None  # the last action that failed
-        # refine-flat: steps (by refinement_key) whose abstract plan could not be refined; their
-        # goal is planned concretely from then on (an ordered-monotonic hierarchy, e.g. an automatic
-        # one, need not be downward refinable)
-        self._flat_steps: set[Hashable] = set()
-        self._visits: Counter[frozenset[Any]] = Counter()  # refine-flat: symbolic states seen after actions
+        # refine-flat (acting/refine_flat.py): steps whose goal is planned concretely from then on
+        self._flat_steps = FlatSteps()
         # first steps learnt not to be refinable from the current belief (acting/backtrack.py)
         self.nogoods = Nogoods()
         check_supported(self.domain, strategy)
@@ -387,44 +381,7 @@ class Executive:
     def goal_holds(self) -> bool:
         return self.domain.satisfies(self.belief, self.problem.goal)
 
-    @staticmethod
-    def refinement_key(f: Frame) -> Hashable:
-        """What the loop guard counts refinements of: a step of a plan *by content*.
-
-        A plan that fails is often replanned into the very same plan (the belief has not
-        changed); counting per plan id would give every copy a fresh allowance, and the
-        allowances multiply down the levels of the stack.  Counting per content bounds the
-        refinements of one step of one plan, however often it is remade, until the next action.
-        """
-        if f.root:
-            return ("root", f.i)
-        acts = tuple(s.action.key if s.action is not None else None for s in f.plan.steps)
-        return (acts, f.plan.goal, f.i)
-
-    def _check_cycle(self) -> None:
-        """refine-flat: a symbolic state reached a third time means the hierarchical plans cycle
-        (refinements that succeed but undo each other); plan the current root goal concretely."""
-        if not isinstance(self.belief, SymbolicBelief) or not self.stack or not self.stack[0].root:
-            return
-        obs = self.last_observation
-        if not obs.success or obs.exogenous:
-            # a failed action or the world's own change is news: states seen before it were
-            # left for a reason the plans did not know, so revisiting them is no cycle
-            self._visits.clear()
-            return
-        state = frozenset(self.belief.atoms())
-        self._visits[state] += 1
-        root = self.stack[0]
-        key = self.refinement_key(root)
-        if self._visits[state] < CYCLE_VISITS or key in self._flat_steps:
-            return
-        self._flat_steps.add(key)
-        self.trace.emit("note", plan_id=root.plan_id,
-                        text=f"executive: refine-flat: state reached {CYCLE_VISITS} times: the hierarchical "
-                             "plans cycle; planning the goal concretely")
-        while len(self.stack) > 1:
-            self.pop("cycle")
-        self._visits.clear()
+    refinement_key = staticmethod(refinement_key)
 
     # -- the loop ------------------------------------------------------------------
     def run(self) -> Metrics:
@@ -507,7 +464,7 @@ class Executive:
                         break
                     # the refined step cannot be achieved from here: learn it and re-refine one
                     # level up; with refine-flat, a root left with no abstract plan, or plans that
-                    # cycle (_check_cycle), plan the goal concretely
+                    # cycle (FlatSteps.check_cycle), plan the goal concretely
                     self.backtrack(f, action)
                     continue
                 consecutive_failures = 0
@@ -516,7 +473,7 @@ class Executive:
                 self.execute(f, action)
                 self.reconsider()
                 if self.strategy.refine_flat:
-                    self._check_cycle()
+                    self._flat_steps.check_cycle(self)
                 stop = self.watch(self.last_observation)
                 if stop is not None:
                     outcome, reason = stop

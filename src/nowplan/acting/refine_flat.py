@@ -1,0 +1,75 @@
+"""refine-flat: plan a goal concretely when its abstract plans cannot be refined or cycle.
+
+An ordered-monotonic hierarchy (an automatic one, say) need not be downward
+refinable: an abstract plan may have no refinement, or refinements that succeed
+may undo each other so that the concrete state cycles.  The executive keeps a
+:class:`FlatSteps` record: the steps (by :func:`refinement_key`) whose goal is
+planned at the flat level from then on, and the symbolic states seen after
+actions since the last news (a failed action or an exogenous change).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Hashable
+from typing import TYPE_CHECKING, Any
+
+from nowplan.belief.symbolic import SymbolicBelief
+
+if TYPE_CHECKING:
+    from nowplan.acting.hpn import Executive, Frame
+
+CYCLE_VISITS = 3  # visits of one symbolic state that count as a cycle
+
+
+def refinement_key(f: Frame) -> Hashable:
+    """What the loop guard counts refinements of: a step of a plan *by content*.
+
+    A plan that fails is often replanned into the very same plan (the belief has not
+    changed); counting per plan id would give every copy a fresh allowance, and the
+    allowances multiply down the levels of the stack.  Counting per content bounds the
+    refinements of one step of one plan, however often it is remade, until the next action.
+    """
+    if f.root:
+        return ("root", f.i)
+    acts = tuple(s.action.key if s.action is not None else None for s in f.plan.steps)
+    return (acts, f.plan.goal, f.i)
+
+
+class FlatSteps:
+    """The steps planned concretely, and the states visited since the last news."""
+
+    def __init__(self) -> None:
+        self.steps: set[Hashable] = set()
+        self.visits: Counter[frozenset[Any]] = Counter()
+
+    def __contains__(self, key: Hashable) -> bool:
+        return key in self.steps
+
+    def add(self, key: Hashable) -> None:
+        self.steps.add(key)
+
+    def check_cycle(self, ex: Executive) -> None:
+        """A symbolic state reached a third time means the hierarchical plans cycle
+        (refinements that succeed but undo each other): plan the current root goal concretely."""
+        if not isinstance(ex.belief, SymbolicBelief) or not ex.stack or not ex.stack[0].root:
+            return
+        obs = ex.last_observation
+        if not obs.success or obs.exogenous:
+            # a failed action or the world's own change is news: states seen before it were
+            # left for a reason the plans did not know, so revisiting them is no cycle
+            self.visits.clear()
+            return
+        state = frozenset(ex.belief.atoms())
+        self.visits[state] += 1
+        root = ex.stack[0]
+        key = refinement_key(root)
+        if self.visits[state] < CYCLE_VISITS or key in self.steps:
+            return
+        self.steps.add(key)
+        ex.trace.emit("note", plan_id=root.plan_id,
+                      text=f"executive: refine-flat: state reached {CYCLE_VISITS} times: the hierarchical "
+                           "plans cycle; planning the goal concretely")
+        while len(ex.stack) > 1:
+            ex.pop("cycle")
+        self.visits.clear()
