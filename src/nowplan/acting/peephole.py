@@ -73,6 +73,12 @@ class PeepholeConfig:
     # each shortcut and the full search); 0: the planner's own budgets.  A combination whose
     # refinement needs more is given up in this belief, as HPN would not have made it
     joint_nodes: int = 2_000
+    # searches below a combined step regress facts that hold through zero-cost operators into other
+    # facts that hold (PlannerConfig.held_rewrites).  Off: a joint plan that would undo such a fact
+    # and make it true again is not looked for (the steps are then refined one at a time, as HPN
+    # does), and A* no longer meets every subset of the held facts rewritten (on marsupial, each
+    # held same_city of a package the subgoal does not move doubled a joint search's nodes)
+    held_rewrites: bool = False
 
 
 class Reorderer:
@@ -405,10 +411,13 @@ class Peephole(Mechanism):
         out = None
         if self.config.joint_search and joint is not None and joint == parent.i:
             out = replace(config, serialization=False, weight=self.config.joint_weight)
+        below = _combination(parent) is not None
         cap = self.config.joint_nodes
-        if cap > 0 and _combination(parent) is not None:
+        if cap > 0 and below:
             base = out or config
             out = replace(base, max_nodes=min(base.max_nodes, cap), shortcut_nodes=min(base.shortcut_nodes, cap))
+        if below and not self.config.held_rewrites:
+            out = replace(out or config, held_rewrites=False)
         return out
 
 

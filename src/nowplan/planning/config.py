@@ -51,6 +51,12 @@ class PlannerConfig:
     forward_heuristic: Literal["ff", "add", "max"] = "ff"
     # action costs as the forward heuristic sees them (FD's adapt_costs): one | plusone | normal
     cost_type: Literal["one", "plusone", "normal"] = "plusone"
+    # regress facts that hold through zero-cost operators into other facts that hold (a "pure
+    # rewrite": same cost, same unmet facts, e.g. a held same_city(p, v) into the at(p, l) it is
+    # inferred from).  Needed only by plans that undo such a fact and make it true again; without
+    # them A* meets every subset of the held facts rewritten (2^k copies of each subgoal).  False
+    # leaves them out (RCHPN's joint searches, acting/peephole.py)
+    held_rewrites: bool = True
 
 
 

@@ -287,6 +287,8 @@ class _Search:
         reach = Reach(self.domain) if defer else None
         exp = 0
         regress_, forbidden, inf, push, fholds = regress, self.forbidden_first, math.inf, heapq.heappush, self.fholds
+        no_rewrites = not self.config.held_rewrites
+        pure_rewrite = self.pure_rewrite
 
         def make(node: Node, focus: int, gcost: float, index: NodeIndex, goal_of: Callable[[], Goal], legacy: bool,
                  act: Action, info: ActionFacts, cost: float, st: Stamp) -> None:
@@ -300,6 +302,8 @@ class _Search:
                 pre = None if g is None else T.ids_of(g.atoms)
             if pre is None:
                 return
+            if no_rewrites and cost == 0.0 and pure_rewrite(node[0], pre):
+                return  # a zero-cost rewrite of held facts into held facts (PlannerConfig.held_rewrites)
             if forbidden and act.key in forbidden and self.satisfied(pre):
                 return  # it would be the plan's first step: learnt not to be refinable from here
             child = (pre, focus)
@@ -400,6 +404,19 @@ class _Search:
                     push(frontier, (gcost + c + weight * b, b, (exp, targets[0][0], 0), next(counter),
                                     Deferred(here, targets)))
         return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
+
+    def pure_rewrite(self, fs: frozenset[int], pre: frozenset[int]) -> bool:
+        """Whether ``pre`` only trades facts of ``fs`` that hold for new facts that hold.
+
+        Through a zero-cost operator such a child has its parent's cost and unmet facts, and asks
+        more of the belief (it names facts the parent does not); a child that only drops held
+        facts (``pre`` a subset of ``fs``) is weaker than its parent and is not a pure rewrite.
+        """
+        new = pre - fs
+        if not new:
+            return False
+        fholds = self.fholds
+        return all(fholds(f) for f in new) and all(fholds(f) for f in fs - pre)
 
     def _listed_before(self, x: Expansion, act: Action, info: ActionFacts, ti: int) -> tuple[int, int] | None:
         """``(target, achiever)`` where ``act`` comes first among the held targets before ``x.allowed[ti]``."""
