@@ -69,10 +69,11 @@ class PeepholeConfig:
     # estimator's CPU (docs/peephole.md), so the default stays the engine's default heuristic
     estimate_search: PlannerConfig | None = field(default_factory=lambda: estimate_config(None))
     estimate_nodes: int = 300
-    # node budget of every search below a combined step (its joint subgoal and their refinements,
-    # each shortcut and the full search); 0: the planner's own budgets.  A combination whose
-    # refinement needs more is given up in this belief, as HPN would not have made it
-    joint_nodes: int = 2_000
+    # node budget of every search below a combined step (its joint subgoal and their refinements:
+    # the call's shortcuts and full search together, PlannerConfig.call_nodes); 0: the planner's
+    # own budgets.  A combination whose refinement needs more is given up in this belief, as HPN
+    # would not have made it
+    joint_nodes: int = 500
     # searches below a combined step regress facts that hold through zero-cost operators into other
     # facts that hold (PlannerConfig.held_rewrites).  Off: a joint plan that would undo such a fact
     # and make it true again is not looked for (the steps are then refined one at a time, as HPN
@@ -415,7 +416,8 @@ class Peephole(Mechanism):
         cap = self.config.joint_nodes
         if cap > 0 and below:
             base = out or config
-            out = replace(base, max_nodes=min(base.max_nodes, cap), shortcut_nodes=min(base.shortcut_nodes, cap))
+            out = replace(base, max_nodes=min(base.max_nodes, cap), shortcut_nodes=min(base.shortcut_nodes, cap),
+                          call_nodes=cap)
         if below and not self.config.held_rewrites:
             out = replace(out or config, held_rewrites=False)
         return out

@@ -57,6 +57,10 @@ class PlannerConfig:
     # them A* meets every subset of the held facts rewritten (2^k copies of each subgoal).  False
     # leaves them out (RCHPN's joint searches, acting/peephole.py)
     held_rewrites: bool = True
+    # expansions of one call over all its attempts (shortcuts and full search); 0: each attempt has
+    # its own budget (shortcut_nodes, max_nodes) only.  RCHPN bounds the searches below a combined step
+    # with it, so a refinement that fails costs one budget, not one per attempt
+    call_nodes: int = 0
 
 
 

@@ -144,22 +144,33 @@ def _plan(
     )
     method = "full"
     unmet = [a for a in goal.atoms if not search.fholds(search.table.id(a))]
+
+    def budget(nodes: int) -> int:
+        """An attempt's expansions: its own budget, within what is left of ``call_nodes``."""
+        return nodes if config.call_nodes <= 0 else min(nodes, config.call_nodes - search.expanded)
+
     if config.serialization and len(goal) > 1:
         order = sorted(goal.atoms, key=_atom_order)  # the atoms' own order, compared in C
         rng.shuffle(order)
         search.use(config.shortcut_heuristic or config.heuristic)
-        result = search.run(goal, config.shortcut_nodes, order=order)
+        result = search.run(goal, budget(config.shortcut_nodes), order=order)
         search.use(config.heuristic)
         attempts.append(f"serialization:{result[0].value}")
         method = "serialization"
-    if result[0] is not PlanStatus.SOLVED and config.monotonic and len(goal) > 1 and unmet != list(goal.atoms):
+    spent = config.call_nodes > 0 and search.expanded >= config.call_nodes
+    if (result[0] is not PlanStatus.SOLVED and config.monotonic and len(goal) > 1 and unmet != list(goal.atoms)
+            and not spent):
         protect = frozenset(a for a in goal.atoms if search.holds(a))
         if search.now() < search.deadline:
-            result = search.run(goal, config.shortcut_nodes, protect=protect)
+            result = search.run(goal, budget(config.shortcut_nodes), protect=protect)
             attempts.append(f"monotonic:{result[0].value}")
             method = "monotonic"
-    if result[0] is not PlanStatus.SOLVED and search.now() < search.deadline:
-        result = search.run(goal, config.max_nodes)
+    spent = config.call_nodes > 0 and search.expanded >= config.call_nodes
+    if result[0] is not PlanStatus.SOLVED and spent:
+        result = (PlanStatus.NODE_LIMIT, None,
+                  f"expanded {search.expanded} nodes over the call's attempts without a plan (call_nodes)")
+    elif result[0] is not PlanStatus.SOLVED and search.now() < search.deadline:
+        result = search.run(goal, budget(config.max_nodes))
         attempts.append(f"full:{result[0].value}")
         method = "full"
     elif result[0] is not PlanStatus.SOLVED:
