@@ -361,7 +361,13 @@ def test_without_a_node_budget_below_combined_steps_the_planners_budgets_apply()
     m = Peephole(PeepholeConfig(joint_nodes=0))
     combo = frozenset({("carry", ("x", "yard"))})
     parent = SimpleNamespace(plan_id=1, i=2, info={"under_joint": combo})
-    assert m.planner_config(SimpleNamespace(), parent, Goal(), PlannerConfig()) is None
+    out = m.planner_config(SimpleNamespace(), parent, Goal(), PlannerConfig())
+    base = PlannerConfig()
+    # only the held rewrites are left out (PeepholeConfig.held_rewrites, tests/test_joint_search.py)
+    assert out is not None and not out.held_rewrites
+    assert (out.max_nodes, out.shortcut_nodes, out.call_nodes) == (base.max_nodes, base.shortcut_nodes, 0)
+    plain = Peephole(PeepholeConfig(joint_nodes=0, held_rewrites=True))
+    assert plain.planner_config(SimpleNamespace(), parent, Goal(), PlannerConfig()) is None
 
 
 def test_estimates_can_use_the_executives_planner_settings():
