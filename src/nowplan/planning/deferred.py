@@ -39,7 +39,7 @@ from typing import Any
 from nowplan.core.atoms import Atom, Var
 from nowplan.core.domain import Domain
 from nowplan.planning.grounding_index import unify_effect
-from nowplan.planning.subgoals import NodeIndex
+from nowplan.planning.subgoals import ActionFacts, NodeIndex
 
 # eager generation order of a child: (parent's expansion number, target index, achiever index)
 Stamp = tuple[int, int, int]
@@ -73,6 +73,46 @@ class Deferred:
     def __init__(self, expansion: Expansion, targets: list[tuple[int, int]]) -> None:
         self.expansion = expansion
         self.targets = targets
+
+
+class Postponed:
+    """Successors of an unmet fact whose bound lies above their parent's: made when the entry comes first.
+
+    ``items`` are ``(action, facts, cost, stamp)`` as eager generation would
+    have made them (each already counted as tried for its expansion); the
+    entry's priority is ``(g + cost + weight · b, b)`` with ``b`` from
+    :func:`kept_cost`, at most every child's ``(f, h)``.
+    """
+
+    __slots__ = ("node", "focus", "g", "index", "goal_of", "items")
+
+    def __init__(self, node: Any, focus: int, g: float, index: NodeIndex, goal_of: Callable[[], Any],
+                 items: list[tuple[Any, ActionFacts, float, Stamp]]) -> None:
+        self.node = node
+        self.focus = focus
+        self.g = g
+        self.index = index
+        self.goal_of = goal_of
+        self.items = items
+
+
+def kept_cost(fluent: Sequence[int], info: ActionFacts, unmet: Sequence[tuple[int, float]]) -> float:
+    """The largest explored cost of an unmet fact (``(id, cost)``) that regressing through ``info`` keeps.
+
+    A fact whose fluent no effect and no kept precondition of the action sets
+    stays in the child as it is, so the child's relaxed estimate (h_max,
+    LM-cut, h_add) is at least its cost.
+    """
+    b = 0.0
+    touched: set[int] | None = None
+    for u, v in unmet:
+        if v > b:
+            if touched is None:
+                touched = {fluent[e] for e in info.all_effs}
+                touched.update(fluent[q] for q in info.pre)
+            if fluent[u] not in touched:
+                b = v
+    return b
 
 
 class Reach:

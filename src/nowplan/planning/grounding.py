@@ -24,7 +24,9 @@ from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
-from nowplan.planning.grounding_index import _effects_by_predicate, _shared, unify_effect
+from nowplan.planning.grounding_index import (
+    _effects_by_predicate, _per_atom, _per_state, _PerAtom, _PerState, _shared, point_state, unify_effect,
+)
 
 if TYPE_CHECKING:
     from nowplan.planning.ground_task import GroundTask
@@ -83,9 +85,23 @@ class Grounder:
         # per predicate: the operators (in order) with an effect of it, and those effects
         self._by_pred, self._gen_by_pred, self._gen_by_pred_nonempty = _effects_by_predicate(domain)
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
-        self._unify_cache: dict[tuple[int, Atom], list[dict[Var, Any]]] = {}
-        self._goal_free: dict[Atom, bool] = {}
-        self._read_plans: dict[Atom, Any] = {}
+        # per atom, what depends on the operators only (kept per domain with ``memo``: each call of a
+        # problem asks the same atoms again, and more of them the more objects there are)
+        per_atom = _per_atom(domain) if self.memo else _PerAtom()
+        self._unify_cache = per_atom.unified
+        self._goal_free = per_atom.goal_free
+        self._read_plans = per_atom.read_plans
+        # with a plain point belief, what depends on its state too is kept per state: the calls made
+        # between two actions (a step refined level by level) share their achievers and tests
+        self.per_state: _PerState | None = None
+        state = point_state(belief) if self.memo and self._facts_ok else None
+        ckey = _context_key(context) if state is not None else None
+        if state is not None and ckey is not None:
+            self.per_state = _per_state(domain, (id(state), self.signature, ckey, max_generator_values), state)
+            self._cache = self.per_state.achievers
+            self._gen_cache = self.per_state.by_reading
+            self._static_cache = self.per_state.holds  # (the domain's test, as the search's holds)
+        self._last_reading: tuple[Atom, Goal, tuple[Hashable, ...]] | None = None  # (a goal is immutable)
         self.kept = False  # was the last answer of achievers() kept (the same list object next time)?
         # ground actions of the domain, one object per instance (planners keep data on them)
         self._actions: dict[tuple[int, tuple[Any, ...]], Action] = domain.facts.actions
@@ -242,12 +258,17 @@ class Grounder:
         self, gen_entries: Sequence[tuple[int, Operator, tuple[Atom, ...]]], target: Atom, goal: Goal
     ) -> tuple[Hashable, ...] | None:
         """What the generators that achieve ``target`` read of ``goal``; ``None``: unknown."""
+        last = self._last_reading  # (the relaxation asks for a fact's key, then for its achievers)
+        if last is not None and last[0] is target and last[1] is goal:
+            return last[2]
         plan = self._read_plans.get(target, _UNSET)
         if plan is _UNSET:
             plan = self._read_plans[target] = self._read_plan(gen_entries, target)
         if plan is None:
             return None
-        return tuple([reads(b, goal) for reads, b in plan])
+        r = tuple([reads(b, goal) for reads, b in plan])
+        self._last_reading = (target, goal, r)
+        return r
 
     def _read_plan(
         self, gen_entries: Sequence[tuple[int, Operator, tuple[Atom, ...]]], target: Atom
@@ -445,6 +466,20 @@ class Grounder:
                 if later and not check(full):
                     continue
                 yield full
+
+
+def _context_key(context: PlanningContext | None) -> Hashable | None:
+    """What generators may read of ``context``, as a key; ``None`` where it cannot be one (a plan stack)."""
+    if context is None:
+        return ("none",)
+    if context.plan_stack:
+        return None
+    try:
+        key = ("extras", tuple(sorted(context.extras.items())))
+        hash(key)
+    except TypeError:
+        return None
+    return key
 
 
 class _FillPlan:

@@ -23,7 +23,7 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.config import PlannerConfig, _clock
 from nowplan.planning.context import PlanningContext
-from nowplan.planning.deferred import Deferred, Expansion, Reach, Stamp
+from nowplan.planning.deferred import Deferred, Expansion, Postponed, Reach, Stamp, kept_cost
 from nowplan.planning.ground_task import GroundTask
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
@@ -86,6 +86,9 @@ class _Search:
         self._fholds: dict[int, bool] = {}
         self._hv: dict[int, float] = {}
         self._costs: dict[tuple[str, tuple[Any, ...]], float] = {}
+        kept = self.grounder.per_state
+        if kept is not None:  # a plain point belief: the calls from its state share the tests and costs
+            self._holds, self._fholds, self._costs = kept.holds, kept.fholds, kept.costs
         self.expanded = 0
         self.generated = 0
         self.min_cost = min(
@@ -274,7 +277,7 @@ class _Search:
         h0 = self.h(root)
         # entries (f, h, stamp, seq, node or Deferred): the stamp is eager generation's order (deferred)
         first: Stamp = (-1, 0, 0)
-        frontier: list[tuple[float, float, Stamp, int, Node | Deferred]] = [
+        frontier: list[tuple[float, float, Stamp, int, Node | Deferred | Postponed]] = [
             (self.config.weight * h0, h0, first, next(counter), start)]
         best_g: dict[Node, float] = {start: 0.0}
         born: dict[Node, Stamp] = {start: first}
@@ -333,7 +336,12 @@ class _Search:
             push(frontier, (ng + weight * hh, hh, st, next(counter), child))
 
         while frontier:
-            item = heapq.heappop(frontier)[4]
+            top = heapq.heappop(frontier)
+            item = top[4]
+            if isinstance(item, Postponed):  # unmet facts' successors whose bound has come first
+                for act, info, cost, st in item.items:
+                    make(item.node, item.focus, item.g, item.index, item.goal_of, False, act, info, cost, st)
+                continue
             if isinstance(item, Deferred):  # ground the held targets and make their successors
                 x = item.expansion
                 for ti, target in item.targets:
@@ -372,6 +380,9 @@ class _Search:
             here: Expansion | None = None
             later: dict[tuple[float, float], list[tuple[int, int]]] = {}  # held targets by their bound
             unmet_costs: list[tuple[Atom, float]] | None = None
+            unmet_ids: list[tuple[int, float]] | None = None
+            postponed: dict[tuple[float, float], list[tuple[Action, ActionFacts, float, Stamp]]] = {}
+            postpone = reach is not None and not legacy
             for ti, target in enumerate(allowed):
                 if reach is not None and not legacy and fholds(target):
                     if unmet_costs is None:
@@ -392,7 +403,19 @@ class _Search:
                         if earlier is not None:
                             st = (exp, earlier[0], earlier[1])
                     tried.add(id(act))
+                    if postpone:  # a child whose bound lies above this node's (f, h) waits in an entry
+                        if unmet_ids is None:
+                            assert relaxed is not None
+                            unmet_ids = [(f, relaxed.known(f)) for f in fs if not fholds(f)]
+                        b = kept_cost(fluent, info, unmet_ids)
+                        key = (gcost + cost + weight * b, b)
+                        if key > (top[0], top[1]):
+                            postponed.setdefault(key, []).append((act, info, cost, st))
+                            continue
                     make(node, focus, gcost, index, goal_of, legacy, act, info, cost, st)
+            for (fb, b), items in postponed.items():
+                push(frontier, (fb, b, min(x[3] for x in items), next(counter),
+                                Postponed(node, focus, gcost, index, goal_of, items)))
             if later:
                 if here is None:
                     here = Expansion(node, focus, gcost, index, goal_of, allowed, tried, exp)
