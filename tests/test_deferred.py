@@ -74,12 +74,13 @@ def test_reach_bounds_by_the_unmet_facts_no_achiever_names():
     on_ab = T.id(Atom("on", ("a", "b")))
     c, pats = reach(on_ab)
     assert c == 1.0 and pats
-    unmet = [(Atom("holding", ("a",)), 5.0), (Atom("on", ("c", "d")), 3.0), (Atom("clear", ("c",)), 2.0)]
+    unmet = [(T.id(Atom("holding", ("a",))), 5.0), (T.id(Atom("on", ("c", "d"))), 3.0), (T.id(Atom("clear", ("c",))), 2.0)]
     assert reach.bound(on_ab, unmet) == (1.0, 3.0)  # holding(a) is named; on(c, d) and clear(c) are not
     assert reach.bound(on_ab, unmet[:1]) == (1.0, 0.0)
     assert reach.bound(on_ab, []) == (1.0, 0.0)
     ontable = T.id(Atom("ontable", ("a",)))  # putdown(a): names holding(a), ontable(a), clear(a), handempty
-    assert reach.bound(ontable, [(Atom("clear", ("c",)), 2.0), (Atom("clear", ("a",)), 4.0)]) == (1.0, 2.0)
+    assert reach.bound(ontable, [(T.id(Atom("clear", ("c",))), 2.0), (T.id(Atom("clear", ("a",))), 4.0)]) == (1.0, 2.0)
+    assert Reach(BLOCKS).bound(ontable, [(T.id(Atom("clear", ("a",))), 4.0)]) == (1.0, 0.0)  # the memo, per domain
     assert reach(on_ab) is reach(on_ab)  # kept per domain
 
 

@@ -128,8 +128,9 @@ class Reach:
         self.atoms = domain.facts.atoms
         hit = domain.facts.derived.get("deferral reach")
         if hit is None or hit[0] is not domain.operators:
-            hit = domain.facts.derived["deferral reach"] = (domain.operators, {})
+            hit = domain.facts.derived["deferral reach"] = (domain.operators, {}, {})
         self._memo: dict[int, tuple[float, tuple[Pattern, ...]]] = hit[1]
+        self._named: dict[tuple[int, int], bool] = hit[2]  # (target, fact): does an achiever name the fact?
 
     def __call__(self, f: int) -> tuple[float, tuple[Pattern, ...]]:
         hit = self._memo.get(f)
@@ -152,13 +153,18 @@ class Reach:
                     pats.append((a.predicate, args))
         return (0.0 if cheapest == math.inf else cheapest), tuple(dict.fromkeys(pats))
 
-    def bound(self, f: int, unmet: Sequence[tuple[Atom, float]]) -> tuple[float, float]:
-        """``(c, b)`` for target ``f`` and the node's unmet ``(atom, explored cost)`` pairs."""
+    def bound(self, f: int, unmet: Sequence[tuple[int, float]]) -> tuple[float, float]:
+        """``(c, b)`` for target ``f`` and the node's unmet ``(fact, explored cost)`` pairs."""
         c, pats = self(f)
         b = 0.0
-        for a, v in unmet:
-            if v > b and not _named(a, pats):
-                b = v
+        named = self._named
+        for u, v in unmet:
+            if v > b:
+                hit = named.get((f, u))
+                if hit is None:
+                    hit = named[(f, u)] = _named(self.atoms[u], pats)
+                if not hit:
+                    b = v
         return c, b
 
 

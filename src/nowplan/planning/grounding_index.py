@@ -91,6 +91,7 @@ class _PerState:
         self.by_reading: dict[tuple[Atom, Hashable], list[Action]] = {}  # Grounder._gen_cache
         self.holds: dict[Atom, bool] = {}  # the domain's tests on this state
         self.fholds: dict[int, bool] = {}  # the same by fact id
+        self.held: set[int] = set()  # the fact ids found true
         self.costs: dict[tuple[str, tuple[Any, ...]], float] = {}  # belief-dependent action costs
 
 

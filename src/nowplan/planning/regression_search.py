@@ -86,9 +86,10 @@ class _Search:
         self._fholds: dict[int, bool] = {}
         self._hv: dict[int, float] = {}
         self._costs: dict[tuple[str, tuple[Any, ...]], float] = {}
+        self._held: set[int] = set()  # the facts fholds found true
         kept = self.grounder.per_state
         if kept is not None:  # a plain point belief: the calls from its state share the tests and costs
-            self._holds, self._fholds, self._costs = kept.holds, kept.fholds, kept.costs
+            self._holds, self._fholds, self._costs, self._held = kept.holds, kept.fholds, kept.costs, kept.held
         self.expanded = 0
         self.generated = 0
         self.min_cost = min(
@@ -113,6 +114,7 @@ class _Search:
         self._ground_hadd: RelevantHadd | KernelHadd | None = None
         self._task: GroundTask | None = None
         self._ctx: tuple[frozenset[int], Goal] | None = None
+        self._goals: dict[frozenset[int], Goal] = {}
         self._successors = Successors(self.table, self.grounder, levels, self.drop, self.cost)
         for name in (config.heuristic, config.shortcut_heuristic or config.heuristic):
             if name not in (*_RELAXED, "count"):
@@ -150,7 +152,10 @@ class _Search:
 
     def _goal_of(self, context: frozenset[int]) -> Goal:
         if self._ctx is None or self._ctx[0] is not context:
-            self._ctx = (context, self.table.goal(context))
+            g = self._goals.get(context)
+            if g is None:  # (the relaxation's contexts: a subgoal estimated, an action's preconditions)
+                g = self._goals[context] = self.table.goal(context)
+            self._ctx = (context, g)
         return self._ctx[1]
 
     def _context_key(self, f: int, context: frozenset[int]) -> Hashable | None:
@@ -186,6 +191,8 @@ class _Search:
             else:  # boolean predicates without tests: a lookup in the belief's facts
                 r = f in true if a.value is not False else self.table.by_key.get((a.predicate, a.args, True)) not in true
             self._fholds[f] = r
+            if r:
+                self._held.add(f)
         return r
 
     def true_ids(self) -> frozenset[int]:
@@ -202,9 +209,14 @@ class _Search:
                 self._true_ids = self.table.ids_of(self.belief.atoms())
         return self._true_ids
 
+    def unmet(self, fs: frozenset[int]) -> list[int]:
+        """The facts of ``fs`` that do not hold, in ``fs``'s order."""
+        fholds = self.fholds
+        return [f for f in fs.difference(self._held) if not fholds(f)]
+
     def satisfied(self, fs: frozenset[int]) -> bool:
         known = self._fholds.get
-        for f in fs:
+        for f in fs.difference(self._held):
             r = known(f)
             if not (self.fholds(f) if r is None else r):
                 return False
@@ -359,7 +371,7 @@ class _Search:
             if order_ids is not None:
                 # shift the focus down once the non-focused part already holds
                 if focus > 0:
-                    unmet = [f for f in fs if not fholds(f)]
+                    unmet = self.unmet(fs)
                     while focus > 0 and hidden[focus].issuperset(unmet):
                         focus -= 1
             if self.satisfied(fs):
@@ -379,16 +391,15 @@ class _Search:
             tried: set[int] = set()  # by identity: the grounder makes one object per instance
             here: Expansion | None = None
             later: dict[tuple[float, float], list[tuple[int, int]]] = {}  # held targets by their bound
-            unmet_costs: list[tuple[Atom, float]] | None = None
-            unmet_ids: list[tuple[int, float]] | None = None
+            unmet_ids: list[tuple[int, float]] | None = None  # the node's unmet facts with their explored costs
             postponed: dict[tuple[float, float], list[tuple[Action, ActionFacts, float, Stamp]]] = {}
             postpone = reach is not None and not legacy
             for ti, target in enumerate(allowed):
                 if reach is not None and not legacy and fholds(target):
-                    if unmet_costs is None:
+                    if unmet_ids is None:
                         assert relaxed is not None
-                        unmet_costs = [(T.atoms[f], relaxed.known(f)) for f in fs if not fholds(f)]
-                    c, b = reach.bound(target, unmet_costs)
+                        unmet_ids = [(f, relaxed.known(f)) for f in self.unmet(fs)]
+                    c, b = reach.bound(target, unmet_ids)
                     if b != inf:  # else every child keeps a fact proven unreachable
                         later.setdefault((c, b), []).append((ti, target))
                     continue
@@ -406,7 +417,7 @@ class _Search:
                     if postpone:  # a child whose bound lies above this node's (f, h) waits in an entry
                         if unmet_ids is None:
                             assert relaxed is not None
-                            unmet_ids = [(f, relaxed.known(f)) for f in fs if not fholds(f)]
+                            unmet_ids = [(f, relaxed.known(f)) for f in self.unmet(fs)]
                         b = kept_cost(fluent, info, unmet_ids)
                         key = (gcost + cost + weight * b, b)
                         if key > (top[0], top[1]):
