@@ -114,6 +114,9 @@ def test_calls_from_one_state_share_tests_and_achievers():
     assert Grounder(d, objs, SymbolicBelief(prob.init), stacked, 8, True).per_state is None
     other = PlanningContext((), {"forbidden_first": frozenset({("x", ())})})
     assert Grounder(d, objs, SymbolicBelief(prob.init), other, 8, True).per_state is not a.per_state
+    for mutable in ([1], object(), {"k": 1}):  # a value whose state could change between calls: no store
+        ctx = PlanningContext((), {"foresight": False, "x": mutable})
+        assert Grounder(d, objs, SymbolicBelief(prob.init), ctx, 8, True).per_state is None
     assert Grounder(d, objs, SymbolicBelief(prob.init), None, 3, True).per_state is not a.per_state
 
 

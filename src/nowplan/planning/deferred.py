@@ -28,6 +28,16 @@ between two equally cheap paths to one subgoal).  The relaxation's
 exploration is lazy, so its costs can fall between an expansion and the
 opening of its entries; a bound that turns out too high only changes the
 order, never a plan's validity.
+
+The same bound serves the successors of the facts that do not hold
+(:class:`Postponed`): once an unmet fact's achievers are grounded, a child
+whose ``(g + cost + weight · b, b)`` lies above its parent's ``(f, h)``, with
+``b`` the dearest unmet fact of the node that the action leaves as it is
+(:func:`kept_cost`), waits in an entry with that priority instead of being
+regressed and estimated at once.  Marsupial's ``door(v) = none`` is cleared
+by the Unload of every package (cost 10) as well as by the loader (cost 1):
+those children grew with the number of packages and were almost never
+expanded.
 """
 
 from __future__ import annotations

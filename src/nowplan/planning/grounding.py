@@ -25,7 +25,8 @@ from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding_index import (
-    _effects_by_predicate, _per_atom, _per_state, _PerAtom, _PerState, _shared, point_state, unify_effect,
+    _effects_by_predicate, _per_atom, _per_state, _PerAtom, _PerState, _shared, context_key, point_state,
+    unify_effect,
 )
 
 if TYPE_CHECKING:
@@ -95,7 +96,7 @@ class Grounder:
         # between two actions (a step refined level by level) share their achievers and tests
         self.per_state: _PerState | None = None
         state = point_state(belief) if self.memo and self._facts_ok else None
-        ckey = _context_key(context) if state is not None else None
+        ckey = context_key(context) if state is not None else None
         if state is not None and ckey is not None:
             self.per_state = _per_state(domain, (id(state), self.signature, ckey, max_generator_values), state)
             self._cache = self.per_state.achievers
@@ -466,20 +467,6 @@ class Grounder:
                 if later and not check(full):
                     continue
                 yield full
-
-
-def _context_key(context: PlanningContext | None) -> Hashable | None:
-    """What generators may read of ``context``, as a key; ``None`` where it cannot be one (a plan stack)."""
-    if context is None:
-        return ("none",)
-    if context.plan_stack:
-        return None
-    try:
-        key = ("extras", tuple(sorted(context.extras.items())))
-        hash(key)
-    except TypeError:
-        return None
-    return key
 
 
 class _FillPlan:

@@ -114,6 +114,29 @@ def point_state(belief: Any) -> Any:
     return None
 
 
+def context_key(context: Any) -> Hashable | None:
+    """What generators may read of ``context``, as a key; ``None`` where it cannot be one.
+
+    Only an empty plan stack with extras of plain immutable values (numbers,
+    strings, and tuples or frozensets of them) makes a key: a plan stack, or
+    an object whose state could change between calls, does not.
+    """
+    if context is None:
+        return ("none",)
+    if context.plan_stack or not all(_plain(v) for v in context.extras.values()):
+        return None
+    return ("extras", tuple(sorted(context.extras.items())))
+
+
+def _plain(v: Any, depth: int = 0) -> bool:
+    """Is ``v`` an immutable value of builtin types (nested at most a few levels)?"""
+    if v is None or type(v) in (bool, int, float, str, bytes):
+        return True
+    if type(v) in (tuple, frozenset) and depth < 4:
+        return all(_plain(x, depth + 1) for x in v)
+    return False
+
+
 def _per_state(domain: Domain, key: Hashable, state: Any) -> _PerState:
     """The answers kept for ``state`` under ``key`` (the few latest keys per domain)."""
     store: dict[Hashable, _PerState] = domain.facts.derived.setdefault("per-state grounding", {})

@@ -62,6 +62,9 @@ class _Search:
 
     # defer the successors of facts that hold (nowplan.planning.deferred); False makes them all at once (tests)
     defer_held = True
+    # postpone the successors of unmet facts whose bound lies above their parent's (deferred.Postponed);
+    # with defer_held only (False: made at once, tests)
+    postpone_unmet = True
 
     def __init__(
         self,
@@ -393,7 +396,7 @@ class _Search:
             later: dict[tuple[float, float], list[tuple[int, int]]] = {}  # held targets by their bound
             unmet_ids: list[tuple[int, float]] | None = None  # the node's unmet facts with their explored costs
             postponed: dict[tuple[float, float], list[tuple[Action, ActionFacts, float, Stamp]]] = {}
-            postpone = reach is not None and not legacy
+            postpone = self.postpone_unmet and reach is not None and not legacy
             for ti, target in enumerate(allowed):
                 if reach is not None and not legacy and fholds(target):
                     if unmet_ids is None:
