@@ -39,10 +39,12 @@ class Grounder:
     """Caches achievers per atom for one planning problem (domain, objects, belief).
 
     With ``memo`` (the default) it also remembers, for the whole problem, the
-    achievers of each generator-free operator per atom and the completions of
-    each (operator, partial binding) by static joins and typed objects: both
-    depend only on the static facts, so the answers and their order are the
-    same as without (``memo = False`` recomputes them, for tests).
+    achievers of each generator-free operator per atom and the instances that
+    complete each (operator, partial binding) by static joins and typed
+    objects: both depend only on the static facts, so the answers and their
+    order are the same as without (``memo = False`` recomputes them, for
+    tests).  Per domain it keeps what depends on the operators alone, and per
+    plain belief state the achievers, tests and costs (``per_state``).
     """
 
     memo = True
@@ -70,7 +72,7 @@ class Grounder:
         self._task: GroundTask | None = None
         self._allobj: frozenset[Any] | None = None
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
-        self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+        self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[Action]] = {}
         self.signature: Hashable = None  # the objects and static facts (with a belief that lists facts)
         self._shared_answers: dict[Atom, list[Action]] | None = None  # generator-free achievers, per problem
         self._no_gen: dict[Atom, bool] = {}  # atoms no operator with generators achieves (see _no_generator)
@@ -316,8 +318,7 @@ class Grounder:
         self, i: int, op: Operator, effs: tuple[Atom, ...], target: Atom, goal: Goal | Callable[[], Goal]
     ) -> Iterator[Action]:
         for b in self._unified(i, effs, target):
-            for full in self._complete(i, op, dict(b), goal):
-                yield self.instantiate(i, op, full)
+            yield from self._instances(i, op, dict(b), goal)
 
     def instantiate(self, i: int, op: Operator, full: Mapping[Var, Any]) -> Action:
         """``op.instantiate(full)``, one object per ground instance of the domain."""
@@ -332,24 +333,26 @@ class Grounder:
             act = self._actions[(i, args)] = op.instantiate(full)
         return act
 
-    def _complete(
+    def _instances(
         self, i: int, op: Operator, b: dict[Var, Any], goal: Goal | Callable[[], Goal]
-    ) -> Iterator[dict[Var, Any]]:
-        """All full bindings extending ``b`` (generators, static joins, typed objects)."""
+    ) -> Iterator[Action]:
+        """The ground instances of operator ``i`` extending ``b`` (generators, static joins, typed objects)."""
         for gb in self._run_generators(op, b, goal):
             if not self.memo:
-                yield from self._fill(op, gb)
+                for full in self._fill(op, gb):
+                    yield self.instantiate(i, op, full)
                 continue
             try:
                 # with the value's type: 1, 1.0 and True are equal keys but not the same binding
                 key = (i, frozenset((k, type(v), v) for k, v in gb.items()))
-                fills = self._fills.get(key)
+                acts = self._fills.get(key)
             except TypeError:  # a generator value that cannot be hashed: no memo for it
-                yield from self._fill(op, gb)
+                for full in self._fill(op, gb):
+                    yield self.instantiate(i, op, full)
                 continue
-            if fills is None:
-                fills = self._fills[key] = list(self._fill(op, gb))
-            yield from fills
+            if acts is None:  # (the domain keeps one object per instance: the same ones as made anew)
+                acts = self._fills[key] = [self.instantiate(i, op, full) for full in self._fill(op, gb)]
+            yield from acts
 
     def _run_generators(
         self, op: Operator, b: dict[Var, Any], goal: Goal | Callable[[], Goal]

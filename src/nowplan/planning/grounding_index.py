@@ -69,7 +69,7 @@ class _Shared:
 
     def __init__(self) -> None:
         self.op_cache: dict[tuple[int, Atom], list[Action]] = {}
-        self.fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+        self.fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[Action]] = {}  # instances per binding
         self.answers: dict[Atom, list[Action]] = {}  # achievers of atoms no generator achieves
         self.no_gen: dict[Atom, bool] = {}  # is an atom achieved by no operator with generators?
 
