@@ -74,12 +74,13 @@ def test_reach_bounds_by_the_unmet_facts_no_achiever_names():
     on_ab = T.id(Atom("on", ("a", "b")))
     c, pats = reach(on_ab)
     assert c == 1.0 and pats
-    unmet = [(Atom("holding", ("a",)), 5.0), (Atom("on", ("c", "d")), 3.0), (Atom("clear", ("c",)), 2.0)]
+    unmet = [(T.id(Atom("holding", ("a",))), 5.0), (T.id(Atom("on", ("c", "d"))), 3.0), (T.id(Atom("clear", ("c",))), 2.0)]
     assert reach.bound(on_ab, unmet) == (1.0, 3.0)  # holding(a) is named; on(c, d) and clear(c) are not
     assert reach.bound(on_ab, unmet[:1]) == (1.0, 0.0)
     assert reach.bound(on_ab, []) == (1.0, 0.0)
     ontable = T.id(Atom("ontable", ("a",)))  # putdown(a): names holding(a), ontable(a), clear(a), handempty
-    assert reach.bound(ontable, [(Atom("clear", ("c",)), 2.0), (Atom("clear", ("a",)), 4.0)]) == (1.0, 2.0)
+    assert reach.bound(ontable, [(T.id(Atom("clear", ("c",))), 2.0), (T.id(Atom("clear", ("a",))), 4.0)]) == (1.0, 2.0)
+    assert Reach(BLOCKS).bound(ontable, [(T.id(Atom("clear", ("a",))), 4.0)]) == (1.0, 0.0)  # the memo, per domain
     assert reach(on_ab) is reach(on_ab)  # kept per domain
 
 
@@ -182,3 +183,50 @@ def test_an_action_of_infinite_cost_is_never_kept():
     res = plan(dom, {}, State([Atom("q", ())]), Goal.of([Atom("p", ()), Atom("q", ())]), flat_levels(), cfg)
     assert res.status is PlanStatus.SOLVED and res.plan is not None
     assert [s.action.name for s in res.plan.steps[1:]] == ["step"]
+
+
+# ------------------------------------------------------------------ postponed successors of unmet facts
+
+
+def test_kept_cost_is_the_dearest_unmet_fact_the_action_leaves_alone():
+    from nowplan.planning.deferred import kept_cost
+    from nowplan.planning.subgoals import action_facts
+
+    T = BLOCKS.facts
+    stack = next(o for o in BLOCKS.operators if o.name == "stack")
+    act = stack.instantiate({v: x for v, x in zip(stack.params, ("a", "b"))})
+    info = action_facts(T, act, None, frozenset())
+    holding, on_cd, clear_c = (T.id(Atom("holding", ("a",))), T.id(Atom("on", ("c", "d"))),
+                               T.id(Atom("clear", ("c",))))
+    # stack(a, b) needs holding(a) (a precondition's fluent): only on(c, d) and clear(c) stay as they are
+    assert kept_cost(T.fluent, info, [(holding, 5.0), (on_cd, 3.0), (clear_c, 2.0)]) == 3.0
+    assert kept_cost(T.fluent, info, [(holding, 5.0)]) == 0.0
+    assert kept_cost(T.fluent, info, []) == 0.0
+
+
+def test_dear_achievers_of_an_unmet_fact_wait_and_change_no_plan(monkeypatch):
+    """A loaded truck must stow its door to pack: every package's Unload also clears the door (cost 10,
+    against the loader's 1); those children wait in an entry that never comes first."""
+    from nowplan.belief.symbolic import SymbolicBelief
+    from nowplan.core.atoms import atom
+    from nowplan.domains.marsupial.model import PLANNER
+    from nowplan.domains.marsupial.problems import generate
+
+    prob, _ = generate("both", 8, 1)
+    d = prob.domain
+    reach = {x[0] for x in prob.init.facts("reachable") if x[1] == "truck0"}
+    pkg, loc = next((p, x) for p, x in prob.init.facts("at") if str(p).startswith("p") and x in reach)
+    here = next(x for v, x in prob.init.facts("at") if v == "truck0")
+    load = next(o for o in d.operators if o.name == "load")
+    loaded = load.instantiate(dict(zip(load.params, (pkg, "truck0", loc))))
+    state = prob.init.apply([atom("at", "truck0", here, value=False), atom("at", "truck0", loc)])
+    state = state.apply(loaded.effects())
+    goal = Goal.of([atom("packed", "truck0")], d.rules)
+    runs = []
+    for post in (False, True):
+        monkeypatch.setattr(_Search, "postpone_unmet", post)
+        runs.append(plan(d, prob.objects, SymbolicBelief(state), goal, LevelMap(1), PLANNER))
+    made, waited = runs
+    assert waited.status is PlanStatus.SOLVED and _steps(waited) == _steps(made)
+    assert waited.expanded == made.expanded
+    assert waited.generated < made.generated / 4  # the Unloads were never regressed nor estimated

@@ -10,7 +10,9 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.state import State
 from nowplan.domains.marsupial.model import PLANNER, Where, same_city_holds
 from nowplan.domains.marsupial.problems import generate
+from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding import Grounder
+from nowplan.planning.plan import Plan, PlanStep
 from nowplan.planning.regression import plan
 
 
@@ -88,3 +90,48 @@ def test_sharing_changes_no_plan():
 def test_state_fixture_is_immutable():
     s = State([atom("at", "p0", "x")])
     assert s.facts("at") is s.facts("at")  # the index relies on one list per state
+
+
+class _Own(SymbolicBelief):
+    """A belief of a domain's own kind: it may answer from more than its state."""
+
+
+def test_calls_from_one_state_share_tests_and_achievers():
+    """Grounders on one plain state share a per-state store; another state, a subclass or a plan stack do not."""
+    prob, _ = generate("both", 3, 0)
+    d, objs = prob.domain, prob.objects
+    a = Grounder(d, objs, SymbolicBelief(prob.init), None, 8, True)
+    b = Grounder(d, objs, SymbolicBelief(prob.init), None, 8, True)
+    assert a.per_state is not None and a.per_state is b.per_state
+    sc = atom("same_city", "p0", "truck0")  # achieved with a generator that reads the goal
+    first = a.achievers(sc, prob.goal)
+    assert b.achievers(sc, prob.goal) is first  # grounded once for the state
+    moved = prob.init.apply([atom("at", "p0", "c0-ap")])
+    c = Grounder(d, objs, SymbolicBelief(moved), None, 8, True)
+    assert c.per_state is not None and c.per_state is not a.per_state
+    assert Grounder(d, objs, _Own(prob.init), None, 8, True).per_state is None
+    stacked = PlanningContext((Plan((PlanStep(None, prob.goal),), LevelMap(4)),), {})
+    assert Grounder(d, objs, SymbolicBelief(prob.init), stacked, 8, True).per_state is None
+    other = PlanningContext((), {"forbidden_first": frozenset({("x", ())})})
+    assert Grounder(d, objs, SymbolicBelief(prob.init), other, 8, True).per_state is not a.per_state
+    for mutable in ([1], object(), {"k": 1}):  # a value whose state could change between calls: no store
+        ctx = PlanningContext((), {"foresight": False, "x": mutable})
+        assert Grounder(d, objs, SymbolicBelief(prob.init), ctx, 8, True).per_state is None
+    assert Grounder(d, objs, SymbolicBelief(prob.init), None, 3, True).per_state is not a.per_state
+
+
+def test_state_sharing_changes_no_episode(monkeypatch):
+    """HPN's executed actions and planner calls are the same with the per-state store and without it."""
+    from nowplan.domains.marsupial.flatcmp import timed_run
+    from nowplan.domains.marsupial.scenarios import episode
+    from nowplan.planning import grounding
+
+    def run() -> tuple[object, ...]:
+        ep = episode("both", 5, 1)
+        m, _, ok = timed_run(ep, "hpn", 1, 120)
+        return ok, m.actions, m.execution_cost, m.plans_made, ep.world.state
+
+    shared = run()
+    monkeypatch.setattr(grounding, "point_state", lambda belief: None)
+    alone = run()
+    assert shared[0] and shared == alone

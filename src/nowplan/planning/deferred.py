@@ -28,6 +28,16 @@ between two equally cheap paths to one subgoal).  The relaxation's
 exploration is lazy, so its costs can fall between an expansion and the
 opening of its entries; a bound that turns out too high only changes the
 order, never a plan's validity.
+
+The same bound serves the successors of the facts that do not hold
+(:class:`Postponed`): once an unmet fact's achievers are grounded, a child
+whose ``(g + cost + weight · b, b)`` lies above its parent's ``(f, h)``, with
+``b`` the dearest unmet fact of the node that the action leaves as it is
+(:func:`kept_cost`), waits in an entry with that priority instead of being
+regressed and estimated at once.  Marsupial's ``door(v) = none`` is cleared
+by the Unload of every package (cost 10) as well as by the loader (cost 1):
+those children grew with the number of packages and were almost never
+expanded.
 """
 
 from __future__ import annotations
@@ -39,7 +49,7 @@ from typing import Any
 from nowplan.core.atoms import Atom, Var
 from nowplan.core.domain import Domain
 from nowplan.planning.grounding_index import unify_effect
-from nowplan.planning.subgoals import NodeIndex
+from nowplan.planning.subgoals import ActionFacts, NodeIndex
 
 # eager generation order of a child: (parent's expansion number, target index, achiever index)
 Stamp = tuple[int, int, int]
@@ -75,6 +85,46 @@ class Deferred:
         self.targets = targets
 
 
+class Postponed:
+    """Successors of an unmet fact whose bound lies above their parent's: made when the entry comes first.
+
+    ``items`` are ``(action, facts, cost, stamp)`` as eager generation would
+    have made them (each already counted as tried for its expansion); the
+    entry's priority is ``(g + cost + weight · b, b)`` with ``b`` from
+    :func:`kept_cost`, at most every child's ``(f, h)``.
+    """
+
+    __slots__ = ("node", "focus", "g", "index", "goal_of", "items")
+
+    def __init__(self, node: Any, focus: int, g: float, index: NodeIndex, goal_of: Callable[[], Any],
+                 items: list[tuple[Any, ActionFacts, float, Stamp]]) -> None:
+        self.node = node
+        self.focus = focus
+        self.g = g
+        self.index = index
+        self.goal_of = goal_of
+        self.items = items
+
+
+def kept_cost(fluent: Sequence[int], info: ActionFacts, unmet: Sequence[tuple[int, float]]) -> float:
+    """The largest explored cost of an unmet fact (``(id, cost)``) that regressing through ``info`` keeps.
+
+    A fact whose fluent no effect and no kept precondition of the action sets
+    stays in the child as it is, so the child's relaxed estimate (h_max,
+    LM-cut, h_add) is at least its cost.
+    """
+    b = 0.0
+    touched: set[int] | None = None
+    for u, v in unmet:
+        if v > b:
+            if touched is None:
+                touched = {fluent[e] for e in info.all_effs}
+                touched.update(fluent[q] for q in info.pre)
+            if fluent[u] not in touched:
+                b = v
+    return b
+
+
 class Reach:
     """Per fact: the cheapest fixed cost of an operator that can achieve it, and what such operators name.
 
@@ -88,8 +138,9 @@ class Reach:
         self.atoms = domain.facts.atoms
         hit = domain.facts.derived.get("deferral reach")
         if hit is None or hit[0] is not domain.operators:
-            hit = domain.facts.derived["deferral reach"] = (domain.operators, {})
+            hit = domain.facts.derived["deferral reach"] = (domain.operators, {}, {})
         self._memo: dict[int, tuple[float, tuple[Pattern, ...]]] = hit[1]
+        self._named: dict[tuple[int, int], bool] = hit[2]  # (target, fact): does an achiever name the fact?
 
     def __call__(self, f: int) -> tuple[float, tuple[Pattern, ...]]:
         hit = self._memo.get(f)
@@ -112,13 +163,18 @@ class Reach:
                     pats.append((a.predicate, args))
         return (0.0 if cheapest == math.inf else cheapest), tuple(dict.fromkeys(pats))
 
-    def bound(self, f: int, unmet: Sequence[tuple[Atom, float]]) -> tuple[float, float]:
-        """``(c, b)`` for target ``f`` and the node's unmet ``(atom, explored cost)`` pairs."""
+    def bound(self, f: int, unmet: Sequence[tuple[int, float]]) -> tuple[float, float]:
+        """``(c, b)`` for target ``f`` and the node's unmet ``(fact, explored cost)`` pairs."""
         c, pats = self(f)
         b = 0.0
-        for a, v in unmet:
-            if v > b and not _named(a, pats):
-                b = v
+        named = self._named
+        for u, v in unmet:
+            if v > b:
+                hit = named.get((f, u))
+                if hit is None:
+                    hit = named[(f, u)] = _named(self.atoms[u], pats)
+                if not hit:
+                    b = v
         return c, b
 
 

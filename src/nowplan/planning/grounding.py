@@ -24,7 +24,10 @@ from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
-from nowplan.planning.grounding_index import _effects_by_predicate, _shared, unify_effect
+from nowplan.planning.grounding_index import (
+    _effects_by_predicate, _per_atom, _per_state, _PerAtom, _PerState, _shared, context_key, point_state,
+    unify_effect,
+)
 
 if TYPE_CHECKING:
     from nowplan.planning.ground_task import GroundTask
@@ -36,10 +39,12 @@ class Grounder:
     """Caches achievers per atom for one planning problem (domain, objects, belief).
 
     With ``memo`` (the default) it also remembers, for the whole problem, the
-    achievers of each generator-free operator per atom and the completions of
-    each (operator, partial binding) by static joins and typed objects: both
-    depend only on the static facts, so the answers and their order are the
-    same as without (``memo = False`` recomputes them, for tests).
+    achievers of each generator-free operator per atom and the instances that
+    complete each (operator, partial binding) by static joins and typed
+    objects: both depend only on the static facts, so the answers and their
+    order are the same as without (``memo = False`` recomputes them, for
+    tests).  Per domain it keeps what depends on the operators alone, and per
+    plain belief state the achievers, tests and costs (``per_state``).
     """
 
     memo = True
@@ -67,7 +72,7 @@ class Grounder:
         self._task: GroundTask | None = None
         self._allobj: frozenset[Any] | None = None
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
-        self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+        self._fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[Action]] = {}
         self.signature: Hashable = None  # the objects and static facts (with a belief that lists facts)
         self._shared_answers: dict[Atom, list[Action]] | None = None  # generator-free achievers, per problem
         self._no_gen: dict[Atom, bool] = {}  # atoms no operator with generators achieves (see _no_generator)
@@ -83,9 +88,23 @@ class Grounder:
         # per predicate: the operators (in order) with an effect of it, and those effects
         self._by_pred, self._gen_by_pred, self._gen_by_pred_nonempty = _effects_by_predicate(domain)
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
-        self._unify_cache: dict[tuple[int, Atom], list[dict[Var, Any]]] = {}
-        self._goal_free: dict[Atom, bool] = {}
-        self._read_plans: dict[Atom, Any] = {}
+        # per atom, what depends on the operators only (kept per domain with ``memo``: each call of a
+        # problem asks the same atoms again, and more of them the more objects there are)
+        per_atom = _per_atom(domain) if self.memo else _PerAtom()
+        self._unify_cache = per_atom.unified
+        self._goal_free = per_atom.goal_free
+        self._read_plans = per_atom.read_plans
+        # with a plain point belief, what depends on its state too is kept per state: the calls made
+        # between two actions (a step refined level by level) share their achievers and tests
+        self.per_state: _PerState | None = None
+        state = point_state(belief) if self.memo and self._facts_ok else None
+        ckey = context_key(context) if state is not None else None
+        if state is not None and ckey is not None:
+            self.per_state = _per_state(domain, (id(state), self.signature, ckey, max_generator_values), state)
+            self._cache = self.per_state.achievers
+            self._gen_cache = self.per_state.by_reading
+            self._static_cache = self.per_state.holds  # (the domain's test, as the search's holds)
+        self._last_reading: tuple[Atom, Goal, tuple[Hashable, ...]] | None = None  # (a goal is immutable)
         self.kept = False  # was the last answer of achievers() kept (the same list object next time)?
         # ground actions of the domain, one object per instance (planners keep data on them)
         self._actions: dict[tuple[int, tuple[Any, ...]], Action] = domain.facts.actions
@@ -242,12 +261,17 @@ class Grounder:
         self, gen_entries: Sequence[tuple[int, Operator, tuple[Atom, ...]]], target: Atom, goal: Goal
     ) -> tuple[Hashable, ...] | None:
         """What the generators that achieve ``target`` read of ``goal``; ``None``: unknown."""
+        last = self._last_reading  # (the relaxation asks for a fact's key, then for its achievers)
+        if last is not None and last[0] is target and last[1] is goal:
+            return last[2]
         plan = self._read_plans.get(target, _UNSET)
         if plan is _UNSET:
             plan = self._read_plans[target] = self._read_plan(gen_entries, target)
         if plan is None:
             return None
-        return tuple([reads(b, goal) for reads, b in plan])
+        r = tuple([reads(b, goal) for reads, b in plan])
+        self._last_reading = (target, goal, r)
+        return r
 
     def _read_plan(
         self, gen_entries: Sequence[tuple[int, Operator, tuple[Atom, ...]]], target: Atom
@@ -294,8 +318,7 @@ class Grounder:
         self, i: int, op: Operator, effs: tuple[Atom, ...], target: Atom, goal: Goal | Callable[[], Goal]
     ) -> Iterator[Action]:
         for b in self._unified(i, effs, target):
-            for full in self._complete(i, op, dict(b), goal):
-                yield self.instantiate(i, op, full)
+            yield from self._instances(i, op, dict(b), goal)
 
     def instantiate(self, i: int, op: Operator, full: Mapping[Var, Any]) -> Action:
         """``op.instantiate(full)``, one object per ground instance of the domain."""
@@ -310,24 +333,26 @@ class Grounder:
             act = self._actions[(i, args)] = op.instantiate(full)
         return act
 
-    def _complete(
+    def _instances(
         self, i: int, op: Operator, b: dict[Var, Any], goal: Goal | Callable[[], Goal]
-    ) -> Iterator[dict[Var, Any]]:
-        """All full bindings extending ``b`` (generators, static joins, typed objects)."""
+    ) -> Iterator[Action]:
+        """The ground instances of operator ``i`` extending ``b`` (generators, static joins, typed objects)."""
         for gb in self._run_generators(op, b, goal):
             if not self.memo:
-                yield from self._fill(op, gb)
+                for full in self._fill(op, gb):
+                    yield self.instantiate(i, op, full)
                 continue
             try:
                 # with the value's type: 1, 1.0 and True are equal keys but not the same binding
                 key = (i, frozenset((k, type(v), v) for k, v in gb.items()))
-                fills = self._fills.get(key)
+                acts = self._fills.get(key)
             except TypeError:  # a generator value that cannot be hashed: no memo for it
-                yield from self._fill(op, gb)
+                for full in self._fill(op, gb):
+                    yield self.instantiate(i, op, full)
                 continue
-            if fills is None:
-                fills = self._fills[key] = list(self._fill(op, gb))
-            yield from fills
+            if acts is None:  # (the domain keeps one object per instance: the same ones as made anew)
+                acts = self._fills[key] = [self.instantiate(i, op, full) for full in self._fill(op, gb)]
+            yield from acts
 
     def _run_generators(
         self, op: Operator, b: dict[Var, Any], goal: Goal | Callable[[], Goal]

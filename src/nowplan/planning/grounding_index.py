@@ -69,12 +69,104 @@ class _Shared:
 
     def __init__(self) -> None:
         self.op_cache: dict[tuple[int, Atom], list[Action]] = {}
-        self.fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[dict[Var, Any]]] = {}
+        self.fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[Action]] = {}  # instances per binding
         self.answers: dict[Atom, list[Action]] = {}  # achievers of atoms no generator achieves
         self.no_gen: dict[Atom, bool] = {}  # is an atom achieved by no operator with generators?
 
 
 _SHARED_PER_DOMAIN = 4
+
+
+class _PerState:
+    """Answers that depend on one belief state too (with the objects, static facts and context).
+
+    Kept for the few latest states, so that the calls made between two actions
+    (the executive refines a step level by level from the same belief) ground
+    each achiever, run each generator and test each atom once.
+    """
+
+    def __init__(self, state: Any) -> None:
+        self.state = state  # held: the key is its id
+        self.achievers: dict[Atom, list[Action]] = {}  # Grounder._cache
+        self.by_reading: dict[tuple[Atom, Hashable], list[Action]] = {}  # Grounder._gen_cache
+        self.holds: dict[Atom, bool] = {}  # the domain's tests on this state
+        self.fholds: dict[int, bool] = {}  # the same by fact id
+        self.held: set[int] = set()  # the fact ids found true
+        self.costs: dict[tuple[str, tuple[Any, ...]], float] = {}  # belief-dependent action costs
+
+
+_STATES_PER_DOMAIN = 4
+
+
+def point_state(belief: Any) -> Any:
+    """The immutable state of a plain point belief (a ``State``, or a ``SymbolicBelief`` itself), else ``None``.
+
+    Only these are known to answer every question from that state alone: a
+    subclass may keep more (a random generator, a belief of its own).
+    """
+    from nowplan.belief.symbolic import SymbolicBelief
+    from nowplan.core.state import State
+
+    if type(belief) is State:
+        return belief
+    if type(belief) is SymbolicBelief and type(belief.state) is State:
+        return belief.state
+    return None
+
+
+def context_key(context: Any) -> Hashable | None:
+    """What generators may read of ``context``, as a key; ``None`` where it cannot be one.
+
+    Only an empty plan stack with extras of plain immutable values (numbers,
+    strings, and tuples or frozensets of them) makes a key: a plan stack, or
+    an object whose state could change between calls, does not.
+    """
+    if context is None:
+        return ("none",)
+    if context.plan_stack or not all(_plain(v) for v in context.extras.values()):
+        return None
+    return ("extras", tuple(sorted(context.extras.items())))
+
+
+def _plain(v: Any, depth: int = 0) -> bool:
+    """Is ``v`` an immutable value of builtin types (nested at most a few levels)?"""
+    if v is None or type(v) in (bool, int, float, str, bytes):
+        return True
+    if type(v) in (tuple, frozenset) and depth < 4:
+        return all(_plain(x, depth + 1) for x in v)
+    return False
+
+
+def _per_state(domain: Domain, key: Hashable, state: Any) -> _PerState:
+    """The answers kept for ``state`` under ``key`` (the few latest keys per domain)."""
+    store: dict[Hashable, _PerState] = domain.facts.derived.setdefault("per-state grounding", {})
+    hit = store.get(key)
+    if hit is None or hit.state is not state:
+        if len(store) >= _STATES_PER_DOMAIN:
+            store.pop(next(iter(store)))
+        hit = store[key] = _PerState(state)
+    else:  # latest last
+        store[key] = store.pop(key)
+    return hit
+
+
+class _PerAtom:
+    """Grounding answers per atom that depend only on a domain's operators (and its value rules)."""
+
+    def __init__(self) -> None:
+        self.unified: dict[tuple[int, Atom], list[dict[Var, Any]]] = {}  # bindings unifying effects
+        self.goal_free: dict[Atom, bool] = {}  # do no achievers' generators read the goal?
+        self.read_plans: dict[Atom, Any] = {}  # what to ask the generators' ``reads`` of a goal
+
+
+def _per_atom(domain: Domain) -> _PerAtom:
+    """The domain's :class:`_PerAtom` (made anew if its operators were replaced)."""
+    hit = domain.facts.derived.get("per-atom grounding")
+    if hit is not None and hit[0] is domain.operators:
+        return hit[1]  # type: ignore[no-any-return]
+    store = _PerAtom()
+    domain.facts.derived["per-atom grounding"] = (domain.operators, store)
+    return store
 
 
 def _shared(domain: Domain, signature: Hashable) -> _Shared:

@@ -23,7 +23,7 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.config import PlannerConfig, _clock
 from nowplan.planning.context import PlanningContext
-from nowplan.planning.deferred import Deferred, Expansion, Reach, Stamp
+from nowplan.planning.deferred import Deferred, Expansion, Postponed, Reach, Stamp, kept_cost
 from nowplan.planning.ground_task import GroundTask
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
@@ -62,6 +62,9 @@ class _Search:
 
     # defer the successors of facts that hold (nowplan.planning.deferred); False makes them all at once (tests)
     defer_held = True
+    # postpone the successors of unmet facts whose bound lies above their parent's (deferred.Postponed);
+    # with defer_held only (False: made at once, tests)
+    postpone_unmet = True
 
     def __init__(
         self,
@@ -86,6 +89,10 @@ class _Search:
         self._fholds: dict[int, bool] = {}
         self._hv: dict[int, float] = {}
         self._costs: dict[tuple[str, tuple[Any, ...]], float] = {}
+        self._held: set[int] = set()  # the facts fholds found true
+        kept = self.grounder.per_state
+        if kept is not None:  # a plain point belief: the calls from its state share the tests and costs
+            self._holds, self._fholds, self._costs, self._held = kept.holds, kept.fholds, kept.costs, kept.held
         self.expanded = 0
         self.generated = 0
         self.min_cost = min(
@@ -110,6 +117,7 @@ class _Search:
         self._ground_hadd: RelevantHadd | KernelHadd | None = None
         self._task: GroundTask | None = None
         self._ctx: tuple[frozenset[int], Goal] | None = None
+        self._goals: dict[frozenset[int], Goal] = {}
         self._successors = Successors(self.table, self.grounder, levels, self.drop, self.cost)
         for name in (config.heuristic, config.shortcut_heuristic or config.heuristic):
             if name not in (*_RELAXED, "count"):
@@ -147,7 +155,10 @@ class _Search:
 
     def _goal_of(self, context: frozenset[int]) -> Goal:
         if self._ctx is None or self._ctx[0] is not context:
-            self._ctx = (context, self.table.goal(context))
+            g = self._goals.get(context)
+            if g is None:  # (the relaxation's contexts: a subgoal estimated, an action's preconditions)
+                g = self._goals[context] = self.table.goal(context)
+            self._ctx = (context, g)
         return self._ctx[1]
 
     def _context_key(self, f: int, context: frozenset[int]) -> Hashable | None:
@@ -183,6 +194,8 @@ class _Search:
             else:  # boolean predicates without tests: a lookup in the belief's facts
                 r = f in true if a.value is not False else self.table.by_key.get((a.predicate, a.args, True)) not in true
             self._fholds[f] = r
+            if r:
+                self._held.add(f)
         return r
 
     def true_ids(self) -> frozenset[int]:
@@ -199,9 +212,14 @@ class _Search:
                 self._true_ids = self.table.ids_of(self.belief.atoms())
         return self._true_ids
 
+    def unmet(self, fs: frozenset[int]) -> list[int]:
+        """The facts of ``fs`` that do not hold, in ``fs``'s order."""
+        fholds = self.fholds
+        return [f for f in fs.difference(self._held) if not fholds(f)]
+
     def satisfied(self, fs: frozenset[int]) -> bool:
         known = self._fholds.get
-        for f in fs:
+        for f in fs.difference(self._held):
             r = known(f)
             if not (self.fholds(f) if r is None else r):
                 return False
@@ -274,7 +292,7 @@ class _Search:
         h0 = self.h(root)
         # entries (f, h, stamp, seq, node or Deferred): the stamp is eager generation's order (deferred)
         first: Stamp = (-1, 0, 0)
-        frontier: list[tuple[float, float, Stamp, int, Node | Deferred]] = [
+        frontier: list[tuple[float, float, Stamp, int, Node | Deferred | Postponed]] = [
             (self.config.weight * h0, h0, first, next(counter), start)]
         best_g: dict[Node, float] = {start: 0.0}
         born: dict[Node, Stamp] = {start: first}
@@ -337,7 +355,12 @@ class _Search:
             push(frontier, (ng + weight * hh, hh, st, next(counter), child))
 
         while frontier:
-            item = heapq.heappop(frontier)[4]
+            top = heapq.heappop(frontier)
+            item = top[4]
+            if isinstance(item, Postponed):  # unmet facts' successors whose bound has come first
+                for act, info, cost, st in item.items:
+                    make(item.node, item.focus, item.g, item.index, item.goal_of, False, act, info, cost, st)
+                continue
             if isinstance(item, Deferred):  # ground the held targets and make their successors
                 x = item.expansion
                 for ti, target in item.targets:
@@ -355,7 +378,7 @@ class _Search:
             if order_ids is not None:
                 # shift the focus down once the non-focused part already holds
                 if focus > 0:
-                    unmet = [f for f in fs if not fholds(f)]
+                    unmet = self.unmet(fs)
                     while focus > 0 and hidden[focus].issuperset(unmet):
                         focus -= 1
             if self.satisfied(fs):
@@ -375,13 +398,15 @@ class _Search:
             tried: set[int] = set()  # by identity: the grounder makes one object per instance
             here: Expansion | None = None
             later: dict[tuple[float, float], list[tuple[int, int]]] = {}  # held targets by their bound
-            unmet_costs: list[tuple[Atom, float]] | None = None
+            unmet_ids: list[tuple[int, float]] | None = None  # the node's unmet facts with their explored costs
+            postponed: dict[tuple[float, float], list[tuple[Action, ActionFacts, float, Stamp]]] = {}
+            postpone = self.postpone_unmet and reach is not None and not legacy
             for ti, target in enumerate(allowed):
                 if reach is not None and not legacy and fholds(target):
-                    if unmet_costs is None:
+                    if unmet_ids is None:
                         assert relaxed is not None
-                        unmet_costs = [(T.atoms[f], relaxed.known(f)) for f in fs if not fholds(f)]
-                    c, b = reach.bound(target, unmet_costs)
+                        unmet_ids = [(f, relaxed.known(f)) for f in self.unmet(fs)]
+                    c, b = reach.bound(target, unmet_ids)
                     if b != inf:  # else every child keeps a fact proven unreachable
                         later.setdefault((c, b), []).append((ti, target))
                     continue
@@ -396,7 +421,19 @@ class _Search:
                         if earlier is not None:
                             st = (exp, earlier[0], earlier[1])
                     tried.add(id(act))
+                    if postpone:  # a child whose bound lies above this node's (f, h) waits in an entry
+                        if unmet_ids is None:
+                            assert relaxed is not None
+                            unmet_ids = [(f, relaxed.known(f)) for f in self.unmet(fs)]
+                        b = kept_cost(fluent, info, unmet_ids)
+                        key = (gcost + cost + weight * b, b)
+                        if key > (top[0], top[1]):
+                            postponed.setdefault(key, []).append((act, info, cost, st))
+                            continue
                     make(node, focus, gcost, index, goal_of, legacy, act, info, cost, st)
+            for (fb, b), items in postponed.items():
+                push(frontier, (fb, b, min(x[3] for x in items), next(counter),
+                                Postponed(node, focus, gcost, index, goal_of, items)))
             if later:
                 if here is None:
                     here = Expansion(node, focus, gcost, index, goal_of, allowed, tried, exp)

@@ -68,6 +68,7 @@ class LazyRelaxed:
         self.unknown = unknown
         self.recontext = recontext
         self.val: dict[int, float] = {}  # facts reached so far (others explored: inf)
+        self._zero: set[int] = set()  # the facts of val that cost 0 (they hold, or 0-cost steps make them)
         self.sup: dict[int, int] = {}  # best supporter of a reached fact that does not hold
         self._seen: set[int] = set()  # facts explored (in some context)
         self._dependent: set[int] = set()  # explored facts whose achievers read the goal
@@ -94,11 +95,21 @@ class LazyRelaxed:
 
     def estimate(self, fs: frozenset[int]) -> float:
         seen, dependent, recontext = self._seen, self._dependent, self.recontext
-        for f in fs:
-            if f not in seen or (recontext and f in dependent):  # (what _ensure returns at once on)
-                self._ensure(f, fs)
+        rest = fs.difference(self._zero)  # (a fact that costs 0 is never explored again)
+        need = rest.difference(seen) if not recontext else {f for f in rest if f not in seen or f in dependent}
+        if need:
+            for f in fs:  # in fs's order, as the exploration's order may tell in ties
+                if f in need:
+                    self._ensure(f, fs)  # (it returns at once on a fact explored since)
         if self.kind == "lmcut":
             return self.lmcut(fs)
+        if self.kind == "max":
+            top = 0.0
+            for f in fs.difference(self._zero):
+                v = self._final(f)
+                if v > top:
+                    top = v
+            return top
         if self.kind == "ff":
             acts: set[int] = set()
             extra = 0.0
@@ -112,12 +123,8 @@ class LazyRelaxed:
                     acts |= self.plan_of(f)
             return extra + float(sum(self._cost[a] for a in acts))
         total = 0.0
-        for f in fs:
-            v = self._final(f)
-            if self.kind == "add":
-                total += v
-            elif v > total:
-                total = v
+        for f in fs:  # (in fs's order: a float sum)
+            total += self._final(f)
         return total
 
     def lmcut(self, fs: frozenset[int]) -> float:
@@ -133,7 +140,7 @@ class LazyRelaxed:
         """
         val = self.val
         goal: list[int] = []
-        for f in fs:
+        for f in fs.difference(self._zero):  # (the goal is sorted below)
             v = val.get(f)
             if v is None:  # not reached: dead (no estimate) or unknown (counts 0)
                 if self._final(f) == math.inf:
@@ -298,6 +305,7 @@ class LazyRelaxed:
                 self._seen.add(f)
                 self.facts_explored += 1
                 self.val[f] = 0.0
+                self._zero.add(f)
                 return
         elif f not in self._dependent or not self.recontext:
             return
@@ -372,6 +380,7 @@ class LazyRelaxed:
         for f in reached:
             if f not in val:
                 val[f] = 0.0
+                self._zero.add(f)
                 heap.append((0.0, tick, f, -1))
                 tick += 1
         for a in fresh:
@@ -398,6 +407,8 @@ class LazyRelaxed:
                     continue
                 val[f] = v
                 self.sup[f] = a
+                if v == 0.0:
+                    self._zero.add(f)
             for u in self._users.get(f, ()):
                 x = self._action_value(u)
                 if x < math.inf:
