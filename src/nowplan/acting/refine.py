@@ -220,6 +220,8 @@ def _chain(ex: Executive, levels: LevelMap, g: Goal, unmet: list[Atom], forbidde
             break
         nxt: list[tuple[float, list[Action], list[Atom]]] = []
         for cost, ch, need in layer:
+            if not need:
+                continue  # a forbidden start: longer chains before it are no shorter way round
             pre_table = {p.key: p for p in row(ch[0])[1]}
             for b in achievers(need, k + 2 == depth):
                 c = candidate(b, need, pre_table)
