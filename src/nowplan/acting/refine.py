@@ -23,6 +23,7 @@ has no plan (then the plan stack's depth limit remains the bound).
 
 from __future__ import annotations
 
+import gc
 from typing import TYPE_CHECKING, Any
 
 from nowplan.core.atoms import Atom, Goal
@@ -92,14 +93,14 @@ class Achievers:
         if index is None:
             index = self._index[top] = {}
             gr = grounding(ex.domain, ex.problem.objects, ex.belief, top)
-            for act in sorted(gr.actions, key=lambda a: (a.name, repr(a.args))):
+            for act in gr.actions:  # in the grounding's order: ties are broken by name (see _chain)
                 for e in act.effects():
                     index.setdefault(e, []).append(act)
         return index
 
 
 # the longest refinement made directly: ω with the actions before it that achieve what it exposes
-DIRECT_STEPS = 3
+DIRECT_STEPS = 4
 
 
 def direct_refinement(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Plan | None:
@@ -120,6 +121,17 @@ def direct_refinement(ex: Executive, goal: Goal, levels: LevelMap, refined: Acti
     than one refined above it (see :func:`refine_without_swaps`).  Chains longer than ``[ω]``
     need a ground, boolean domain whose belief lists its facts (the forward task's premise).
     """
+    paused = gc.isenabled()  # as the planner does (planning/regression.py): no collector passes mid-call
+    if paused:
+        gc.disable()
+    try:
+        return _direct(ex, goal, levels, refined)
+    finally:
+        if paused:
+            gc.enable()
+
+
+def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Plan | None:
     from nowplan.planning.preimage import preimage, static_drop
     from nowplan.planning.task import forward_unsupported
 
@@ -142,7 +154,11 @@ def direct_refinement(ex: Executive, goal: Goal, levels: LevelMap, refined: Acti
     if unmet:
         if domain.axioms or forward_unsupported(domain, belief) is not None:
             return None
-        found = _chain(ex, levels, g1, unmet, forbidden, holds, DIRECT_STEPS - 1)
+        found = None
+        for depth in range(1, DIRECT_STEPS):  # iterative deepening: only a chain's start must hold now
+            found = _chain(ex, levels, g1, unmet, forbidden, holds, depth)
+            if found is not None:
+                break
         if found is None:
             return None
         chain = [*found, refined]
@@ -215,7 +231,7 @@ def _chain(ex: Executive, levels: LevelMap, g: Goal, unmet: list[Atom], forbidde
     for k in range(depth):
         done = [(cost, ch) for cost, ch, need in layer if not need and ch[0].key not in forbidden]
         if done:
-            return min(done, key=lambda x: x[0])[1]
+            return min(done, key=lambda x: (x[0], [a.pddl() for a in x[1]]))[1]
         if k == depth - 1:
             break
         nxt: list[tuple[float, list[Action], list[Atom]]] = []
