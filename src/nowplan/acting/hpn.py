@@ -256,7 +256,7 @@ class Executive:
         """A refinement of ``action`` made without a planner call (acting/refine.py), counted as a
         plan made (method ``direct``); ``None``: the planner refines the step."""
         t0 = time.process_time()
-        plan = None if self.domain.satisfies(self.belief, goal) else direct_refinement(self, goal, levels, action)
+        plan = direct_refinement(self, goal, levels, action)
         cpu = time.process_time() - t0
         self.metrics.planning_cpu_s += cpu
         if plan is not None:

@@ -19,6 +19,11 @@ criticality classes in all, wherever the floored problems have plans (the check 
 from the second swap in a row: a step that was itself swapped in); a plan with no such
 step is kept as it was made, with no extra planning, and so is one whose floored problem
 has no plan (then the plan stack's depth limit remains the bound).
+
+Many refinements need no planner call (under --criticality auto most, on benchmarks/classical): :func:`direct_refinement` finds the shortest
+chain of at most :data:`DIRECT_STEPS` steps ending in the refined step, whose actions supply
+what the refinement exposes (the executive tries it before planning; the planner refines the
+step when there is none).
 """
 
 from __future__ import annotations
@@ -107,16 +112,16 @@ def direct_refinement(ex: Executive, goal: Goal, levels: LevelMap, refined: Acti
     """A refinement of ``refined`` (ω) found without a planner call: the shortest plan ``[…, ω]``
     of at most :data:`DIRECT_STEPS` steps in which each action makes every unmet atom of its
     successor's pre-image true and needs only atoms that hold now or that its predecessor makes
-    true (the cheapest such chain of the shortest length); ``None`` when there is none (the
-    planner refines the step).
+    true (the cheapest such chain of the shortest length); ``None`` when there is none, or
+    ``goal`` holds already (the planner refines the step).
 
     Under an ordered-monotonic hierarchy (``--criticality auto``) most refinements are of this
     kind: a refined step exposes one class of preconditions, which hold already (a second ball
     picked where the robot stands) or take an action or two (the truck driven to the package, an
     aircraft refuelled and flown); a planner call would set up and search the whole task for the
     same short plan.  The plan's pre-images are computed as the planner's are
-    (:func:`nowplan.planning.preimage.preimage`), every action's preconditions are checked in the
-    belief, statics included, steps learnt not to start a plan for ``goal`` here
+    (:func:`nowplan.planning.preimage.preimage`), the preconditions of every action put before ω
+    are checked in the belief, statics included, steps learnt not to start a plan for ``goal`` here
     (acting/backtrack.py) are not used first, and no action swaps in an instance more abstract
     than one refined above it (see :func:`refine_without_swaps`).  Chains longer than ``[ω]``
     need a ground, boolean domain whose belief lists its facts (the forward task's premise).
@@ -146,8 +151,10 @@ def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Pla
             v = seen[a] = domain.holds(a, belief)
         return v
 
+    if refined.key in forbidden or all(holds(a) for a in goal.atoms):
+        return None  # the goal holds: the planner's empty plan, not a step
     g1 = preimage(goal, refined, levels.level(refined), domain, drop)
-    if g1 is None or refined.key in forbidden:
+    if g1 is None:
         return None
     unmet = [a for a in g1.atoms if not holds(a)]
     chain: list[Action] = [refined]
