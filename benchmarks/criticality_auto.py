@@ -17,7 +17,7 @@ run), wall time, execution cost, plans made, planner failures, and the number
 of levels of the automatic hierarchy.  Writes ``criticality_auto.csv`` and
 ``criticality_auto.md`` (per-domain summary computed from the CSV) into --out.
 
-    PYTHONPATH=src .venv/bin/python benchmarks/criticality_auto.py [--larger] [--time-limit 20]
+    PYTHONPATH=src .venv/bin/python benchmarks/criticality_auto.py [--larger | --larger-only] [--time-limit 20]
         [--domains gripper,logistics] [--out benchmarks/results/criticality_auto]
 """
 

@@ -213,3 +213,21 @@ def test_auto_hpn_refines_gripper_mostly_without_planner_calls() -> None:
     methods = [e["method"] for e in trace.events if e["event"] == "plan"]
     assert methods.count("direct") >= len(methods) - 1  # the root plan is the only planner call
 
+
+
+ZENO = Path(__file__).resolve().parents[1] / "benchmarks" / "classical" / "zenotravel"
+
+
+def test_an_empty_aircraft_elsewhere_is_refuelled_and_flown_first() -> None:
+    prob = prepare_problem(load_pddl(ZENO / "domain.pddl", ZENO / "p01.pddl", "auto"))
+    board = act(prob, "board", "person1", "plane1", "city0")
+    levels = LevelMap(prob.domain.top_level).next_level(board)
+    facts = [atom("at", "plane1", "city1"), atom("fuel-level", "plane1", "fl0"),
+             atom("at", "person1", "city0"), atom("at", "person2", "city0")]
+    ex = executive(prob, facts)
+    plan = direct_refinement(ex, Goal.of([atom("in", "person1", "plane1"), atom("at", "person2", "city0")]),
+                             levels, board)
+    assert plan is not None
+    assert [s.action.pddl() for s in plan.steps if s.action is not None] == [
+        "(refuel plane1 city1 fl0 fl1)", "(fly plane1 city1 city0 fl1 fl0)", "(board person1 plane1 city0)"]
+    assert ex.domain.satisfies(ex.belief, plan.preimage(0))

@@ -20,10 +20,10 @@ from the second swap in a row: a step that was itself swapped in); a plan with n
 step is kept as it was made, with no extra planning, and so is one whose floored problem
 has no plan (then the plan stack's depth limit remains the bound).
 
-Many refinements need no planner call (under --criticality auto most, on benchmarks/classical): :func:`direct_refinement` finds the shortest
-chain of at most :data:`DIRECT_STEPS` steps ending in the refined step, whose actions supply
-what the refinement exposes (the executive tries it before planning; the planner refines the
-step when there is none).
+Many refinements need no planner call (under ``--criticality auto``, most of them on
+benchmarks/classical): :func:`direct_refinement` finds the shortest chain of at most
+:data:`DIRECT_STEPS` steps ending in the refined step whose actions supply what the refinement
+exposes (the executive tries it before planning; the planner refines the step when there is none).
 """
 
 from __future__ import annotations
