@@ -223,12 +223,9 @@ def _chain(ex: Executive, levels: LevelMap, g: Goal, unmet: list[Atom], forbidde
         acts = applicable.get(u)
         if acts is None:
             acts = applicable[u] = [a for a in index.get(u, ())
-                                    if all(p in true if p.value is True else p.negate() not in true
-                                           for p in a.preconditions(levels.level(a)))]
+                                    if all(holds(p) for p in a.preconditions(levels.level(a)))]
         return acts
 
-    # a ground boolean belief that lists its facts (forward_unsupported): membership decides holds
-    true = {a for a in ex.belief.atoms() if a.value is True}
     table = g.by_key()
     layer: list[tuple[float, list[Action], list[Atom]]] = []  # (cost, chain, what its first action needs)
     for a in achievers(unmet, depth == 1):
