@@ -17,7 +17,7 @@ run), wall time, execution cost, plans made, planner failures, and the number
 of levels of the automatic hierarchy.  Writes ``criticality_auto.csv`` and
 ``criticality_auto.md`` (per-domain summary computed from the CSV) into --out.
 
-    PYTHONPATH=src .venv/bin/python benchmarks/criticality_auto.py [--larger] [--time-limit 20]
+    PYTHONPATH=src .venv/bin/python benchmarks/criticality_auto.py [--larger | --larger-only] [--time-limit 20]
         [--domains gripper,logistics] [--out benchmarks/results/criticality_auto]
 """
 
@@ -171,6 +171,8 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
     ap.add_argument("--domains", default="", help="comma-separated domain names (default: all)")
     ap.add_argument("--larger", action="store_true", help="add the larger generated instances (LARGER)")
+    ap.add_argument("--larger-only", action="store_true",
+                    help="only the larger generated instances (implies --larger)")
     ap.add_argument("--time-limit", type=float, default=20.0, help="wall-clock limit per run (s)")
     ap.add_argument("--engine", choices=("auto", "forward", "regression"), default="forward",
                     help="the planner's engine at every level (default forward; 'auto' is the executive's "
@@ -178,11 +180,14 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", type=Path, default=OUT)
     args = ap.parse_args(argv)
     domains = [d for d in args.domains.split(",") if d]
+    args.larger = args.larger or args.larger_only
     args.out.mkdir(parents=True, exist_ok=True)
     rows: list[dict[str, Any]] = []
     t_start = time.perf_counter()
     with tempfile.TemporaryDirectory() as tmp:
         for suite, d, inst, dom, prob, crit in cases(domains, args.larger, Path(tmp)):
+            if args.larger_only and not inst.startswith("large-"):
+                continue
             settings: list[tuple[str, str | None, str]] = [("flat", None, "flat"),
                                                            ("auto", "auto", "hpn+refine-flat")]
             if crit is not None:

@@ -19,7 +19,7 @@ import random
 import time
 from collections import Counter
 from collections.abc import Callable, Hashable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from nowplan.acting.judge import judge
@@ -28,7 +28,7 @@ from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import (
     Cycle, CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason,
 )
-from nowplan.acting.refine import refine_without_swaps
+from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
 from nowplan.acting.refine_flat import FlatSteps, refinement_key
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.belief.protocols import HasHeuristic, check_belief
@@ -109,6 +109,7 @@ class Executive:
         self._flat_steps = FlatSteps()
         # first steps learnt not to be refinable from the current belief (acting/backtrack.py)
         self.nogoods = Nogoods()
+        self.achievers = Achievers()  # ground actions by effect, for refinements made directly
         check_supported(self.domain, strategy)
         check_belief(self.domain, belief)
         if strategy.domain_planner and self.domain.planner is None:
@@ -222,18 +223,12 @@ class Executive:
         for m in self.mechanisms:
             cfg = m.planner_config(self, parent, goal, cfg) or cfg
         if max_nodes is not None and max_nodes < cfg.max_nodes:
-            from dataclasses import replace
-
             cfg = replace(cfg, max_nodes=max_nodes, shortcut_nodes=min(cfg.shortcut_nodes, max_nodes))
         if remaining < cfg.time_limit:
-            from dataclasses import replace
-
             cfg = replace(cfg, time_limit=max(remaining, 0.01))
         context = self.context()
         forbidden = self.nogoods.forbidden(goal, levels)
         if forbidden:
-            from dataclasses import replace
-
             context = replace(context, extras={**context.extras, "forbidden_first": forbidden})
         res = self._planner(
             self.domain, self.problem.objects, self.belief, goal, levels, cfg, context, self.rng,
@@ -256,6 +251,18 @@ class Executive:
             "method": res.method, "cpu_s": round(res.cpu_time_s, 6), "expanded": res.expanded,
         }
         return res.plan
+
+    def direct_plan(self, goal: Goal, levels: LevelMap, action: Action) -> Plan | None:
+        """A refinement of ``action`` made without a planner call (acting/refine.py), counted as a
+        plan made (method ``direct``); ``None``: the planner refines the step."""
+        t0 = time.process_time()
+        plan = direct_refinement(self, goal, levels, action)
+        cpu = time.process_time() - t0
+        self.metrics.planning_cpu_s += cpu
+        if plan is not None:
+            self.metrics.plans_made += 1
+            self._made[id(plan)] = {"method": "direct", "cpu_s": round(cpu, 6), "expanded": 0}
+        return plan
 
     # -- acting ----------------------------------------------------------------
     def execute(self, f: Frame, action: Action) -> None:
@@ -442,9 +449,13 @@ class Executive:
                     levels = self.base_levels
                 if key in self._flat_steps:
                     levels = flat_levels()
-                new = self.make_plan(step.goal, levels, f)
-                if new is not None and action is not None:
-                    new = refine_without_swaps(self, new, step.goal, levels, f, action)
+                new = None  # a short refinement needs no planner call (a domain's own planner is asked)
+                if action is not None and not (f.root or key in self._flat_steps or self.strategy.domain_planner):
+                    new = self.direct_plan(step.goal, levels, action)
+                if new is None:
+                    new = self.make_plan(step.goal, levels, f)
+                    if new is not None and action is not None:
+                        new = refine_without_swaps(self, new, step.goal, levels, f, action)
                 if new is None:
                     consecutive_failures += 1
                     if f.root and self.strategy.refine_flat and key not in self._flat_steps:

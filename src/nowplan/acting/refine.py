@@ -19,16 +19,22 @@ criticality classes in all, wherever the floored problems have plans (the check 
 from the second swap in a row: a step that was itself swapped in); a plan with no such
 step is kept as it was made, with no extra planning, and so is one whose floored problem
 has no plan (then the plan stack's depth limit remains the bound).
+
+Many refinements need no planner call (under ``--criticality auto``, most of them on
+benchmarks/classical): :func:`direct_refinement` finds the shortest chain of at most
+:data:`DIRECT_STEPS` steps ending in the refined step whose actions supply what the refinement
+exposes (the executive tries it before planning; the planner refines the step when there is none).
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import gc
+from typing import TYPE_CHECKING, Any
 
-from nowplan.core.atoms import Goal
+from nowplan.core.atoms import Atom, Goal
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
-from nowplan.planning.plan import Plan
+from nowplan.planning.plan import Plan, PlanStep
 
 # the floored attempt's node budget: 4x the nodes the plan it replaces took, at least this; a floored
 # problem harder than that (marsupial: a travel whose packing the generators cannot plan from the
@@ -73,3 +79,173 @@ def refine_without_swaps(ex: Executive, new: Plan, goal: Goal, levels: LevelMap,
             return plan
         ex.reject_plan(plan, parent, f"swaps in an instance more abstract than one refined above it ({what})")
         plan, levels = again, floored
+
+
+
+
+class Achievers:
+    """Ground actions by the atoms their effects make true, from the run's grounding at a level
+    (fetched once per level: the index only proposes actions, each is checked in the belief)."""
+
+    def __init__(self) -> None:
+        self._index: dict[int, dict[Atom, list[Action]]] = {}
+
+    def of(self, ex: Executive, levels: LevelMap) -> dict[Atom, list[Action]]:
+        from nowplan.planning.task_grounding import grounding
+
+        top = max([levels.top, *(lv for _, lv in levels.overrides)])
+        index = self._index.get(top)
+        if index is None:
+            index = self._index[top] = {}
+            gr = grounding(ex.domain, ex.problem.objects, ex.belief, top)
+            for act in gr.actions:  # in the grounding's order: ties are broken by name (see _chain)
+                for e in act.effects():
+                    index.setdefault(e, []).append(act)
+        return index
+
+
+# the longest refinement made directly: ω with the actions before it that achieve what it exposes
+DIRECT_STEPS = 4
+
+
+def direct_refinement(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Plan | None:
+    """A refinement of ``refined`` (ω) found without a planner call: the shortest plan ``[…, ω]``
+    of at most :data:`DIRECT_STEPS` steps in which each action makes every unmet atom of its
+    successor's pre-image true and needs only atoms that hold now or that its predecessor makes
+    true (the cheapest such chain of the shortest length); ``None`` when there is none, or
+    ``goal`` holds already (the planner refines the step).
+
+    Under an ordered-monotonic hierarchy (``--criticality auto``) most refinements are of this
+    kind: a refined step exposes one class of preconditions, which hold already (a second ball
+    picked where the robot stands) or take an action or two (the truck driven to the package, an
+    aircraft refuelled and flown); a planner call would set up and search the whole task for the
+    same short plan.  The plan's pre-images are computed as the planner's are
+    (:func:`nowplan.planning.preimage.preimage`), the preconditions of every action put before ω
+    are checked in the belief, statics included, steps learnt not to start a plan for ``goal`` here
+    (acting/backtrack.py) are not used first, and no action swaps in an instance more abstract
+    than one refined above it (see :func:`refine_without_swaps`).  Chains longer than ``[ω]``
+    need a ground, boolean domain whose belief lists its facts (the forward task's premise).
+    """
+    paused = gc.isenabled()  # as the planner does (planning/regression.py): no collector passes mid-call
+    if paused:
+        gc.disable()
+    try:
+        return _direct(ex, goal, levels, refined)
+    finally:
+        if paused:
+            gc.enable()
+
+
+def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Plan | None:
+    from nowplan.planning.preimage import preimage, static_drop
+    from nowplan.planning.task import forward_unsupported
+
+    forbidden = ex.nogoods.forbidden(goal, levels)
+    domain, belief = ex.domain, ex.belief
+    drop = static_drop(domain, belief)
+    seen: dict[Atom, bool] = {}
+
+    def holds(a: Atom) -> bool:
+        v = seen.get(a)
+        if v is None:
+            v = seen[a] = domain.holds(a, belief)
+        return v
+
+    if refined.key in forbidden or all(holds(a) for a in goal.atoms):
+        return None  # the goal holds: the planner's empty plan, not a step
+    g1 = preimage(goal, refined, levels.level(refined), domain, drop)
+    if g1 is None:
+        return None
+    unmet = [a for a in g1.atoms if not holds(a)]
+    chain: list[Action] = [refined]
+    if unmet:
+        if domain.axioms or forward_unsupported(domain, belief) is not None:
+            return None
+        found = None
+        for depth in range(1, DIRECT_STEPS):  # iterative deepening: only a chain's start must hold now
+            found = _chain(ex, levels, g1, unmet, forbidden, holds, depth)
+            if found is not None:
+                break
+        if found is None:
+            return None
+        chain = [*found, refined]
+    goals = [goal, g1]
+    for a in reversed(chain[:-1]):
+        g = preimage(goals[-1], a, levels.level(a), domain, drop)
+        if g is None:
+            return None
+        goals.append(g)
+    goals.reverse()
+    if not all(holds(a) for a in goals[0].atoms):
+        return None
+    return Plan((PlanStep(None, goals[0]), *(PlanStep(a, g) for a, g in zip(chain, goals[1:], strict=True))), levels)
+
+
+
+def _chain(ex: Executive, levels: LevelMap, g: Goal, unmet: list[Atom], forbidden: frozenset[Any],
+           holds: Any, depth: int) -> list[Action] | None:
+    """The cheapest shortest chain ``[b, …, a]`` (at most ``depth`` actions) after which ``g``'s
+    unmet atoms hold: ``a`` adds them all and destroys no atom of ``g``, and each action's
+    preconditions hold now or are all added by the action before it; the first needs only what
+    holds now and may not be ``forbidden``."""
+    index = ex.achievers.of(ex, levels)
+    refined_ops = {key[0] for key, _ in levels.overrides}
+    rows: dict[Any, tuple[frozenset[Atom], tuple[Atom, ...]]] = {}
+
+    def row(a: Action) -> tuple[frozenset[Atom], tuple[Atom, ...]]:
+        r = rows.get(a.key)
+        if r is None:
+            r = rows[a.key] = (frozenset(a.effects()), a.preconditions(levels.level(a)))
+        return r
+
+    def candidate(a: Action, need: list[Atom], table: dict[Any, Atom]) -> list[Atom] | None:
+        """``a``'s preconditions not holding now, if ``a`` adds all of ``need`` and destroys none of
+        ``table``'s atoms; else None."""
+        effects, pre = row(a)
+        for u in need:
+            if u not in effects:
+                return None
+        for e in effects:
+            want = table.get(e.key)
+            if want is not None and want.value != e.value:
+                return None
+        if a.key[0] in refined_ops and levels.floored([a]) is not levels:
+            return None  # a swap (refine_without_swaps)
+        return [p for p in pre if not holds(p)]
+
+    applicable: dict[Atom, list[Action]] = {}
+
+    def achievers(need: list[Atom], start: bool) -> list[Action]:
+        """The actions adding one of ``need`` (the one with the fewest), applicable now if ``start``."""
+        if not start:
+            return min((index.get(u, []) for u in need), key=len)
+        u = min(need, key=lambda x: len(index.get(x, ())))
+        acts = applicable.get(u)
+        if acts is None:
+            acts = applicable[u] = [a for a in index.get(u, ())
+                                    if all(holds(p) for p in a.preconditions(levels.level(a)))]
+        return acts
+
+    table = g.by_key()
+    layer: list[tuple[float, list[Action], list[Atom]]] = []  # (cost, chain, what its first action needs)
+    for a in achievers(unmet, depth == 1):
+        c = candidate(a, unmet, table)
+        if c is not None:
+            layer.append((a.cost(ex.belief), [a], c))
+    for k in range(depth):
+        done = [(cost, ch) for cost, ch, need in layer if not need and ch[0].key not in forbidden]
+        if done:
+            return min(done, key=lambda x: (x[0], [a.pddl() for a in x[1]]))[1]
+        if k == depth - 1:
+            break
+        nxt: list[tuple[float, list[Action], list[Atom]]] = []
+        for cost, ch, need in layer:
+            if not need:
+                continue  # a forbidden start: longer chains before it are no shorter way round
+            pre_table = {p.key: p for p in row(ch[0])[1]}
+            for b in achievers(need, k + 2 == depth):
+                c = candidate(b, need, pre_table)
+                if c is not None:
+                    nxt.append((cost + b.cost(ex.belief), [b, *ch], c))
+        layer = nxt
+    return None
