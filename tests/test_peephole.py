@@ -521,3 +521,21 @@ def test_arrange_asked_for_second_skips_the_domains_test_when_it_cannot_matter()
     assert calls == []
     assert arrange(s1, s2, s, domain=TOY, levels=lv, estimator=est, model=model) is Arrange.COMBINE
     assert calls == [("robot",)]
+
+
+def test_revalidating_a_reordered_plan_regresses_only_its_new_head():
+    s = state(robot="yard", x="yard", y="hall", z="yard", w="yard")
+    r = reorderer(s)
+    ops = [act("carry", "x", "yard"), act("close"), act("carry", "y", "hall"),
+           act("carry", "z", "yard"), act("carry", "w", "yard")]
+    goal = Goal.of([atom("closed"), *(atom("carried", q) for q in "xyzw")])
+    first = r.chain(ops, goal)
+    assert first is not None and r.regressions == len(ops)
+    again = r.chain(ops, goal)  # the same plan again: nothing regressed anew
+    assert again == first and r.regressions == len(ops)
+    moved = [ops[3], *ops[:3], ops[4]]  # carry z moved to the front: the tail (carry w) is shared
+    got = r.chain(moved, goal)
+    assert r.regressions == len(ops) + 4
+    # the cached chain equals a fresh Reorderer's, with or without the move
+    fresh = reorderer(s)
+    assert got == fresh.chain(moved, goal) and first == fresh.chain(ops, goal)

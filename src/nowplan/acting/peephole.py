@@ -107,6 +107,11 @@ class Reorderer:
         self.estimator = Estimator(domain, objects, belief, self.model, search)
         self.moves: list[str] = []
         self.validity_checks = 0
+        # pre-images already computed in this belief, by (id of the goal, id of the operator): the
+        # candidate orders share their tails, so re-validating one regresses only its new head.
+        # The goal and operator are kept in the value, so the ids are never reused while cached
+        self._regressed: dict[tuple[int, int], tuple[Goal, Action, Goal | None]] = {}
+        self.regressions = 0  # pre-images computed (not found in the cache)
 
     # -- validity ---------------------------------------------------------------
     def chain(self, ops: Sequence[Action], goal: Goal) -> tuple[list[Action], list[Goal]] | None:
@@ -121,7 +126,7 @@ class Reorderer:
         goals = [goal]
         g = goal
         for a in reversed(ops):
-            pre = preimage(g, a, self.levels.level(a), self.domain, self.drop)
+            pre = self._preimage(g, a)
             if pre is None:
                 table = g.by_key()
                 useful = any(
@@ -137,6 +142,17 @@ class Reorderer:
         kept.reverse()
         goals.reverse()
         return kept, goals
+
+    def _preimage(self, g: Goal, a: Action) -> Goal | None:
+        """``preimage(g, a)`` at ``a``'s level, computed once per goal object and operator."""
+        key = (id(g), id(a))
+        hit = self._regressed.get(key)
+        if hit is not None and hit[0] is g and hit[1] is a:
+            return hit[2]
+        self.regressions += 1
+        pre = preimage(g, a, self.levels.level(a), self.domain, self.drop)
+        self._regressed[key] = (g, a, pre)
+        return pre
 
     def valid(self, ops: Sequence[Action], goal: Goal) -> tuple[list[Action], list[Goal]] | None:
         """The plan (redundant steps dropped) and its pre-images if it is valid from the belief."""

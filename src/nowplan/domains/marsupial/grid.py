@@ -64,6 +64,13 @@ def in_storage(cell: Cell, rows: int, cols: int) -> bool:
     return 0 <= cell[0] < rows and 0 <= cell[1] < cols - 2
 
 
+@lru_cache(maxsize=4096)
+def stored(shape: str, anchor: Cell, rows: int, cols: int) -> bool:
+    """Does ``shape`` set down at ``anchor`` lie wholly in storage (memoised: the loader's
+    heuristics and goal tests ask it for every package of every configuration)?"""
+    return all(in_storage(c, rows, cols) for c in cells(shape, anchor))
+
+
 def inside(cell: Cell, rows: int, cols: int) -> bool:
     return 0 <= cell[0] < rows and 0 <= cell[1] < cols
 
@@ -98,7 +105,8 @@ class Hold:
 
     def stored(self) -> bool:
         """Every package set down lies in storage."""
-        return all(in_storage(c, self.rows, self.cols) for _, s, a in self.items for c in cells(s, a))
+        rows, cols = self.rows, self.cols
+        return all(stored(s, a, rows, cols) for _, s, a in self.items)
 
     def __str__(self) -> str:
         body = " ".join(f"{n}@{a[0]}.{a[1]}" for n, _, a in self.items)

@@ -42,6 +42,7 @@ from nowplan.domains.marsupial.grid import (
     occupancy,
     placement_penalty,
     reachable,
+    stored,
 )
 
 log = logging.getLogger(__name__)
@@ -76,7 +77,7 @@ def spot_penalty(shape: str, anchor: Cell, rows: int, cols: int) -> float:
     if anchor == load_anchor(cols):
         return -1.0
     pen = placement_penalty(shape, anchor, rows)
-    return pen if all(in_storage(c, rows, cols) for c in cells(shape, anchor)) else pen + 10.0 * cols
+    return pen if stored(shape, anchor, rows, cols) else pen + 10.0 * cols
 
 
 @lru_cache(maxsize=256)
@@ -189,7 +190,7 @@ def stow_h(conf: Config) -> float:
     rows, cols = hold.rows, hold.cols
     h = 2.0 if door is not None else 0.0
     h += 1.0 if hold.held is not None else 0.0
-    h += sum(2.0 for _, s, a in hold.items if not all(in_storage(c, rows, cols) for c in cells(s, a)))
+    h += sum(2.0 for _, s, a in hold.items if not stored(s, a, rows, cols))
     if h == 0.0 and not in_storage(hold.loader, rows, cols):
         h = 1.0
     return h
@@ -205,7 +206,7 @@ def fetch_h(pkg: str) -> Heuristic:
         rows, cols = hold.rows, hold.cols
         blocking = sum(
             2.0 for n, s, a in hold.items
-            if n != pkg and not all(in_storage(c, rows, cols) for c in cells(s, a))
+            if n != pkg and not stored(s, a, rows, cols)
         )
         if door is not None and door[0] == pkg:
             return blocking + (0.0 if door_status(hold, door) == pkg and hold.held is None else 1.0)
