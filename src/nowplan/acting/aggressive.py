@@ -3,14 +3,16 @@
 With hysteresis, two kinds:
 
 * *cost*: the plan made from the root after an action replaces the current plans only if
-  it is cheaper, in the belief as it is now, than the rest of the current top-level plan
-  (the step under way and those after it).  A new plan that costs no less (an equally
-  good order, another item as near as the one being fetched) leaves the current plans to
-  go on, so replanning does not undo the agent's work on a tie (marsupial at a 50 %
-  failure rate: after a failed loader move the root's plan put the package back and
-  grasped the other one, then that one back, until the planner-call budget was spent).
-  A plan the executive can no longer follow is still replaced: its failure pops it as
-  without aggressive replanning.
+  it is cheaper, in the belief as it is now, than what they still cost (:func:`rest_cost`:
+  the rest of the deepest plan and, above it, the steps after the one being refined).  A
+  new plan that costs no less (an equally good order, another item as near as the one being
+  fetched) leaves the current plans to go on, so replanning does not undo the agent's work
+  on a tie (marsupial at a 50 % failure rate: after a failed loader move the root's plan put
+  the package back and grasped the other one, then that one back, until the planner-call
+  budget was spent).  A plan the executive can no longer follow is still replaced: its
+  failure pops it as without aggressive replanning.  The root's plan is abstract, so it is
+  often the cheaper (it hides what its refinement will cost): the hysteresis settles ties,
+  not every detour;
 * *cycles*: after the progress guard saw a cycle (:mod:`nowplan.acting.progress`, e.g. a
   replan toward another item after every action that shuttles the robot between two
   rooms) the executive is *committed* and the current plan is kept until it is finished or
@@ -24,15 +26,20 @@ from typing import TYPE_CHECKING
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 
 if TYPE_CHECKING:
-    from nowplan.acting.hpn import Executive, Frame
+    from nowplan.acting.hpn import Executive
     from nowplan.planning.plan import Plan
 
 TIE = 1e-6  # relative cost difference below which two plans cost the same
 
 
-def rest_cost(ex: Executive, frame: Frame) -> float:
-    """What the frame's plan still costs in the current belief: the step under way and the rest."""
-    return sum(s.action.cost(ex.belief) for s in frame.plan.steps[max(frame.i, 1):] if s.action is not None)
+def rest_cost(ex: Executive) -> float:
+    """What the current plans still cost in the current belief: the rest of the deepest plan (after
+    the step just taken) and, in each plan above it, the steps after the one being refined (that
+    one's remaining work is the plans below it)."""
+    total = 0.0
+    for f in ex.stack[1:]:
+        total += sum(s.action.cost(ex.belief) for s in f.plan.steps[f.i + 1:] if s.action is not None)
+    return total
 
 
 def plan_cost(ex: Executive, plan: Plan) -> float:
@@ -54,7 +61,7 @@ class AggressiveReplan(Mechanism):
             new = ex.make_plan(goal, top.plan.levels, root)
             if new is None:
                 return  # keep the current plans (the failure is traced); the executive goes on with them
-            old_cost, new_cost = rest_cost(ex, top), plan_cost(ex, new)
+            old_cost, new_cost = rest_cost(ex), plan_cost(ex, new)
             if new_cost >= old_cost - TIE * max(1.0, abs(old_cost)):
                 ex.reject_plan(new, root, f"aggressive: costs {new_cost:g}, the current plan's rest "
                                           f"{old_cost:g}: the current plan goes on")
