@@ -168,3 +168,34 @@ def test_the_online_policy_recovers_from_an_object_a_look_missed(strategy: str, 
     m = run_episode(ep, st, seed)
     assert m.outcome.value == "reached", m.reason
     assert m.action_counts["Pick"] >= 1  # the runs do pick (else the test shows nothing)
+
+
+def test_a_move_stopped_in_a_doorway_leaves_a_pose_the_planner_can_start_from() -> None:
+    # domain 1, failures 0.5, online seed 12: a move stopped in the lower doorway at (4.82, 1.8); the
+    # nominal pose, the centre of its 0.2 m cell, (4.9, 1.9), lies within the robot's radius of the
+    # wall's end, so no path started there and the run ended "no plan for the goal"
+    from nowplan.domains.namo.geometry import snap_free
+
+    geom = MapGeometry(10.0, 6.0, ((4.95, 2.1, 5.05, 3.9),), res=0.2)
+    p = Pt(4.82, 1.8)
+    assert geom.robot_blocked[geom.grid.cell(geom.grid.snap(p))]
+    q = snap_free(geom, p, 0.15)
+    assert not geom.robot_blocked[geom.grid.cell(q)] and q.dist(p) <= 0.15
+    assert snap_free(geom, Pt(2.0, 2.0), 0.15) == geom.grid.snap(Pt(2.0, 2.0))  # a free cell: its centre
+    belief = NamoBelief(geom, np.array([p.x, p.y]), robot_sym=Pt(-1.0, -1.0))
+    assert belief.nominal() == q
+
+
+@pytest.mark.parametrize("strategy", ["online", "online+reuse"])
+def test_the_online_policy_goes_on_after_a_move_stopped_in_a_doorway(strategy: str) -> None:
+    from nowplan.acting.run import run_episode
+    from nowplan.acting.strategy import parse_strategy
+    from nowplan.domains.registry import get_domain
+    from nowplan.experiments.faults import Faults, apply_faults
+
+    spec = get_domain("namo")
+    st = parse_strategy(strategy, base_planner=spec.planner, time_limit=120.0)
+    ep = spec.scenario("domain1")(12)
+    apply_faults(ep, Faults(failure=0.5))
+    m = run_episode(ep, st, 12)
+    assert m.outcome.value == "reached", m.reason
