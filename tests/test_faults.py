@@ -53,3 +53,14 @@ def test_the_sweep_runner_runs_a_fault_level():
     assert rec.key != clean.key and rec.metrics["actions"] > clean.metrics["actions"]
     bad = execute(RunConfig("marsupial", "single-2?exogenous=0.5", "hpn", 0, 30.0))
     assert bad.outcome == "error" and "exogenous" in bad.reason
+
+
+@pytest.mark.slow
+def test_aggressive_replanning_does_not_undo_its_work_on_a_tie():
+    # marsupial single-3, failure 0.5, seed 1: after each failed loader move the root's new plan put
+    # the package back and grasped the other one (as cheap), then that one back: 458 actions, 29
+    # cycles, and the 2000 planner calls were spent ("limit").  With cost hysteresis a new plan
+    # replaces the current one only if it is cheaper.
+    rec = execute(RunConfig("marsupial", "single-3?failure=0.5", "hpn+aggressive", 1, 60.0))
+    assert rec.outcome == "reached", rec.reason
+    assert rec.metrics["actions"] < 400

@@ -178,12 +178,32 @@ def test_serendipity_does_not_resume_a_step_behind_the_one_worked_on(strategy):
 
 def test_aggressive_replanning_commits_after_a_cycle_in_the_corridor():
     # replanning from the root after every step walks back toward the locked door each time the
-    # key sub-plan has taken a step away from it; the guard sees the cycle and commits
+    # key sub-plan has taken a step away from it (the root's abstract plan ignores the lock, so it
+    # looks cheaper than the rest of the current plans); the guard sees the cycle and commits
     tr = Trace()
     m = run_episode(corridor(), parse_strategy("hpn+aggressive", max_actions=200), trace=tr)
     assert m.outcome is Outcome.REACHED, (m.outcome, m.reason)
     assert m.cycles >= 1 and m.actions <= 20
     assert any("committing" in e["text"] for e in tr.of("note"))
+
+
+@pytest.mark.parametrize("rest", [0.0, 1e9])
+def test_aggressive_replanning_replaces_the_current_plans_only_with_a_cheaper_plan(monkeypatch, rest):
+    # cost hysteresis: the root's new plan is taken only if it costs less than the rest of the
+    # current plans; priced at 0 the current plans always go on, priced dear they are always replaced
+    import nowplan.acting.aggressive as aggressive
+
+    monkeypatch.setattr(aggressive, "rest_cost", lambda ex: rest)
+    tr = Trace()
+    m = run_episode(corridor(), parse_strategy("hpn+aggressive", max_actions=200), trace=tr)
+    assert m.outcome is Outcome.REACHED, (m.outcome, m.reason)
+    replaced = [e for e in tr.of("pop") if e["reason"] == "replaced"]
+    kept = [e for e in tr.of("plan_failed") if e["reason"].startswith("aggressive:")]
+    if rest == 0.0:
+        assert kept and not replaced and m.cycles == 0
+        assert all("the current plan goes on" in e["reason"] for e in kept)
+    else:
+        assert replaced and not kept
 
 
 def test_forget_keeps_the_present_situation():

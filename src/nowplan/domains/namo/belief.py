@@ -33,7 +33,8 @@ import numpy as np
 
 from nowplan.core.operators import Action
 from nowplan.domains.namo.estimate import ObjectEstimate, k_of
-from nowplan.domains.namo.geometry import Box, Manip, MapGeometry, Pt, Region, along, heading_to, polyline_length
+from nowplan.domains.namo.geometry import (Box, Manip, MapGeometry, Pt, Region, along, heading_to, polyline_length,
+                                          snap_free)
 from nowplan.domains.namo.params import DEFAULT_PARAMS, DEFAULT_SENSOR, Params, Sensor
 from nowplan.worlds.base import Observation
 
@@ -173,7 +174,11 @@ class NamoBelief:
         """Where the robot is, as a pose the planner names (the last commanded one if still true)."""
         if self.robot_sym is not None and self.at(self.robot_sym):
             return self.robot_sym
-        return self.geom.grid.snap(self.pose)
+        return self.snap_pose()
+
+    def snap_pose(self) -> Pt:
+        """The robot's pose as a cell centre the planner can start from (:func:`snap_free`)."""
+        return snap_free(self.geom, self.pose, self.params.at_tol)
 
     # -- objects -------------------------------------------------------------------
     def free_objects(self, exclude: frozenset[str] | set[str] = frozenset()) -> list[ObjectEstimate]:
@@ -315,7 +320,7 @@ class NamoBelief:
             if data.get("completed", obs.success):
                 self.robot_sym = region.end
             else:
-                self.robot_sym = self.geom.grid.snap(self.pose)
+                self.robot_sym = self.snap_pose()
                 touched = along(path, stop + CONTACT_AHEAD) if data.get("contacts") else None
         elif name == "Pick":
             self._update_pick(action, data)
@@ -390,7 +395,7 @@ class NamoBelief:
             back = data.get("back", polyline_length(m.pick_path) if data.get("returned") else 0.0)
             if back:
                 self._drive(tuple(reversed(m.pick_path)), float(back))
-            self.robot_sym = m.home if self.at(m.home) else self.geom.grid.snap(self.pose)
+            self.robot_sym = m.home if self.at(m.home) else self.snap_pose()
 
     def _update_place(self, action: Action, data: dict[str, Any]) -> None:
         o, m = str(action.args[0]), action.args[4]
@@ -411,7 +416,7 @@ class NamoBelief:
             # the return starts at the release configuration only if the drag got there: a drag
             # stopped early leaves the robot where it stopped (not at the return path's start)
             self._drive(m.return_path, float(data.get("returned", 0.0)))
-        self.robot_sym = m.home if data.get("home") and self.at(m.home) else self.geom.grid.snap(self.pose)
+        self.robot_sym = m.home if data.get("home") and self.at(m.home) else self.snap_pose()
         self.percept += 1  # the map changed where the object was and where it went
 
     def _sense(self, data: dict[str, Any]) -> None:

@@ -480,3 +480,15 @@ class Manip:
 
     def __str__(self) -> str:
         return f"{self.obj}:{self.obj_at}->{self.place}"
+
+
+def snap_free(geom: MapGeometry, p: Pt, tol: float) -> Pt:
+    """The centre of ``p``'s grid cell or, when the robot cannot stand there (too close to a wall: a move
+    stopped in a doorway), the nearest neighbouring centre where it can, within ``tol`` of ``p``."""
+    g = geom.grid
+    own = g.cell(p)
+    i, j = g.ij(own)
+    near = [(g.center(jj * g.nx + ii).dist(p), jj * g.nx + ii) for ii in (i - 1, i, i + 1) for jj in (j - 1, j, j + 1)
+            if 0 <= ii < g.nx and 0 <= jj < g.ny]
+    free = sorted((d, k) for d, k in near if not geom.robot_blocked[k] and d <= tol)
+    return g.center(own if not geom.robot_blocked[own] or not free else free[0][1])

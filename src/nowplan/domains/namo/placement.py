@@ -60,52 +60,14 @@ def gen_manip_fields(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief
 def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, context: Any) -> Iterator[dict[Var, Any]]:
     """An object in region ``?r`` (not excepted) and how to move it out of the way."""
     region, ex = bindings.get(R), bindings.get(EX)
-    home = robot_at_in(goal) or belief.nominal()
-    if belief.held is not None:  # finish the placement under way (or just put the object down)
-        m, held = belief.held_manip, belief.held
-        if m is None or held not in belief.objects:
-            return
-        only_hand = not isinstance(region, Region) or not isinstance(ex, frozenset)
-        if only_hand:  # only the hand must be emptied: "cleared" is the spot the object goes to
-            region, ex = Region(m.place, m.place, 0.0), frozenset()
-        assert isinstance(region, Region) and isinstance(ex, frozenset)
-        if held in ex or m.home != home:
-            return
-        size = belief.objects[held].size
-        options = [m]
-        spot = _spot(m, held, size, belief.geom.robot_radius)
-        pc = belief.nominal()
-        grip = belief.grip[0] if belief.grip is not None else np.array(m.offset)
-        at = Pt.of(belief.robot_mean[0] + grip[0], belief.robot_mean[1] + grip[1])
-        unseeable = (m.survey is not None and not belief.is_observed(m.survey)
-                     and belief.futile_looks.get((m.pick_conf, f"look:{m.survey}")) == belief.percept)
-        away = not belief.at(m.pick_conf)  # the grasp pushed the robot off its pick configuration
-        # where the goal being planned needs the object not to be: the region cleared, regions it needs
-        # clear of the object, later manipulations' volumes (a plan made after the grasp, e.g. replanning
-        # after every action, routes its moves without knowing where the object was meant to go)
-        hard: tuple[Region, ...] = tuple(r for r in hard_regions(goal, held, region) if r.radius > 0)
-        in_the_way = any(r.hits_box(spot[PLACE]) for r in hard)
-        if unseeable or away or in_the_way or not (
-                belief.clear(spot[SPOT], spot[ONLY], belief.params.eps_clear)
-                and belief.clear(m.survey or spot[SPOT], spot[ONLY], belief.params.eps_clear)):
-            # the planned placement is no longer possible (something is there now, its carry volume
-            # cannot be observed from here, or the plan needs that place clear): place it elsewhere from here
-            options = []
-            for fog_ok, through in ((False, False), (True, False), (True, True)):
-                options = _manip_options(belief, held, m.home, hard, tuple(taboo_regions(context)), 2,
-                                         fog_ok=fog_ok, through=through, held_at=(at, pc))
-                if options:
-                    break
-            if region.radius <= 0:  # only the hand must be emptied: putting it back down is fine too
-                back = tuple(reversed(m.pick_path)) if len(m.pick_path) > 1 else (pc, m.home)
-                options.append(Manip(held, m.home, pc, at, at, pc, (pc,), (pc,), (pc, *back[1:]),
-                                     Region(pc, pc, 0.0)))
-        for opt in options:
-            # (not the first placement's spot: a new object there is why this one was chosen)
-            r_opt = Region(opt.place, opt.place, 0.0) if only_hand else region
-            yield {R: r_opt, EX: ex, O: held, EXO: ex | {held}, M: opt, HOME: home,
-                   PC: opt.pick_conf, **_spot(opt, held, size, belief.geom.robot_radius)}
-        return
+    # while an object is held, the plan's moves (and any other manipulation) start once it is put
+    # down, from the held manipulation's home (as gen_move plans them)
+    held_home = belief.held_manip.home if belief.held is not None and belief.held_manip is not None else None
+    home = robot_at_in(goal) or held_home or belief.nominal()
+    if belief.held is not None:
+        yield from _place_held(region, ex, home, goal, belief, context)
+        # ... or, once it is down, move another object out of the region: a plan made while holding
+        # one object may need to clear others first (a missed detection shows one only now)
     if not isinstance(region, Region) or not isinstance(ex, frozenset):
         return
     blockers = belief.blockers(region, belief.params.eps_clear, ex)
@@ -121,6 +83,53 @@ def gen_place(bindings: Mapping[Var, Any], goal: Goal, belief: NamoBelief, conte
             manip_options(belief, name, home, (region,), (), n=1)  # is it movable at all? (marks it if not)
         for m in options:
             yield {O: name, EXO: ex | {name}, M: m, HOME: home, PC: m.pick_conf, **_spot(m, name, size, belief.geom.robot_radius)}
+
+
+def _place_held(region: Any, ex: Any, home: Pt, goal: Goal, belief: NamoBelief, context: Any) -> Iterator[dict[Var, Any]]:
+    """Finish the placement under way of the object held, place it elsewhere, or just put it down."""
+    m, held = belief.held_manip, belief.held
+    if m is None or held is None or held not in belief.objects:
+        return
+    only_hand = not isinstance(region, Region) or not isinstance(ex, frozenset)
+    if only_hand:  # only the hand must be emptied: "cleared" is the spot the object goes to
+        region, ex = Region(m.place, m.place, 0.0), frozenset()
+    assert isinstance(region, Region) and isinstance(ex, frozenset)
+    if held in ex or m.home != home:
+        return
+    size = belief.objects[held].size
+    options = [m]
+    spot = _spot(m, held, size, belief.geom.robot_radius)
+    pc = belief.nominal()
+    grip = belief.grip[0] if belief.grip is not None else np.array(m.offset)
+    at = Pt.of(belief.robot_mean[0] + grip[0], belief.robot_mean[1] + grip[1])
+    unseeable = (m.survey is not None and not belief.is_observed(m.survey)
+                 and belief.futile_looks.get((m.pick_conf, f"look:{m.survey}")) == belief.percept)
+    away = not belief.at(m.pick_conf)  # the grasp pushed the robot off its pick configuration
+    # where the goal being planned needs the object not to be: the region cleared, regions it needs
+    # clear of the object, later manipulations' volumes (a plan made after the grasp, e.g. replanning
+    # after every action, routes its moves without knowing where the object was meant to go)
+    hard: tuple[Region, ...] = tuple(r for r in hard_regions(goal, held, region) if r.radius > 0)
+    in_the_way = any(r.hits_box(spot[PLACE]) for r in hard)
+    if unseeable or away or in_the_way or not (
+            belief.clear(spot[SPOT], spot[ONLY], belief.params.eps_clear)
+            and belief.clear(m.survey or spot[SPOT], spot[ONLY], belief.params.eps_clear)):
+        # the planned placement is no longer possible (something is there now, its carry volume
+        # cannot be observed from here, or the plan needs that place clear): place it elsewhere from here
+        options = []
+        for fog_ok, through in ((False, False), (True, False), (True, True)):
+            options = _manip_options(belief, held, m.home, hard, tuple(taboo_regions(context)), 2,
+                                     fog_ok=fog_ok, through=through, held_at=(at, pc))
+            if options:
+                break
+        if region.radius <= 0:  # only the hand must be emptied: putting it back down is fine too
+            back = tuple(reversed(m.pick_path)) if len(m.pick_path) > 1 else (pc, m.home)
+            options.append(Manip(held, m.home, pc, at, at, pc, (pc,), (pc,), (pc, *back[1:]),
+                                 Region(pc, pc, 0.0)))
+    for opt in options:
+        # (not the first placement's spot: a new object there is why this one was chosen)
+        r_opt = Region(opt.place, opt.place, 0.0) if only_hand else region
+        yield {R: r_opt, EX: ex, O: held, EXO: ex | {held}, M: opt, HOME: home,
+               PC: opt.pick_conf, **_spot(opt, held, size, belief.geom.robot_radius)}
 
 
 def _spot(m: Manip, name: str, size: tuple[float, float], radius: float) -> dict[Var, Any]:
@@ -416,14 +425,20 @@ def _manip_options(
                 rejected.append(rel)
                 continue
             par_r, free_ret = ret
-            pick_cells = trace_back(core.par_pick, hc, carry.pc)
+            # an object already held was picked: there is no pick path left to find (the robot may
+            # even stand inside the object's clearance or another object's shadow, which the pick
+            # search keeps out of, and which dropped every re-placement of a held object)
+            pick_cells = trace_back(core.par_pick, hc, carry.pc) if held_at is None else [carry.pc]
             carry_cells = trace_back(carry.par_c, carry.pc, c)
             ret_cells = trace_back(par_r, hc, c)
             if pick_cells is None or carry_cells is None or ret_cells is None:
                 continue
             ret_cells.reverse()
-            pick_path = smooth_cells(g, core.free_pick, pick_cells, geom.segment_free)
-            pick_path[0] = home
+            if held_at is None:
+                pick_path = smooth_cells(g, core.free_pick, pick_cells, geom.segment_free)
+                pick_path[0] = home
+            else:
+                pick_path = [held_at[1]]
             ret_path = smooth_cells(g, free_ret, ret_cells, geom.segment_free)
             ret_path[-1] = home
             pcp = g.center(carry.pc)
