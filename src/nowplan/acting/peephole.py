@@ -32,6 +32,7 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from nowplan.acting.arrange import Arrange, Subgoal, arrange
+from nowplan.acting.gather import gather
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.resources import Estimator, ResourceModel, resource_model
 from nowplan.core.atoms import Goal
@@ -73,6 +74,9 @@ class PeepholeConfig:
     # each shortcut and the full search); 0: the planner's own budgets.  A combination whose
     # refinement needs more is given up in this belief, as HPN would not have made it
     joint_nodes: int = 2_000
+    # after SelectParallelOps, move the prerequisites of a step that would join the group in front
+    # of it (:mod:`nowplan.acting.gather`; ours, not in the paper)
+    gather: bool = True
 
 
 class Reorderer:
@@ -348,6 +352,7 @@ class Peephole(Mechanism):
         if r.arrangeable(ops[0]):
             ops, goals = r.select_gap(ops, goals)
             ops, goals, last = r.select_parallel_ops(ops, goals)
+            ops, goals, last = gather(r, ops, goals, last)
         if r.moves:
             orig = frame.info.get("orig") or list(range(len(plan.steps)))
             frame.info["orig"] = [*orig[: k + 1], *_permuted(orig[k + 1 :], before, ops)]
