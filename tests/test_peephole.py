@@ -576,3 +576,34 @@ def test_gather_never_moves_prerequisites_that_use_the_group_resources():
     assert r.arrange(Subgoal((ops[0],), goals[1]), Subgoal((ops[2],), goals[3])) is Arrange.COMBINE
     new, _, last = gather(r, ops, goals, 0)
     assert new == ops and last == 0 and not r.moves
+
+
+def test_gather_never_moves_prerequisites_held_by_different_resources():
+    from nowplan.acting.gather import gather
+
+    # stow(y) needs have(y), which takes two steps on two different holders (a truck leg and a
+    # plane leg, say): they cannot be taken as one combined step, so nothing is gathered
+    lift = Operator("lift", (o,), (Precondition(atom("obj_at", o, "shelf"), 2),),
+                    (atom("carried", o), atom("obj_at", o, "shelf", value=False)), cost=1.0,
+                    resources=(Resource(("arm",), SH),))
+    hand = Operator("hand", (o,), (Precondition(atom("carried", o), 2),),
+                    (atom("have", o), atom("carried", o, value=False)), cost=1.0,
+                    resources=(Resource(("cart",), SH),))
+    toy = Domain("toy-rooms-two-legs", PREDS, (*OPS, lift, hand), conflicts=(one_place,))
+    s = state(robot="hall", x="hall", y="shelf")
+
+    def run(ops_after):
+        r = Reorderer(toy, OBJECTS, s, LevelMap(toy.top_level), ResourceModel(arrange=_share_declared),
+                      PeepholeConfig(min_hidden_to_combine=1, max_combined=3))
+        goal = Goal.of([atom("inside", "x"), atom("inside", "y")])
+        ops, goals = r.chain([act("place", "x", "hall"), *ops_after, act("stow", "y")], goal)
+        return ops, gather(r, ops, goals, 0)[0]
+
+    ops, new = run([lift.instantiate({o: "y"}), hand.instantiate({o: "y"})])
+    assert new == ops
+    # with one holder for both legs the prerequisites are gathered
+    hand_arm = Operator("hand", (o,), hand.preconditions, hand.effects, cost=1.0,
+                        resources=(Resource(("arm",), SH),))
+    toy = Domain("toy-rooms-one-leg", PREDS, (*OPS, lift, hand_arm), conflicts=(one_place,))
+    ops, new = run([lift.instantiate({o: "y"}), hand_arm.instantiate({o: "y"})])
+    assert [x.name for x in new] == ["lift", "hand", "place", "stow"]

@@ -15,7 +15,10 @@ step itself right behind the group, when
 * the step declares a resource the group's operators declare, the group
   needs none of the prerequisites' effects and the prerequisites declare
   none of the group's resources (doing them first does not take the
-  group's vehicle away), and
+  group's vehicle away), the prerequisites that declare resources all
+  declare one in common (they can be taken as one combined step: a package's
+  truck leg, not its truck and plane legs, which would take the plane away
+  from its own groups), and
 * the reordered plan is still valid.
 
 The prerequisites then come first (SelectParallelOps runs on them, so they
@@ -64,8 +67,12 @@ def gather(
         pre = prerequisites(r, ops, last + 1, j)
         if not pre or depends(r.domain, group.actions, [ops[i] for i in pre], r.levels):
             continue  # movable now (SelectParallelOps refused it), or the group comes first
-        if any(declared & {res.name for res in ops[i].resources()} for i in pre):
+        held = [{res.name for res in ops[i].resources()} for i in pre]
+        if any(declared & h for h in held):
             continue  # the prerequisites would use the group's vehicle (resources) first
+        held = [h for h in held if h]
+        if held and not set.intersection(*held):
+            continue  # prerequisites on several resource holders (legs of different vehicles): not one step
         if r.arrange(group, Subgoal((step,), goals[j + 1]), Arrange.COMBINE) is not Arrange.COMBINE:
             continue
         moved = set(pre) | {j}
