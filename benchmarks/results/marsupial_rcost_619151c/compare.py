@@ -1,3 +1,7 @@
+"""Cost decrease and RCHPN/HPN CPU (ratio of sums) per regime group, before against after.
+
+    python compare.py runs_before.jsonl runs_after.jsonl
+"""
 import json, sys
 from collections import defaultdict
 def load(p):
