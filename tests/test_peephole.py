@@ -539,3 +539,95 @@ def test_revalidating_a_reordered_plan_regresses_only_its_new_head():
     # the cached chain equals a fresh Reorderer's, with or without the move
     fresh = reorderer(s)
     assert got == fresh.chain(moved, goal) and first == fresh.chain(ops, goal)
+
+
+# ------------------------------------------------------------------ gather (ours)
+
+
+def _share_declared(s1, s2, bel, **kw) -> Arrange:
+    """Combine exactly the subgoals whose operators declare a resource in common."""
+    names = lambda sg: {r.name for a in sg.actions for r in a.resources()}  # noqa: E731
+    return Arrange.COMBINE if names(s1) & names(s2) else Arrange.FIRST
+
+
+def _gather_case(**cfg: int):
+    from nowplan.acting.gather import gather
+
+    s = state(robot="hall", x="hall", y="shelf")
+    r = reorderer(s, ResourceModel(arrange=_share_declared), min_hidden_to_combine=1, **cfg)
+    # stow(y) shares the doorway with place(x) but needs grab(y), still ahead: SelectParallelOps
+    # cannot pull it next to place(x)
+    goal = Goal.of([atom("inside", "x"), atom("inside", "y")])
+    ops, goals = r.chain([act("place", "x", "hall"), act("grab", "y"), act("stow", "y")], goal)
+    ops, goals, last = r.select_parallel_ops(ops, goals)
+    assert last == 0
+    return r, goal, gather(r, ops, goals, last)
+
+
+def test_gather_moves_the_prerequisites_of_a_combinable_step_in_front_of_the_group():
+    r, goal, (new, new_goals, last) = _gather_case(max_combined=3)
+    assert [str(x) for x in new] == ["grab(y)", "place(x, hall)", "stow(y)"]
+    assert last == 0  # grab(y) shares nothing with place(x): taken alone, the group is formed after it
+    assert (new, new_goals) == r.valid(new, goal)
+    assert any(m.startswith("gathered grab(y)") for m in r.moves)
+    # once grab(y) is done, SelectParallelOps combines the two
+    s2 = State([*state(robot="hall", x="hall").atoms(), atom("have", "y")])
+    r2 = reorderer(s2, ResourceModel(arrange=_share_declared), min_hidden_to_combine=1, max_combined=3)
+    assert r2.select_parallel_ops(*r2.chain(new[1:], goal))[2] == 1
+
+
+def test_gather_does_nothing_at_the_complexity_limit_or_when_switched_off():
+    for cfg in ({"max_combined": 1}, {"max_combined": 3, "gather": False}):
+        r, _, (new, _, last) = _gather_case(**cfg)
+        assert [str(x) for x in new] == ["place(x, hall)", "grab(y)", "stow(y)"] and last == 0
+        assert not r.moves
+
+
+def test_gather_never_moves_prerequisites_that_use_the_group_resources():
+    from nowplan.acting.gather import gather
+
+    # fetch(y) gives have(y) like grab(y) but uses the doorway, as the group does: doing it first
+    # would take the group's resource away, so the plan is left as it is
+    fetch = Operator("fetch", (o,), (Precondition(atom("obj_at", o, "shelf"), 2),),
+                     (atom("have", o), atom("obj_at", o, "shelf", value=False)), cost=1.0,
+                     resources=(Resource(("doorway",), CT),))
+    toy = Domain("toy-rooms-fetch", PREDS, (*OPS, fetch), conflicts=(one_place,))
+    s = state(robot="hall", x="hall", y="shelf")
+    r = Reorderer(toy, OBJECTS, s, LevelMap(toy.top_level), ResourceModel(arrange=_share_declared),
+                  PeepholeConfig(min_hidden_to_combine=1, max_combined=3))
+    goal = Goal.of([atom("inside", "x"), atom("inside", "y")])
+    ops, goals = r.chain([act("place", "x", "hall"), fetch.instantiate({o: "y"}), act("stow", "y")], goal)
+    assert r.arrange(Subgoal((ops[0],), goals[1]), Subgoal((ops[2],), goals[3])) is Arrange.COMBINE
+    new, _, last = gather(r, ops, goals, 0)
+    assert new == ops and last == 0 and not r.moves
+
+
+def test_gather_never_moves_prerequisites_held_by_different_resources():
+    from nowplan.acting.gather import gather
+
+    # stow(y) needs have(y), which takes two steps on two different holders (a truck leg and a
+    # plane leg, say): they cannot be taken as one combined step, so nothing is gathered
+    lift = Operator("lift", (o,), (Precondition(atom("obj_at", o, "shelf"), 2),),
+                    (atom("carried", o), atom("obj_at", o, "shelf", value=False)), cost=1.0,
+                    resources=(Resource(("arm",), SH),))
+    hand = Operator("hand", (o,), (Precondition(atom("carried", o), 2),),
+                    (atom("have", o), atom("carried", o, value=False)), cost=1.0,
+                    resources=(Resource(("cart",), SH),))
+    toy = Domain("toy-rooms-two-legs", PREDS, (*OPS, lift, hand), conflicts=(one_place,))
+    s = state(robot="hall", x="hall", y="shelf")
+
+    def run(ops_after):
+        r = Reorderer(toy, OBJECTS, s, LevelMap(toy.top_level), ResourceModel(arrange=_share_declared),
+                      PeepholeConfig(min_hidden_to_combine=1, max_combined=3))
+        goal = Goal.of([atom("inside", "x"), atom("inside", "y")])
+        ops, goals = r.chain([act("place", "x", "hall"), *ops_after, act("stow", "y")], goal)
+        return ops, gather(r, ops, goals, 0)[0]
+
+    ops, new = run([lift.instantiate({o: "y"}), hand.instantiate({o: "y"})])
+    assert new == ops
+    # with one holder for both legs the prerequisites are gathered
+    hand_arm = Operator("hand", (o,), hand.preconditions, hand.effects, cost=1.0,
+                        resources=(Resource(("arm",), SH),))
+    toy = Domain("toy-rooms-one-leg", PREDS, (*OPS, lift, hand_arm), conflicts=(one_place,))
+    ops, new = run([lift.instantiate({o: "y"}), hand_arm.instantiate({o: "y"})])
+    assert [x.name for x in new] == ["lift", "hand", "place", "stow"]

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from nowplan.acting.arrange import Arrange, Subgoal, arrange
+from nowplan.acting.gather import gather
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.resources import Estimator, ResourceModel, resource_model
 from nowplan.core.atoms import Goal
@@ -80,6 +81,9 @@ class PeepholeConfig:
     # does), and A* no longer meets every subset of the held facts rewritten (on marsupial, each
     # held same_city of a package the subgoal does not move doubled a joint search's nodes)
     held_rewrites: bool = False
+    # after SelectParallelOps, move the prerequisites of a step that would join the group in front
+    # of it (:mod:`nowplan.acting.gather`; ours, not in the paper)
+    gather: bool = True
 
 
 class Reorderer:
@@ -371,6 +375,7 @@ class Peephole(Mechanism):
         if r.arrangeable(ops[0]):
             ops, goals = r.select_gap(ops, goals)
             ops, goals, last = r.select_parallel_ops(ops, goals)
+            ops, goals, last = gather(r, ops, goals, last)
         if r.moves:
             orig = frame.info.get("orig") or list(range(len(plan.steps)))
             frame.info["orig"] = [*orig[: k + 1], *_permuted(orig[k + 1 :], before, ops)]

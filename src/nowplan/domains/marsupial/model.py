@@ -404,6 +404,15 @@ def vehicle_shareable(resource: tuple[Any, ...], first: Any, second: Any, belief
     loads will bring them (:func:`.loader.can_stow_in_turn`): a fit only
     the packer could find would leave a package at the door that no plan
     can stow, so the vehicle could not travel.
+
+    The packer keeps the packages already in storage where they are, but the
+    loader may move them: when the packer finds no room around them, yet
+    every package (those aboard and the new ones) fits an empty bay, the
+    loader's stow search decides.  Without that, unloads of packages that
+    are all aboard already (the last one still at the door) were judged
+    unshareable whenever the earlier loads had left the storage fragmented,
+    and were refined one at a time, the first one dug out of a bay not yet
+    packed.
     """
     if resource[0] not in ("vehicle", "space"):
         return None
@@ -413,9 +422,20 @@ def vehicle_shareable(resource: tuple[Any, ...], first: Any, second: Any, belief
         return None
     shapes = dict(belief.facts("shape"))
     order = [x for x in _packages_for(veh, [*first, *second]) if x in shapes]
-    if not can_share(hold, door, {x: shapes[x] for x in order}):
+    extra = {x: shapes[x] for x in order}
+    if not can_share(hold, door, extra) and not _fits_repacked(hold, door, extra):
         return False
     return lp.can_stow_in_turn(hold, door, [(x, shapes[x]) for x in order])
+
+
+def _fits_repacked(hold: Hold, door: Any, extra: Mapping[str, str]) -> bool:
+    """Would the packer fit everything aboard and ``extra`` into the bay emptied (nothing fixed)?"""
+    aboard = {n: s for n, s, _ in hold.items}
+    if door is not None:
+        aboard[door[0]] = door[1]
+    if hold.held is not None and hold.held_shape is not None:
+        aboard[hold.held] = hold.held_shape
+    return can_share(Hold.empty(hold.rows, hold.cols), None, {**extra, **aboard})
 
 
 RESOURCES = ResourceModel(  # every marsupial domain carries it (make_domain)
