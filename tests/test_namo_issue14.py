@@ -56,19 +56,3 @@ def test_flat_search_is_not_starved_of_moves() -> None:
     # issue 14 item 2: before, 'no plan for the goal (node_limit: expanded 50000 nodes without a plan)'
     m = _run("domain1?sigma_per_m=0.1", "flat", 16)
     assert m["outcome"] == "reached", m["reason"]
-
-
-def test_a_whole_problem_call_gets_moves_past_the_refinement_loop_guard() -> None:
-    from nowplan.domains.namo.belief import FLAT_LOOP_LIMIT, LOOP_LIMIT
-    from nowplan.domains.namo.generators import whole_problem
-    from nowplan.planning.context import PlanningContext
-
-    flat, refinement = PlanningContext((), {"whole_problem": True}), PlanningContext((), {})
-    assert whole_problem(flat) and not whole_problem(refinement) and not whole_problem(None)
-    b = _belief((1.0, 2.0), Pt(1.0, 2.0), 0.01)
-    assert not any(b.planning_loop(flat, FLAT_LOOP_LIMIT) for _ in range(LOOP_LIMIT))
-    assert not any(b.planning_loop(refinement) for _ in range(LOOP_LIMIT - 1))
-    assert b.planning_loop(refinement)  # a refinement gives up at LOOP_LIMIT: the level above replans
-    assert not any(b.planning_loop(flat, FLAT_LOOP_LIMIT) for _ in range(FLAT_LOOP_LIMIT - LOOP_LIMIT - 1))
-    assert b.planning_loop(flat, FLAT_LOOP_LIMIT)  # bounded all the same
-

@@ -187,8 +187,7 @@ class Executive:
     def context(self) -> PlanningContext:
         """What the planner and generators see: the plan stack only with foresight on; a flat strategy's
         planner also gets the domain's goal-distance estimate, as the online policy's flat planner does."""
-        extras: dict[str, Any] = {"foresight": self.strategy.foresight,
-                                  "whole_problem": not self.strategy.hierarchical}
+        extras: dict[str, Any] = {"foresight": self.strategy.foresight}
         if not self.strategy.hierarchical and isinstance(self.belief, HasHeuristic):
             extras["heuristic"] = self.belief.planning_heuristic
         return PlanningContext(tuple(f.plan for f in self.stack) if self.strategy.foresight else (), extras)

@@ -127,7 +127,7 @@ class OnlinePolicy:
         goal = self.problem.goal
         # a domain may offer its own goal-distance estimate through the belief (regression's hook)
         h = self.belief.planning_heuristic if isinstance(self.belief, HasHeuristic) else None
-        ctx = PlanningContext((), {"online": True, "heuristic": h, "whole_problem": True})
+        ctx = PlanningContext((), {"online": True, "heuristic": h})
         if self.reuse and prev:
             self.constrained_tried += 1
             budget = max(min(self.reuse_budget, deadline - self.clock()), 0.01)

@@ -28,11 +28,6 @@ class PlanningContext:
     def foresight(self) -> bool:
         return bool(self.extras.get("foresight", False))
 
-    @property
-    def whole_problem(self) -> bool:
-        """``extras["whole_problem"]``: the call plans the whole problem flat (no level above it)."""
-        return bool(self.extras.get("whole_problem", False))
-
     def requirements(self, predicate: str | None = None) -> list[Atom]:
         """Atoms (of ``predicate``, or all) required by pre-images of the stack's plans.
 

@@ -44,7 +44,6 @@ __all__ = [
     "CONTACT_REACH",
     "DRAG_MARGIN",
     "DRAG_MARGIN_MAX",
-    "FLAT_LOOP_LIMIT",
     "LOOP_LIMIT",
     "NamoBelief",
     "ObjectEstimate",
@@ -55,13 +54,13 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-LOOP_LIMIT = 1500  # move-generator calls in one planning call (one belief) that signal a planning loop
-# ... in a planning call for the whole problem (a flat strategy, the online policy), which has no level
-# above to fall back to and legitimately asks for moves about once per node it expands: 4,354 (flat)
-# and 9,822 (online) calls on domain1?sigma_per_m=0.1 seed 16, where LOOP_LIMIT starved it of moves
-# and it expanded its 50,000 nodes without a plan (issue 14).  Half the default node budget: such a
-# search still ends by its node limit first; this ends one that asks for moves without expanding nodes.
-FLAT_LOOP_LIMIT = 25000
+# Move-generator calls in one planning call (one belief) that signal a planning loop.  A flat
+# search plans the whole problem in one call and legitimately asks for moves about once per node
+# it expands: 4,354 (flat) and 9,822 (online) calls on domain1?sigma_per_m=0.1 seed 16, where the
+# old limit of 1,500 starved it of moves and it expanded its 50,000 nodes without a plan (issue 14).
+# Half the default node budget: a search still ends by its node limit first; the guard ends a
+# call that keeps asking for moves without expanding nodes (e.g. from its heuristic).
+LOOP_LIMIT = 25000
 # A move stopped by a contact: the robot's centre could not go on to a point at most this far ahead
 # along the commanded path (the controller checks its path in steps of about this length) ...
 CONTACT_AHEAD = 0.05
@@ -141,7 +140,7 @@ class NamoBelief:
 
         return estimate
 
-    def planning_loop(self, call: object = None, limit: int = LOOP_LIMIT) -> bool:
+    def planning_loop(self, call: object = None) -> bool:
         """Has one planning call (``call``: its context) asked for moves far more often than any plan needs?
 
         Past this bound the move generator gives up for that call, so a search
@@ -156,9 +155,9 @@ class NamoBelief:
         key = ("move_calls", id(call))
         n = c[key][1] + 1 if key in c else 1
         c[key] = (call, n)  # (the call kept alive with its count: its id is not reused meanwhile)
-        if n == limit:
+        if n == LOOP_LIMIT:
             log.warning("planning loop: %d move requests in one planning call; its move generator gives up", n)
-        return n >= limit
+        return n >= LOOP_LIMIT
 
     def _bump(self, percept: bool = False) -> None:
         self.version += 1

@@ -16,7 +16,7 @@ from functools import lru_cache
 from typing import Any
 
 from nowplan.core.atoms import Goal, Var
-from nowplan.domains.namo.belief import FLAT_LOOP_LIMIT, LOOP_LIMIT, NamoBelief
+from nowplan.domains.namo.belief import NamoBelief
 from nowplan.domains.namo.geometry import Box, Pt, Region, point_back
 from nowplan.domains.namo.paths import INF, PathPlanner
 
@@ -30,12 +30,6 @@ Out = Iterator[dict[Var, Any]]
 
 def foresight(context: Any) -> bool:
     return bool(context is not None and getattr(context, "foresight", False))
-
-
-def whole_problem(context: Any) -> bool:
-    """Does this planning call plan the whole problem (a flat strategy, the online policy)?  Its move
-    generator keeps offering moves longer (``FLAT_LOOP_LIMIT``): no level above replans if it gives up."""
-    return bool(context is not None and getattr(context, "whole_problem", False))
 
 
 def robot_at_in(goal: Goal) -> Pt | None:
@@ -61,8 +55,7 @@ def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -
     trigger, or always for aggressive replanning) computes a new path.
     """
     b = bindings.get(B)
-    limit = FLAT_LOOP_LIMIT if whole_problem(context) else LOOP_LIMIT
-    if not isinstance(b, Pt) or belief.planning_loop(context, limit):
+    if not isinstance(b, Pt) or belief.planning_loop(context):
         return
     fs = foresight(context)
     seg = belief.params.segment
