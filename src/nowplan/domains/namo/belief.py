@@ -54,13 +54,7 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-# Move-generator calls in one planning call (one belief) that signal a planning loop.  A flat
-# search plans the whole problem in one call and legitimately asks for moves about once per node
-# it expands: 4,354 (flat) and 9,822 (online) calls on domain1?sigma_per_m=0.1 seed 16, where the
-# old limit of 1,500 starved it of moves and it expanded its 50,000 nodes without a plan (issue 14).
-# Half the default node budget: a search still ends by its node limit first; the guard ends a
-# call that keeps asking for moves without expanding nodes (e.g. from its heuristic).
-LOOP_LIMIT = 25000
+LOOP_LIMIT = 1500  # move-generator calls in one planning call (one belief) that signal a planning loop
 # A move stopped by a contact: the robot's centre could not go on to a point at most this far ahead
 # along the commanded path (the controller checks its path in steps of about this length) ...
 CONTACT_AHEAD = 0.05
