@@ -2,8 +2,7 @@
 
 Fluents (all tested on the belief):
 
-* ``RobotAt(p)`` — ``p`` is the robot's nominal pose, or its mean pose is within
-  ``at_tol`` of ``p`` by ``at_sd`` standard deviations (``NamoBelief.surely_at``);
+* ``RobotAt(p)`` — the robot's mean pose is within ``at_tol`` of ``p``;
 * ``HandEmpty()`` / ``Holding(o, m)`` — what the gripper holds (``m`` is the
   :class:`~nowplan.domains.namo.geometry.Manip` it was grasped for);
 * ``Observed(R)`` — no fog left in region ``R`` that a look from its view
@@ -61,7 +60,7 @@ WHERE, SEE, CLEAR = 3, 2, 1
 
 # -- tests -------------------------------------------------------------------------------
 def _t_robot_at(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
-    return b.surely_at(args[0]) == bool(value)
+    return b.at(args[0]) == bool(value)
 
 
 def _t_hand_empty(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
