@@ -52,10 +52,10 @@ def _children_cpu() -> float:
     return ru.ru_utime + ru.ru_stime
 
 
-def run_hpn(prob: Path, limit: float) -> tuple[bool, float, float]:
+def run_hpn(prob: Path, limit: float, strategy: str = "hpn") -> tuple[bool, float, float]:
     p = load_pddl(DATA / "domain.pddl", prob, DATA / "logistics.crit")
     ep = Episode(p, SymbolicWorld(p.domain, p.init), SymbolicBelief(p.init))
-    m = run_episode(ep, parse_strategy("hpn", time_limit=limit, max_actions=10_000,
+    m = run_episode(ep, parse_strategy(strategy, time_limit=limit, max_actions=10_000,
                                        planner=PlannerConfig(time_limit=limit)))
     return m.outcome.value == "reached", m.planning_cpu_s, m.execution_cost
 
@@ -72,6 +72,7 @@ def main() -> int:
     ap.add_argument("--packages", default="8,14,20")
     ap.add_argument("--seeds", default="0,1")
     ap.add_argument("--time-limit", type=float, default=60.0)
+    ap.add_argument("--strategy", default="hpn", help="HPN's strategy (e.g. hpn+nodirect: no direct refinements)")
     ap.add_argument("--out", type=Path, default=Path(__file__).resolve().parent / "results")
     args = ap.parse_args()
     rows: list[dict[str, object]] = []
@@ -84,7 +85,7 @@ def main() -> int:
                 bar.set_postfix_str(f"{n} packages, seed {seed}", refresh=False)
                 prob = Path(tmp) / f"logistics-{n}-{seed}.pddl"
                 prob.write_text(generate_logistics(c, loc, air, n, seed=seed))
-                ok_h, t_h, c_h = run_hpn(prob, args.time_limit)
+                ok_h, t_h, c_h = run_hpn(prob, args.time_limit, args.strategy)
                 ok_f, t_f, c_f = run_flat(prob, args.time_limit)
                 fd_cpu = _children_cpu()
                 fd = run_fd(DATA / "domain.pddl", prob, args.time_limit)

@@ -214,6 +214,16 @@ def test_auto_hpn_refines_gripper_mostly_without_planner_calls() -> None:
     assert methods.count("direct") >= len(methods) - 1  # the root plan is the only planner call
 
 
+def test_nodirect_refines_every_step_with_a_planner_call() -> None:
+    prob = gripper()
+    trace = Trace()
+    m = run_episode(Episode(prob, SymbolicWorld(prob.domain, prob.init, seed=0), SymbolicBelief(prob.init), "p01"),
+                    parse_strategy("hpn+refine-flat+nodirect"), seed=0, trace=trace)
+    assert m.outcome is Outcome.REACHED
+    methods = [e["method"] for e in trace.events if e["event"] == "plan"]
+    assert len(methods) > 1 and "direct" not in methods
+
+
 
 ZENO = Path(__file__).resolve().parents[1] / "benchmarks" / "classical" / "zenotravel"
 

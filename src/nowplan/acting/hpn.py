@@ -450,7 +450,8 @@ class Executive:
                 if key in self._flat_steps:
                     levels = flat_levels()
                 new = None  # a short refinement needs no planner call (a domain's own planner is asked)
-                if action is not None and not (f.root or key in self._flat_steps or self.strategy.domain_planner):
+                if action is not None and self.strategy.direct_refinements and not (
+                        f.root or key in self._flat_steps or self.strategy.domain_planner):
                     new = self.direct_plan(step.goal, levels, action)
                 if new is None:
                     new = self.make_plan(step.goal, levels, f)

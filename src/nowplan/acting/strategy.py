@@ -52,6 +52,7 @@ class Strategy:
     max_retries: int = 2  # flexible: setbacks a plan may retry before it is replanned (Fig. 4)
     refine_flat: bool = False  # a plan whose step cannot be refined is replaced by a concrete plan
     domain_planner: bool = False  # plan with the domain's own planner (Domain.planner) when it has one
+    direct_refinements: bool = True  # short refinements made without a planner call (acting/refine.py)
     time_limit: float = 600.0
 
     def exhausted(self, metrics: Metrics, elapsed: float) -> tuple[Outcome, str] | None:
@@ -89,6 +90,7 @@ class Strategy:
             "max_actions": self.max_actions,
             "domain_planner": self.domain_planner,
             "refine_flat": self.refine_flat,
+            "direct_refinements": self.direct_refinements,
         }
 
 
@@ -107,6 +109,10 @@ register_switch(
     Switch("refine-flat", "when a step of an abstract plan cannot be refined, plan that plan's goal "
            "concretely (for hierarchies without the downward refinement property, e.g. --criticality auto)",
            {"refine_flat": True})
+)
+register_switch(
+    Switch("nodirect", "refine every abstract step with a planner call (no direct refinements of at "
+           "most 4 steps, acting/refine.py): the ablation of that shortcut", {"direct_refinements": False})
 )
 register_switch(
     Switch("domain-planner", "plan with the domain's own planner (e.g. pieces' means-ends rule)",
