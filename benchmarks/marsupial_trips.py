@@ -22,14 +22,7 @@ from nowplan.domains.marsupial.flatcmp import timed_run
 from nowplan.domains.marsupial.grid import SHAPES
 from nowplan.domains.marsupial.problems import generate
 from nowplan.domains.marsupial.scenarios import episode
-
-
-def _span(text: str) -> list[int]:
-    out: list[int] = []
-    for part in text.split(","):
-        lo, _, hi = part.partition("-")
-        out.extend(range(int(lo), int(hi or lo) + 1))
-    return out
+from nowplan.experiments.sweep import parse_seeds
 
 
 def breakdown(regime: str, n: int, trial: int, strategy: str) -> dict[str, Any]:
@@ -89,8 +82,8 @@ def main() -> None:
     print("| problem | strategy | cost | travel | load+unload | loader (loading / unloading) "
           "| batches per vehicle / capacity bound [packages per batch] |")
     print("|---|---|---|---|---|---|---|")
-    for n in _span(args.sizes):
-        for t in _span(args.trials):
+    for n in parse_seeds(args.sizes):
+        for t in parse_seeds(args.trials):
             for strategy in ("hpn", "hpn+peephole"):
                 r = breakdown(args.regime, n, t, strategy)
                 trips = "; ".join(f"{v} {b}/{lb} {g}" for v, (b, lb, g) in r["trips"].items())

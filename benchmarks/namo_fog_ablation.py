@@ -25,10 +25,7 @@ from dataclasses import fields, replace
 from pathlib import Path
 from typing import Any
 
-
-def _range(text: str) -> range:
-    lo, _, hi = text.partition("-")
-    return range(int(lo), int(hi or lo) + 1)
+from nowplan.experiments.sweep import parse_seeds
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -59,9 +56,9 @@ def main(argv: list[str] | None = None) -> int:
         return replace(sc, params=replace(sc.params, **over))
 
     S.SCENARIOS.spec = spec  # type: ignore[method-assign]  # this process only
-    office = range(0) if args.office_seeds == "none" else _range(args.office_seeds)
+    office: list[int] = [] if args.office_seeds == "none" else parse_seeds(args.office_seeds)
     specs = [RunSpec(label, scen, alg, s) for label, scen in DOMAINS.items() for alg in ALGORITHMS
-             for s in _range(args.seeds)]
+             for s in parse_seeds(args.seeds)]
     specs += [RunSpec("office", "office", alg, s) for alg in ALGORITHMS for s in office]
     records = [run_one(s, repeats=args.repeats) for s in specs]
     rows = aggregate(records)

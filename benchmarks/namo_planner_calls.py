@@ -19,10 +19,7 @@ import logging
 from dataclasses import fields, replace
 from typing import Any
 
-
-def _range(text: str) -> range:
-    lo, _, hi = text.partition("-")
-    return range(int(lo), int(hi or lo) + 1)
+from nowplan.experiments.sweep import parse_seeds
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -55,7 +52,7 @@ def main(argv: list[str] | None = None) -> int:
         ap.error(f"--algorithms: unknown {bad}; known: {list(ALGORITHMS)}")
     for alg in algs:
         calls, cpu, replans = 0, 0.0, 0
-        for seed in _range(args.seeds):
+        for seed in parse_seeds(args.seeds):
             scen = SCENARIOS.spec(args.scenario)
             scen = replace(scen, params=replace(scen.params, **over))
             ep = episode(scen, seed)
