@@ -40,7 +40,7 @@ on demand over the generators' values, see :mod:`nowplan.planning.relaxed`).
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator, Mapping, Sequence
 from typing import Any
 
 from nowplan.acting.resources import ResourceModel
@@ -438,8 +438,32 @@ def _fits_repacked(hold: Hold, door: Any, extra: Mapping[str, str]) -> bool:
     return can_share(Hold.empty(hold.rows, hold.cols), None, {**extra, **aboard})
 
 
+def effort_bound(unmet: Sequence[Atom], belief: Any) -> float:
+    """A lower bound on the cost of any plan achieving ``unmet`` (the peephole's effort estimates).
+
+    ``door(v) = p`` for a package ``p`` in ``v``'s bay: a plan of robot operators (the zero-cost
+    inferences leave the bay alone) costs at least the loader's consistent fetch estimate from
+    the bay as it is, and any other plan has a vehicle operator (load or unload); every other
+    atom is bounded by 0.  The estimator's small plan for an Unload's ``door`` precondition is a
+    bay search, so a step this bound already shows to be no easier to reach than the one before
+    it is not searched for (:func:`nowplan.acting.arrange.arrange`).
+    """
+    out = 0.0
+    for x in unmet:
+        if x.predicate != "door" or not isinstance(x.value, str) or door_package(x.value) != x.value:
+            continue
+        veh = str(x.args[0])
+        hold, door = _bay(belief, veh)
+        if not isinstance(hold, Hold):
+            continue
+        if x.value in hold.packages() or (door is not None and door[0] == x.value):
+            out = max(out, min(lp.fetch_h(x.value)((hold, door)), VEHICLE_COST))
+    return out
+
+
 RESOURCES = ResourceModel(  # every marsupial domain carries it (make_domain)
     orders={"load": 1, "same_city": 1, "unload": 1},
     arrangeable=frozenset({"load", "unload", "same_city"}),
     shareable=vehicle_shareable,
+    effort_bound=effort_bound,
 )
