@@ -133,6 +133,7 @@ class Estimator:
         self._cache: dict[tuple[Any, int, int], Estimate] = {}
         self._plans: dict[tuple[Any, int], tuple[Action, ...] | None] = {}
         self.plan_calls = 0
+        self._cheapest: dict[str, float] = {}
 
     def estimate(self, action: Action, levels: LevelMap, order: int | None = None) -> Estimate:
         lvl = levels.level(action)
@@ -175,11 +176,13 @@ class Estimator:
         return float("inf") if first is None else sum(a.cost(self.belief) for a in first)
 
     def effort_bound(self, action: Action, levels: LevelMap) -> float:
-        """A lower bound on :meth:`effort` found without a search where the domain gives one.
+        """A lower bound on :meth:`effort`, found without a search.
 
-        The effort itself once its small plan is known; 0 when nothing is exposed or unmet;
-        else the domain's admissible ``ResourceModel.effort_bound`` of the unmet atoms (every
-        plan for them costs at least that, so the small plan does too), or 0 without one.
+        The effort itself once its small plan is known; 0 when nothing is exposed or unmet; else
+        the larger of two admissible bounds of the unmet atoms (every plan for them costs at
+        least that, so the small plan does too): the cheapest operator with an effect on each
+        atom's predicate (:meth:`cheapest_achiever`), and the domain's own
+        ``ResourceModel.effort_bound`` if it has one.
         """
         lvl = levels.level(action)
         if action.is_primitive(lvl):
@@ -189,11 +192,32 @@ class Estimator:
         if key in self._plans:
             known = self._plans[key]
             return float("inf") if known is None else sum(a.cost(self.belief) for a in known)
-        bound = self.model.effort_bound
-        if bound is None:
-            return 0.0
         unmet = self._unmet(action, crit)
-        return max(0.0, float(bound(unmet, self.belief))) if unmet else 0.0
+        if not unmet:
+            return 0.0
+        out = max(self.cheapest_achiever(a.predicate) for a in unmet)
+        bound = self.model.effort_bound
+        if bound is not None:
+            out = max(out, float(bound(unmet, self.belief)))
+        return max(out, 0.0)
+
+    def cheapest_achiever(self, predicate: str) -> float:
+        """The least cost of an operator with an effect on ``predicate``: a bound on any plan
+        that makes an atom of it true.  0 where that does not hold or is not known: a predicate
+        decided by a test or derived by axioms (made true by other facts), an operator whose
+        cost depends on its arguments or the belief, or no operator at all."""
+        hit = self._cheapest.get(predicate)
+        if hit is not None:
+            return hit
+        pred = self.domain.predicates.get(predicate)
+        costs: list[float] = []
+        if (pred is None or pred.test is None) and predicate not in self.domain.derived:
+            for op in self.domain.operators:
+                if any(e.predicate == predicate for e in op.effects):
+                    costs.append(float(op.cost) if isinstance(op.cost, (int, float)) else 0.0)
+        out = min(costs) if costs else 0.0
+        self._cheapest[predicate] = out
+        return out
 
     def _unmet(self, action: Action, crit: int) -> list[Atom]:
         """``action``'s preconditions of criticality ``crit`` (not static) that the belief does not satisfy."""
