@@ -78,3 +78,49 @@ def test_searches_find_the_cheapest_fetch(conf: Config, pkg: str) -> None:
     if blind is not None:
         assert cost(informed) == cost(blind)
 
+
+
+def test_marsupial_effort_bound_is_below_every_small_plan_of_an_rchpn_run(monkeypatch) -> None:
+    """On the beliefs of a real RCHPN run, the domain's effort bound of a step's exposed ``door``
+    atoms is at most the cost of the small plan the estimator finds for them (or that plan does
+    not exist), and the run makes the same moves, with fewer such small searches, as one where no
+    bound spares a search."""
+    from nowplan.acting.resources import Estimator
+    from nowplan.domains.marsupial import model
+    from nowplan.domains.marsupial.flatcmp import timed_run
+    from nowplan.domains.marsupial.scenarios import episode
+
+    checked: list[tuple[float, float]] = []
+    original = Estimator._support
+
+    def support(self, action, levels, crit):  # type: ignore[no-untyped-def]
+        out = original(self, action, levels, crit)
+        unmet = self._unmet(action, crit)
+        if any(x.predicate == "door" for x in unmet):
+            cost = float("inf") if out is None else sum(a.cost(self.belief) for a in out)
+            checked.append((model.effort_bound(unmet, self.belief), cost))
+        return out
+
+    monkeypatch.setattr(Estimator, "_support", support)
+
+    def moves() -> list[str]:
+        ep = episode("both", 5, 0)
+        executed: list[str] = []
+        world_execute = ep.world.execute
+
+        def execute(action):  # type: ignore[no-untyped-def]
+            executed.append(str(action))
+            return world_execute(action)
+
+        monkeypatch.setattr(ep.world, "execute", execute)
+        _, _, ok = timed_run(ep, "hpn+peephole", 0, 120.0)
+        assert ok
+        return executed
+
+    with_bound = moves()
+    assert checked and any(b > 0 for b, _ in checked)
+    assert all(b <= c + 1e-9 for b, c in checked), [x for x in checked if x[0] > x[1]]
+    searched = len(checked)
+    monkeypatch.setattr(Estimator, "effort_bound", lambda self, action, levels: 0.0)
+    assert moves() == with_bound
+    assert len(checked) - searched > searched  # the bound spared some of those small searches

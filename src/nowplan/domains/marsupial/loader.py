@@ -232,7 +232,8 @@ def fetch_h(pkg: str) -> Heuristic:
             # a held package is set down, and a loader in the load region walks out (before, one
             # operator was counted for either, which with a package to clear from the load
             # region dropped by 2 over one grasp: not consistent)
-            return blocking + (1.0 if hold.held is not None else 0.0) + (0.0 if in_storage(hold.loader, rows, cols) else 1.0)
+            held = 1.0 if hold.held is not None else 0.0
+            return blocking + held + (0.0 if in_storage(hold.loader, rows, cols) else 1.0)
         out = blocking + (2.0 if door is not None else 0.0)
         if hold.held == pkg:
             assert hold.held_shape is not None
