@@ -224,10 +224,13 @@ def fetch_h(pkg: str) -> Heuristic:
     def h(conf: Config) -> float:
         hold, door = conf
         rows, cols = hold.rows, hold.cols
-        blocking = sum(
-            2.0 for n, s, a in hold.items
-            if n != pkg and not stored(s, a, rows, cols)
-        )
+        blocking = 0.0
+        mine: tuple[str, Cell] | None = None
+        for n, s, a in hold.items:
+            if n == pkg:
+                mine = (s, a)
+            elif not stored(s, a, rows, cols):
+                blocking += 2.0
         if door is not None and door[0] == pkg:
             # a held package is set down, and a loader in the load region walks out (before, one
             # operator was counted for either, which with a package to clear from the load
@@ -239,16 +242,14 @@ def fetch_h(pkg: str) -> Heuristic:
             assert hold.held_shape is not None
             return out + 1.0 + (0.0 if hold.loader in border(hold.held_shape, load_anchor(cols)) else 1.0)
         out += 2.0
-        for n, s, a in hold.items:
-            if n == pkg:
-                near = border(s, a)
-                if hold.held is not None:
-                    out += 1.0  # another package held: it is set down first
-                if hold.loader not in near:
-                    out += 1.0
-                if near.isdisjoint(border(s, load_anchor(cols))):
-                    out += 1.0
-                break
+        if mine is not None:
+            near = border(*mine)
+            if hold.held is not None:
+                out += 1.0  # another package held: it is set down first
+            if hold.loader not in near:
+                out += 1.0
+            if near.isdisjoint(border(mine[0], load_anchor(cols))):
+                out += 1.0
         return out
 
     return h
