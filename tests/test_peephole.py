@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 
 from nowplan.acting.arrange import Arrange, Subgoal, arrange, depends
@@ -461,11 +463,9 @@ def test_a_failure_below_a_combined_step_pops_the_plans_above_the_one_that_combi
     assert m._unwind_to is None  # reached the combining plan: it chooses again, without the combination
 
 
-@pytest.mark.parametrize("seed", range(40))
-def test_arrange_asked_for_one_verdict_agrees_with_the_full_verdict(seed):
-    """The cheap path of ``arrange(want=...)`` (no shareability test where it cannot matter) is
-    conservative: it answers ``want`` exactly when the full rules do, on random resource uses,
-    domain tests and reachability."""
+def _random_jobs(seed: int):
+    """Four jobs with random resource uses, costs, domain tests and reachability (a random ``prep``
+    operator makes a job's ``ready`` precondition true, or none does: effort inf)."""
     import random
 
     from nowplan.core.operators import Operator as Op
@@ -489,8 +489,16 @@ def test_arrange_asked_for_one_verdict_agrees_with_the_full_verdict(seed):
     belief = State([atom(f"ready{k}") for k in range(4) if rng.random() < 0.3])
     table = {r: rng.choice([True, False, None]) for r in names}
     model = ResourceModel(orders={j.name: 1 for j in jobs}, shareable=lambda r, a, b, s: table[r])
+    return rng, dom, belief, model, [j.instantiate({}) for j in jobs], helpers
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_arrange_asked_for_one_verdict_agrees_with_the_full_verdict(seed):
+    """The cheap path of ``arrange(want=...)`` (no shareability test where it cannot matter) is
+    conservative: it answers ``want`` exactly when the full rules do, on random resource uses,
+    domain tests and reachability."""
+    _, dom, belief, model, acts, _ = _random_jobs(seed)
     levels = LevelMap(1)
-    acts = [j.instantiate({}) for j in jobs]
     for i in range(4):
         for j in range(4):
             if i == j:
@@ -501,6 +509,59 @@ def test_arrange_asked_for_one_verdict_agrees_with_the_full_verdict(seed):
             for want in (Arrange.SECOND, Arrange.COMBINE):
                 quick = arrange(s1, s2, belief, domain=dom, levels=levels, estimator=est, model=model, want=want)
                 assert (quick is want) == (full is want), (i, j, want, full, quick)
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_arrange_with_an_effort_bound_agrees_with_the_full_verdict(seed):
+    """With a domain's admissible effort bound (random, from 0 up to the true cost; anything for a
+    job no plan prepares), ``arrange(want=SECOND)`` asked first, in a fresh belief's estimator, so
+    that the bound is what it sees of the second step, answers SECOND exactly when the full rules
+    do."""
+    rng, dom, belief, model, acts, helpers = _random_jobs(seed)
+    cost = {h.name.removeprefix("prep"): float(h.cost) for h in helpers}  # type: ignore[arg-type]
+    factor = {k: rng.random() for k in "0123"}
+
+    def bound(unmet, s):
+        ks = [x.predicate.removeprefix("ready") for x in unmet]
+        return max(cost[k] * factor[k] if k in cost else 10.0 * factor[k] for k in ks)
+
+    bounded = replace(model, effort_bound=bound)
+    levels = LevelMap(1)
+    for i in range(4):
+        for j in range(4):
+            if i == j:
+                continue
+            s1, s2 = Subgoal((acts[i],), Goal()), Subgoal((acts[j],), Goal())
+            full = arrange(s1, s2, belief, domain=dom, levels=levels, estimator=Estimator(dom, {}, belief, model),
+                           model=model)
+            est = Estimator(dom, {}, belief, bounded)
+            quick = arrange(s1, s2, belief, domain=dom, levels=levels, estimator=est, model=bounded,
+                            want=Arrange.SECOND)
+            assert (quick is Arrange.SECOND) == (full is Arrange.SECOND), (i, j, full, quick)
+
+
+def test_an_effort_bound_spares_the_second_steps_small_search():
+    """SelectGap's question "does the second go first?" needs no small plan for the second step
+    when its effort bound already reaches the first's effort and the first uses nothing
+    continually (Estimator.effort_bound); the answer is the full rules' one."""
+    s = state(robot="hall", x="yard", y="yard")  # both carries need the robot walked to the yard
+    plain = ResourceModel(orders={"carry": 1})
+    lv = LevelMap(TOY.top_level)
+    s1 = Subgoal((act("carry", "x", "yard"),), Goal())
+    s2 = Subgoal((act("carry", "y", "yard"),), Goal())
+    est = Estimator(TOY, OBJECTS, s, plain)
+    full = arrange(s1, s2, s, domain=TOY, levels=lv, estimator=est)
+    assert full is not Arrange.SECOND and est.plan_calls == 2
+    est = Estimator(TOY, OBJECTS, s, plain)
+    assert est.effort_bound(act("carry", "y", "yard"), lv) == 3.0  # goto, the cheapest achiever of robot_at
+    assert arrange(s1, s2, s, domain=TOY, levels=lv, estimator=est, want=Arrange.SECOND) is not Arrange.SECOND
+    assert est.plan_calls == 1  # only the first step's small plan (one goto: effort 3 = the bound)
+    # with a lower bound than the first's effort, the second's small search is made as before
+    cheap = replace(plain, effort_bound=lambda unmet, belief: 0.0)
+    est = Estimator(TOY, OBJECTS, state(robot="hall", x="yard", y="yard"), cheap)
+    est._cheapest["robot_at"] = 0.0  # as for a domain whose operators' costs are not known
+    arrange(s1, s2, s, domain=TOY, levels=lv, estimator=est, model=cheap, want=Arrange.SECOND)
+    assert est.plan_calls == 2
 
 
 def test_arrange_asked_for_second_skips_the_domains_test_when_it_cannot_matter():

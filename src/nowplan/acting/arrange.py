@@ -111,6 +111,8 @@ def arrange(
         return Arrange(model.arrange(s1, s2, belief, domain=domain, levels=levels, estimator=estimator))
     if depends(domain, s1.actions, s2.actions, levels) or depends(domain, s2.actions, s1.actions, levels):
         return Arrange.FIRST
+    if want is Arrange.SECOND and _second_ruled_out_by_bound(s1, s2, estimator, levels):
+        return Arrange.FIRST
     u1 = subgoal_uses(s1, estimator, levels)
     u2 = subgoal_uses(s2, estimator, levels)
     # a step the estimate cannot reach from here waits for one it can reach (in the now)
@@ -159,6 +161,24 @@ def arrange(
         e2 = sum(estimator.effort(a, levels) for a in s2.actions)
         return Arrange.SECOND if e2 < e1 else Arrange.FIRST
     return Arrange.COMBINE
+
+
+def _second_ruled_out_by_bound(s1: Subgoal, s2: Subgoal, estimator: Estimator, levels: LevelMap) -> bool:
+    """A sufficient condition, before ``s2`` is estimated at all, for a verdict other than SECOND.
+
+    ``arrange`` answers SECOND only (a) when ``s2`` is reachable and ``s1`` is not, (b) through
+    a pair continual for ``s1`` and contained for ``s2``, or (c) when ``s2`` is easier to reach
+    than ``s1`` (see :func:`_cannot_be_second`; ``Reorderer.arrange`` too, for a combination with
+    nothing left to share).  With ``s1`` reachable and using nothing continually, only (c) is
+    left, and a lower bound of ``s2``'s effort at least ``s1``'s effort rules it out, without
+    the small search that would find ``s2``'s effort and its 1st-order resources.
+    """
+    if any(math.isinf(estimator.estimate(a, levels).effort) for a in s1.actions):
+        return False
+    if any(u is ResourceUse.CONTINUAL for u in subgoal_uses(s1, estimator, levels).values()):
+        return False
+    e1 = sum(estimator.effort(a, levels) for a in s1.actions)
+    return not math.isinf(e1) and sum(estimator.effort_bound(a, levels) for a in s2.actions) >= e1
 
 
 def _cannot_be_second(

@@ -26,7 +26,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from nowplan.core.atoms import Goal
+from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action, Resource, ResourceUse
@@ -40,6 +40,8 @@ ResourceName = tuple[Any, ...]
 ShareableFn = Callable[[ResourceName, Sequence[Action], Sequence[Action], Any], "bool | None"]
 # two different resources that cannot be used at once (e.g. one vehicle at two stops)
 ClashFn = Callable[[ResourceName, ResourceName], bool]
+# (atoms unmet in the belief, belief) -> a lower bound on the cost of any plan achieving them all
+EffortBoundFn = Callable[[Sequence[Atom], Any], float]
 
 # the strongest use wins when an estimate meets one resource several times
 _STRENGTH = {ResourceUse.SHAREABLE: 0, ResourceUse.CONTAINED: 1, ResourceUse.CONTINUAL: 2}
@@ -58,6 +60,10 @@ class ResourceModel:
     leaves the declared uses;
     ``clash`` says that two distinct resources exclude each other.
     ``arrange`` replaces the rule-based ordering preference altogether.
+    ``effort_bound`` is an admissible estimate, in the now, of the cost of a plan for a step's
+    exposed preconditions (a lower bound on every plan's cost, hence on the small plan's the
+    effort is): ``arrange`` asked whether the second of two steps goes first skips the small
+    search where the bound already says it is not easier to reach (:meth:`Estimator.effort_bound`).
     """
 
     orders: Mapping[str, int] = field(default_factory=dict, hash=False)
@@ -65,6 +71,7 @@ class ResourceModel:
     shareable: ShareableFn | None = field(default=None, compare=False, hash=False)
     clash: ClashFn | None = field(default=None, compare=False, hash=False)
     arrange: Callable[..., int] | None = field(default=None, compare=False, hash=False)
+    effort_bound: EffortBoundFn | None = field(default=None, compare=False, hash=False)
 
     def order(self, action: Action) -> int:
         return int(self.orders.get(action.name, 0))
@@ -126,6 +133,7 @@ class Estimator:
         self._cache: dict[tuple[Any, int, int], Estimate] = {}
         self._plans: dict[tuple[Any, int], tuple[Action, ...] | None] = {}
         self.plan_calls = 0
+        self._cheapest: dict[str, float] = {}
 
     def estimate(self, action: Action, levels: LevelMap, order: int | None = None) -> Estimate:
         lvl = levels.level(action)
@@ -167,18 +175,66 @@ class Estimator:
         first = self._support(action, levels, hidden_classes(action, lvl)[0])
         return float("inf") if first is None else sum(a.cost(self.belief) for a in first)
 
-    def _support(self, action: Action, levels: LevelMap, crit: int) -> tuple[Action, ...] | None:
-        """Actions of a limited plan achieving ``action``'s unmet preconditions of criticality ``crit``."""
+    def effort_bound(self, action: Action, levels: LevelMap) -> float:
+        """A lower bound on :meth:`effort`, found without a search.
+
+        The effort itself once its small plan is known; 0 when nothing is exposed or unmet; else
+        the larger of two admissible bounds of the unmet atoms (every plan for them costs at
+        least that, so the small plan does too): the cheapest operator with an effect on each
+        atom's predicate (:meth:`cheapest_achiever`), and the domain's own
+        ``ResourceModel.effort_bound`` if it has one.
+        """
+        lvl = levels.level(action)
+        if action.is_primitive(lvl):
+            return 0.0
+        crit = hidden_classes(action, lvl)[0]
         key = (action.key, crit)
         if key in self._plans:
-            return self._plans[key]
+            known = self._plans[key]
+            return float("inf") if known is None else sum(a.cost(self.belief) for a in known)
+        unmet = self._unmet(action, crit)
+        if not unmet:
+            return 0.0
+        out = max(self.cheapest_achiever(a.predicate) for a in unmet)
+        bound = self.model.effort_bound
+        if bound is not None:
+            out = max(out, float(bound(unmet, self.belief)))
+        return max(out, 0.0)
+
+    def cheapest_achiever(self, predicate: str) -> float:
+        """The least cost of an operator with an effect on ``predicate``: a bound on any plan
+        that makes an atom of it true.  0 where that does not hold or is not known: a predicate
+        decided by a test or derived by axioms (made true by other facts), an operator whose
+        cost depends on its arguments or the belief, or no operator at all."""
+        hit = self._cheapest.get(predicate)
+        if hit is not None:
+            return hit
+        pred = self.domain.predicates.get(predicate)
+        costs: list[float] = []
+        if (pred is None or pred.test is None) and predicate not in self.domain.derived:
+            for op in self.domain.operators:
+                if any(e.predicate == predicate for e in op.effects):
+                    costs.append(float(op.cost) if isinstance(op.cost, (int, float)) else 0.0)
+        out = min(costs) if costs else 0.0
+        self._cheapest[predicate] = out
+        return out
+
+    def _unmet(self, action: Action, crit: int) -> list[Atom]:
+        """``action``'s preconditions of criticality ``crit`` (not static) that the belief does not satisfy."""
         b = action.bindings
         want = [
             p.atom.bind(b)
             for p in action.operator.preconditions
             if p.criticality == crit and p.atom.predicate not in self.domain.static_predicates
         ]
-        unmet = [a for a in want if not self.domain.holds(a, self.belief)]
+        return [a for a in want if not self.domain.holds(a, self.belief)]
+
+    def _support(self, action: Action, levels: LevelMap, crit: int) -> tuple[Action, ...] | None:
+        """Actions of a limited plan achieving ``action``'s unmet preconditions of criticality ``crit``."""
+        key = (action.key, crit)
+        if key in self._plans:
+            return self._plans[key]
+        unmet = self._unmet(action, crit)
         out: tuple[Action, ...] | None = ()
         if unmet:
             goal = Goal.of(unmet, self.domain.rules)

@@ -186,13 +186,23 @@ def stow_goal(conf: Config) -> bool:
 
 
 def stow_h(conf: Config) -> float:
+    """An admissible and consistent estimate of the stow cost (every operator costs at least 1).
+
+    A grasp and a place for the package at the door and for each one in the load region, a
+    place for the held one, and one move if the loader must walk at all: it stands in the load
+    region (it ends in storage), or it must grasp the package at the door and is not next to it
+    (grasps and places never move the loader, so either needs a move of its own; at most one is
+    counted, as one move may serve both).
+    """
     hold, door = conf
     rows, cols = hold.rows, hold.cols
     h = 2.0 if door is not None else 0.0
     h += 1.0 if hold.held is not None else 0.0
     h += sum(2.0 for _, s, a in hold.items if not stored(s, a, rows, cols))
-    if h == 0.0 and not in_storage(hold.loader, rows, cols):
-        h = 1.0
+    if not in_storage(hold.loader, rows, cols):
+        h += 1.0
+    elif door is not None and hold.loader not in border(door[1], load_anchor(cols)):
+        h += 1.0
     return h
 
 
@@ -201,16 +211,46 @@ def fetch_goal(pkg: str) -> Goal:
 
 
 def fetch_h(pkg: str) -> Heuristic:
+    """An admissible and consistent estimate of the cost of fetching ``pkg`` to the load anchor.
+
+    A grasp and a place for every other package in the load region or at the door, a place for
+    ``pkg`` (and a grasp unless it is held), a place for another package held, and the moves
+    those need at least: a held ``pkg`` is set down from a cell next to its spot at the anchor,
+    so a loader elsewhere must walk; a ``pkg`` in the bay is grasped from a cell next to it (a
+    loader elsewhere must walk there) and, if no cell touches both it and its spot at the
+    anchor, the loader walks again between the grasp and the place.  (A plan that grasps ``pkg``
+    twice pays a grasp and a place more than these two moves.)
+    """
     def h(conf: Config) -> float:
         hold, door = conf
         rows, cols = hold.rows, hold.cols
-        blocking = sum(
-            2.0 for n, s, a in hold.items
-            if n != pkg and not stored(s, a, rows, cols)
-        )
+        blocking = 0.0
+        mine: tuple[str, Cell] | None = None
+        for n, s, a in hold.items:
+            if n == pkg:
+                mine = (s, a)
+            elif not stored(s, a, rows, cols):
+                blocking += 2.0
         if door is not None and door[0] == pkg:
-            return blocking + (0.0 if door_status(hold, door) == pkg and hold.held is None else 1.0)
-        return blocking + (2.0 if door is not None else 0.0) + (1.0 if hold.held == pkg else 2.0)
+            # a held package is set down, and a loader in the load region walks out (before, one
+            # operator was counted for either, which with a package to clear from the load
+            # region dropped by 2 over one grasp: not consistent)
+            held = 1.0 if hold.held is not None else 0.0
+            return blocking + held + (0.0 if in_storage(hold.loader, rows, cols) else 1.0)
+        out = blocking + (2.0 if door is not None else 0.0)
+        if hold.held == pkg:
+            assert hold.held_shape is not None
+            return out + 1.0 + (0.0 if hold.loader in border(hold.held_shape, load_anchor(cols)) else 1.0)
+        out += 2.0
+        if mine is not None:
+            near = border(*mine)
+            if hold.held is not None:
+                out += 1.0  # another package held: it is set down first
+            if hold.loader not in near:
+                out += 1.0
+            if near.isdisjoint(border(mine[0], load_anchor(cols))):
+                out += 1.0
+        return out
 
     return h
 

@@ -40,7 +40,8 @@ on demand over the generators' values, see :mod:`nowplan.planning.relaxed`).
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator, Mapping, Sequence
+from functools import lru_cache
 from typing import Any
 
 from nowplan.acting.resources import ResourceModel
@@ -50,7 +51,7 @@ from nowplan.core.operators import (
     Action, Generator, Operator, Precondition, Resource, ResourceUse, reads_nothing,
 )
 from nowplan.domains.marsupial import loader as lp
-from nowplan.domains.marsupial.grid import NONE, Hold, can_share, door_package, is_packed
+from nowplan.domains.marsupial.grid import NONE, Door, Hold, can_share, door_package, is_packed
 from nowplan.planning.regression import PlannerConfig
 
 NAME = "marsupial"
@@ -421,11 +422,19 @@ def vehicle_shareable(resource: tuple[Any, ...], first: Any, second: Any, belief
     if not isinstance(hold, Hold):
         return None
     shapes = dict(belief.facts("shape"))
-    order = [x for x in _packages_for(veh, [*first, *second]) if x in shapes]
-    extra = {x: shapes[x] for x in order}
+    order = tuple((x, shapes[x]) for x in _packages_for(veh, [*first, *second]) if x in shapes)
+    return _bay_shareable(hold, door, order)
+
+
+@lru_cache(maxsize=1024)
+def _bay_shareable(hold: Hold, door: Door, order: tuple[tuple[str, str], ...]) -> bool:
+    """The verdict of :func:`vehicle_shareable` for a bay and the packages to load in this order
+    (a function of those alone, memoised: ``arrange`` asks it for the vehicle and again for its
+    space, and SelectGap, SelectParallelOps and Gather ask it again for the same pairs)."""
+    extra = dict(order)
     if not can_share(hold, door, extra) and not _fits_repacked(hold, door, extra):
         return False
-    return lp.can_stow_in_turn(hold, door, [(x, shapes[x]) for x in order])
+    return lp.can_stow_in_turn(hold, door, list(order))
 
 
 def _fits_repacked(hold: Hold, door: Any, extra: Mapping[str, str]) -> bool:
@@ -438,8 +447,32 @@ def _fits_repacked(hold: Hold, door: Any, extra: Mapping[str, str]) -> bool:
     return can_share(Hold.empty(hold.rows, hold.cols), None, {**extra, **aboard})
 
 
+def effort_bound(unmet: Sequence[Atom], belief: Any) -> float:
+    """A lower bound on the cost of any plan achieving ``unmet`` (the peephole's effort estimates).
+
+    ``door(v) = p`` for a package ``p`` in ``v``'s bay: a plan of robot operators (the zero-cost
+    inferences leave the bay alone) costs at least the loader's consistent fetch estimate from
+    the bay as it is, and any other plan has a vehicle operator (load or unload); every other
+    atom is bounded by 0.  The estimator's small plan for an Unload's ``door`` precondition is a
+    bay search, so a step this bound already shows to be no easier to reach than the one before
+    it is not searched for (:func:`nowplan.acting.arrange.arrange`).
+    """
+    out = 0.0
+    for x in unmet:
+        if x.predicate != "door" or not isinstance(x.value, str) or door_package(x.value) != x.value:
+            continue
+        veh = str(x.args[0])
+        hold, door = _bay(belief, veh)
+        if not isinstance(hold, Hold):
+            continue
+        if x.value in hold.packages() or (door is not None and door[0] == x.value):
+            out = max(out, min(lp.fetch_h(x.value)((hold, door)), VEHICLE_COST))
+    return out
+
+
 RESOURCES = ResourceModel(  # every marsupial domain carries it (make_domain)
     orders={"load": 1, "same_city": 1, "unload": 1},
     arrangeable=frozenset({"load", "unload", "same_city"}),
     shareable=vehicle_shareable,
+    effort_bound=effort_bound,
 )
