@@ -62,7 +62,7 @@ def gather(
         step = ops[j]
         if not r.combinable(step) or not declared & {res.name for res in step.resources()}:
             continue
-        if r._failed_within([*group.actions, step]):
+        if r.failed_within([*group.actions, step]):
             continue
         pre = prerequisites(r, ops, last + 1, j)
         if not pre or depends(r.domain, group.actions, [ops[i] for i in pre], r.levels):
@@ -82,6 +82,6 @@ def gather(
         if res is None or res[0][: len(pre)] != new[: len(pre)]:
             continue
         r.moves.append(f"gathered {', '.join(str(ops[i]) for i in pre)} before {group} to combine {step}")
-        r._dropped(new, res[0])
+        r.note_dropped(new, res[0])
         return r.select_parallel_ops(*res)
     return ops, goals, last

@@ -206,7 +206,7 @@ class Reorderer:
                 res = self.valid(new, goals[-1])
                 if res is not None and res[0][:1] == new[:1]:
                     self.moves.append(f"moved {ops[j]} before {ops[0]}")
-                    self._dropped(new, res[0])
+                    self.note_dropped(new, res[0])
                     ops, goals = res
                     moved = True
                     moves += 1
@@ -215,7 +215,8 @@ class Reorderer:
                 break
         return ops, goals
 
-    def _dropped(self, before: Sequence[Action], after: Sequence[Action]) -> None:
+    def note_dropped(self, before: Sequence[Action], after: Sequence[Action]) -> None:
+        """Log, in :attr:`moves`, each step of ``before`` that a re-validation left out of ``after``."""
         rest = list(after)
         for a in before:
             if a in rest:
@@ -223,7 +224,7 @@ class Reorderer:
             else:
                 self.moves.append(f"dropped {a} (no longer needed)")
 
-    def _failed_within(self, ops: Sequence[Action]) -> bool:
+    def failed_within(self, ops: Sequence[Action]) -> bool:
         """Whether these operators include a combination whose joint planning failed."""
         keys = {a.key for a in ops}
         return any(f <= keys for f in self.failed)
@@ -238,14 +239,14 @@ class Reorderer:
             return ops, goals, last
         j = 1
         while j < len(ops) and last + 1 < self.config.max_combined:
-            if self.combinable(ops[j]) and not self._failed_within([*ops[: last + 1], ops[j]]):
+            if self.combinable(ops[j]) and not self.failed_within([*ops[: last + 1], ops[j]]):
                 group = Subgoal(tuple(ops[: last + 1]), goals[last + 1])
                 if self.arrange(group, Subgoal((ops[j],), goals[j + 1]), Arrange.COMBINE) is Arrange.COMBINE:
                     new = [*ops[: last + 1], ops[j], *ops[last + 1 : j], *ops[j + 1 :]]
                     res = self.valid(new, goals[-1])
                     if res is not None and res[0][: last + 2] == new[: last + 2]:
                         self.moves.append(f"combined {ops[j]} with {group}")
-                        self._dropped(new, res[0])
+                        self.note_dropped(new, res[0])
                         j -= sum(1 for i in _dropped_positions(new, res[0]) if i <= j)
                         ops, goals = res
                         last += 1
