@@ -85,6 +85,7 @@ class Grounder:
             self._op_cache, self._fills = shared.op_cache, shared.fills
             self._shared_answers = shared.answers
             self._no_gen = shared.no_gen
+            self._fill_plans = shared.fill_plans
         # per predicate: the operators (in order) with an effect of it, and those effects
         self._by_pred, self._gen_by_pred, self._gen_by_pred_nonempty = _effects_by_predicate(domain)
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
@@ -198,6 +199,14 @@ class Grounder:
         else:
             self.kept = False
         return out
+
+    def known(self, target: Atom) -> list[Action] | None:
+        """``target``'s achievers if :meth:`achievers` has them kept for this problem and state
+        without running a generator (no grounding here), else ``None``."""
+        cached = self._cache.get(target)
+        if cached is None and self._shared_answers is not None and self._no_generator(target):
+            cached = self._shared_answers.get(target)
+        return cached
 
     def shares_answer(self, target: Atom) -> bool:
         """Is ``target``'s answer the one every call of this problem gets (no generator achieves it)?"""
@@ -412,6 +421,10 @@ class Grounder:
         """
         plan = self._fill_plan(op)
         statics, later = plan.statics, plan.later
+        for v, ok_objs in plan.typed:  # a value of ``b`` that names an object of another type: no instance
+            val = b.get(v, _UNSET)  # (checked again after the join; here it spares the join)
+            if val is not _UNSET and isinstance(val, str) and val in plan.allobj and val not in ok_objs:
+                return
 
         def check(bind: dict[Var, Any]) -> bool:
             for s in later:

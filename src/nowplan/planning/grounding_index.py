@@ -72,6 +72,7 @@ class _Shared:
         self.fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[Action]] = {}  # instances per binding
         self.answers: dict[Atom, list[Action]] = {}  # achievers of atoms no generator achieves
         self.no_gen: dict[Atom, bool] = {}  # is an atom achieved by no operator with generators?
+        self.fill_plans: dict[int, Any] = {}  # Grounder._fill_plan's answers (by operator identity, checked)
 
 
 _SHARED_PER_DOMAIN = 4
