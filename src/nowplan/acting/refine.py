@@ -246,8 +246,7 @@ def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet
             return acts
         hit = applicable.get(u)
         if hit is None:
-            hit = applicable[u] = [a for a in acts
-                                   if all(holds(p) for p in a.preconditions(levels.level(a)))]
+            hit = applicable[u] = [a for a in acts if all(holds(p) for p in a.preconditions(levels.level(a)))]
         return hit
 
     table = g.by_key()

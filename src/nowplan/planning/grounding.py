@@ -69,6 +69,7 @@ class Grounder:
         # does the belief list its facts (``lists_facts``: the caller has asked already)?
         self._facts_ok = isinstance(belief, ListsFacts) if lists_facts is None else lists_facts
         self._fill_plans: dict[int, _FillPlan] = {}
+        self._fact_index: dict[tuple[str, int, tuple[int, ...]], dict[tuple[Any, ...], list[Any]]] = {}
         self._task: GroundTask | None = None
         self._allobj: frozenset[Any] | None = None
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
@@ -86,6 +87,7 @@ class Grounder:
             self._shared_answers = shared.answers
             self._no_gen = shared.no_gen
             self._fill_plans = shared.fill_plans
+            self._fact_index = shared.fact_index
         # per predicate: the operators (in order) with an effect of it, and those effects
         self._by_pred, self._gen_by_pred, self._gen_by_pred_nonempty = _effects_by_predicate(domain)
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
@@ -413,6 +415,18 @@ class Grounder:
             plan = self._fill_plans[id(op)] = _FillPlan(op, statics, later, allobj, tuple(typed))
         return plan
 
+    def _facts_by(self, pred: str, arity: int, positions: tuple[int, ...]) -> dict[tuple[Any, ...], list[Any]]:
+        """The listed facts of the static ``pred`` with ``arity`` arguments by their values at ``positions``,
+        in the belief's order (kept per problem: they depend on the static facts only)."""
+        k = (pred, arity, positions)
+        table = self._fact_index.get(k)
+        if table is None:
+            table = self._fact_index[k] = {}
+            for args in self.belief.facts(pred):
+                if len(args) == arity:
+                    table.setdefault(tuple(args[i] for i in positions), []).append(args)
+        return table
+
     def _fill(self, op: Operator, b: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
         """Complete ``b`` by joining static preconditions with listed facts, then typed objects.
 
@@ -445,7 +459,9 @@ class Grounder:
             if not self._facts_ok or s.value is not True:
                 yield from join(i + 1, cur)  # enumerate later
                 return
-            for args in self.belief.facts(s.predicate):
+            positions = tuple(k for k, a in enumerate(s.args) if not isinstance(a, Var) or a in cur)
+            key = tuple(cur[a] if isinstance(a, Var) else a for a in (s.args[k] for k in positions))
+            for args in self._facts_by(s.predicate, len(s.args), positions).get(key, ()):
                 nxt = dict(cur)
                 ok = True
                 for t, v in zip(s.args, args, strict=False):

@@ -73,6 +73,7 @@ class _Shared:
         self.answers: dict[Atom, list[Action]] = {}  # achievers of atoms no generator achieves
         self.no_gen: dict[Atom, bool] = {}  # is an atom achieved by no operator with generators?
         self.fill_plans: dict[int, Any] = {}  # Grounder._fill_plan's answers (by operator identity, checked)
+        self.fact_index: dict[tuple[str, int, tuple[int, ...]], dict[tuple[Any, ...], list[Any]]] = {}  # static facts
 
 
 _SHARED_PER_DOMAIN = 4

@@ -32,6 +32,7 @@ from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
+from nowplan.planning.relevance import relevant_operators
 from nowplan.planning.task_grounding import Grounding, grounding
 
 __all__ = [
@@ -145,6 +146,7 @@ def build_task(
     cost_of: Any,
     *,
     cache_costs: bool = False,
+    relevant_to: Goal | None = None,
 ) -> Task:
     """The integer task for ``goal`` from ``belief`` with each action at its level in ``levels``.
 
@@ -159,9 +161,15 @@ def build_task(
     so a row at any level finds its facts.  With ``cache_costs`` (``cost_of`` is
     ``Action.cost`` in the call's belief) and every cost state-free
     (:attr:`Action.cost_is_state_free`), the costs are kept with the structure.
+
+    Only the operators relevant to ``goal`` and ``relevant_to`` (:mod:`nowplan.planning.relevance`, with
+    the preconditions of the map's lowest level, a superset of every action's own) are grounded; the
+    executive passes its problem's goal as ``relevant_to``, so the calls of a run share one grounding
+    (an abstract level's goal hides most of some domains: where the lift is in miconic).
     """
     top = max([levels.top, *(lv for _, lv in levels.overrides)])
-    gr = grounding(domain, objects, belief, top)
+    low = min([levels.top, *(lv for _, lv in levels.overrides), *(lv for _, lv in levels.floors)])
+    gr = grounding(domain, objects, belief, top, relevant_operators(domain, objects, goal, low, relevant_to))
     statics = gr.statics
     true_now = {a for a in belief.atoms() if a.value is True}
     goal_negs = frozenset(a.negate() for a in goal.atoms if a.value is False and a.predicate not in statics)
