@@ -99,20 +99,32 @@ class Achievers:
     few dozen atoms the refinements ask.)
     """
 
+    def __init__(self) -> None:
+        # achievers grouped by a precondition they share (see AtomAchievers.applicable), by the identity
+        # of the grounder's kept list (held: the grounder hands the same list out while it is valid)
+        self.groups: dict[int, tuple[list[Action], list[tuple[Atom | None, int, list[Action]]]]] = {}
+
     def lookup(self, ex: Executive) -> AtomAchievers:
         """The achievers of atoms for ``ex``'s objects and belief as they are now."""
         from nowplan.planning.grounding import Grounder
 
+        if len(self.groups) > _GROUPS_KEPT:
+            self.groups.clear()
         # (direct chains need a belief that lists its facts: forward_unsupported was asked)
-        return AtomAchievers(Grounder(ex.domain, ex.problem.objects, ex.belief, lists_facts=True))
+        return AtomAchievers(Grounder(ex.domain, ex.problem.objects, ex.belief, lists_facts=True), self.groups)
+
+
+_GROUPS_KEPT = 4096
 
 
 class AtomAchievers:
     """One direct refinement's view of the grounder: the achievers of an atom, grounded on demand."""
 
-    def __init__(self, grounder: Grounder) -> None:
+    def __init__(self, grounder: Grounder,
+                 groups: dict[int, tuple[list[Action], list[tuple[Atom | None, int, list[Action]]]]]) -> None:
         self.grounder = grounder
         self._goal = Goal.of([])  # the domains refined by chains have no generators: the goal is never read
+        self._groups = groups
 
     def of(self, u: Atom) -> list[Action]:
         """The ground actions one of whose effects is ``u`` (statically possible ones; kept per atom)."""
@@ -126,6 +138,33 @@ class AtomAchievers:
         if known:
             return min(known, key=lambda x: len(x[1]))
         return need[0], self.of(need[0])
+
+    def applicable(self, acts: list[Action], levels: LevelMap, holds: Any) -> list[Action]:
+        """Those of ``acts`` (a list the grounder kept) whose preconditions at ``levels`` hold now.
+
+        ``acts`` are grouped, once, by operator and the first of its most critical preconditions
+        (kept at every level below that criticality; a level map only lowers levels below its top):
+        when that precondition is false, a group is passed over with one test (the achievers of
+        ``fuel-level(a, l)`` in zenotravel are the flights of ``a`` from every city with every fuel
+        level; the aircraft is in one city)."""
+        hit = self._groups.get(id(acts))
+        if hit is None or hit[0] is not acts:
+            by: dict[tuple[str, Atom | None], list[Action]] = {}
+            crit: dict[str, int] = {}
+            for a in acts:
+                pres = a.operator.preconditions
+                top = max((p.criticality for p in pres), default=0)
+                first = next((p.atom for p in pres if p.criticality == top), None)
+                crit[a.operator.name] = top
+                by.setdefault((a.operator.name, first.bind(a.bindings) if first is not None else None), []).append(a)
+            hit = self._groups[id(acts)] = (acts, [(k, crit[name], g) for (name, k), g in by.items()])
+        out: list[Action] = []
+        ceiling = max([levels.top, *(lv for _, lv in levels.overrides)])  # no action's level is above it
+        for key, top, group in hit[1]:
+            if key is not None and ceiling < top and not holds(key):
+                continue  # every action of the group keeps ``key`` (its level is below ``top``)
+            out.extend(a for a in group if all(holds(p) for p in a.preconditions(levels.level(a))))
+        return out
 
 
 # the longest refinement made directly: ω with the actions before it that achieve what it exposes
@@ -219,7 +258,10 @@ def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet
     def row(a: Action) -> tuple[frozenset[Atom], tuple[Atom, ...]]:
         r = rows.get(a.key)
         if r is None:
-            r = rows[a.key] = (frozenset(a.effects()), a.preconditions(levels.level(a)))
+            effects = a.memo.get("effect set")  # (an action's effects never change: kept on it)
+            if effects is None:
+                effects = a.memo["effect set"] = frozenset(a.effects())
+            r = rows[a.key] = (effects, a.preconditions(levels.level(a)))
         return r
 
     def candidate(a: Action, need: list[Atom], table: dict[Any, Atom]) -> list[Atom] | None:
@@ -246,7 +288,7 @@ def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet
             return acts
         hit = applicable.get(u)
         if hit is None:
-            hit = applicable[u] = [a for a in acts if all(holds(p) for p in a.preconditions(levels.level(a)))]
+            hit = applicable[u] = index.applicable(acts, levels, holds)
         return hit
 
     table = g.by_key()
