@@ -20,7 +20,7 @@ from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.io.pddl_read import load_pddl
-from nowplan.planning import task_grounding
+from nowplan.planning import relevance, task_grounding
 from nowplan.planning.abstraction import prepare_problem
 from nowplan.planning.forward import forward_plan
 from nowplan.planning.relevance import relevant_operators
@@ -53,8 +53,14 @@ def ground_relevant(actions: list[Action], goal: Goal, level: int, statics: froz
     return out
 
 
+@pytest.fixture
+def every_pruning(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Prune whatever is irrelevant, however little (not only where it pays)."""
+    monkeypatch.setattr(relevance, "MOST", 2.0)
+
+
 @pytest.mark.parametrize("name", DOMAINS)
-def test_lifted_relevance_contains_ground_relevance(name: str) -> None:
+def test_lifted_relevance_contains_ground_relevance(name: str, every_pruning: None) -> None:
     p = problem(name)
     statics = p.domain.static_predicates
     rng = random.Random(name)
@@ -94,7 +100,7 @@ def _replays(p: Problem, plan: list[Action], goal: Goal, levels: LevelMap) -> bo
 
 
 @pytest.mark.parametrize("name", ["miconic", "zenotravel", "satellite", "driverlog", "gripper"])
-def test_restricted_tasks_solve_what_the_full_task_solves(name: str) -> None:
+def test_restricted_tasks_solve_what_the_full_task_solves(name: str, every_pruning: None) -> None:
     p = problem(name)
     for level in range(p.domain.top_level, -1, -1):
         levels = LevelMap(level)
@@ -108,6 +114,20 @@ def test_restricted_tasks_solve_what_the_full_task_solves(name: str) -> None:
             assert {a.name for a in plan} <= ops
         # its pre-images hold where the plan is: the first in the initial state
         assert p.domain.satisfies(p.init, steps[0][1])
+
+
+def test_little_pruning_keeps_every_operator() -> None:
+    p = problem("satellite")
+    types = {**dict(p.domain.constants), **dict(p.objects)}
+    names = {op.name for op in p.domain.operators}
+    sizes = {op.name: len(p.objects) ** len(op.params) for op in p.domain.operators}  # (an upper bound)
+    smallest = min(sizes, key=lambda n: sizes[n])
+    assert relevance._most(p.domain, types, names)
+    assert not relevance._most(p.domain, types, {smallest})
+    # all but the operator with the fewest typed instances: most of the instances, nothing pruned
+    few = {op.name: op for op in p.domain.operators}
+    counts = {n: relevance._most(p.domain, types, names - {n}) for n in few}
+    assert any(counts.values()) and not all(counts.values())
 
 
 def test_a_grounding_grows_and_keeps_its_actions() -> None:
