@@ -25,8 +25,8 @@ from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding_index import (
-    _effects_by_predicate, _per_atom, _per_state, _PerAtom, _PerState, _shared, context_key, point_state,
-    unify_effect,
+    _effects_by_predicate, _FillPlan, _is_plain, _per_atom, _per_state, _PerAtom, _PerState, _shared, context_key,
+    point_state, unify_effect,
 )
 
 if TYPE_CHECKING:
@@ -499,28 +499,6 @@ class Grounder:
                 if later and not check(full):
                     continue
                 yield full
-
-
-class _FillPlan:
-    """An operator's static preconditions and typed parameters, as :meth:`Grounder._fill` uses them."""
-
-    __slots__ = ("op", "statics", "later", "allobj", "typed")
-
-    def __init__(
-        self, op: Operator, statics: tuple[Atom, ...], later: tuple[Atom, ...], allobj: frozenset[str],
-        typed: tuple[tuple[Var, frozenset[str]], ...],
-    ) -> None:
-        self.op = op
-        self.statics = statics
-        self.later = later
-        self.allobj = allobj
-        self.typed = typed
-
-
-def _is_plain(domain: Domain, a: Atom) -> bool:
-    """A static fluent that a belief can list facts of (no test function, boolean)."""
-    pred = domain.predicates.get(a.predicate)
-    return pred is not None and pred.test is None and a.value in (True, False)
 
 
 _UNSET = object()
