@@ -136,3 +136,41 @@ def test_no_stale_achievers_after_a_static_fact_disappears() -> None:
     # truck1-2 no longer serves city2-loc1 (a road closed): it cannot unload there
     ex.belief = SymbolicBelief(State([a for a in ex.belief.atoms() if a != atom("serves", "truck1-2", "city2-loc1")]))
     assert unload not in [a.pddl() for a in ex.achievers.lookup(ex).of(target)]
+
+
+class _Pose:
+    """A generator's value that cannot be hashed (e.g. an array-valued pose)."""
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __init__(self, x: float) -> None:
+        self.x = x
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _Pose) and other.x == self.x
+
+
+def test_the_static_join_takes_a_value_that_cannot_be_hashed() -> None:
+    # the grounder looks static facts up by their bound arguments; a generator's unhashable value
+    # among them falls back to scanning the facts (no TypeError), hashable ones use the index
+    from nowplan.core.atoms import Var
+    from nowplan.core.domain import Domain, Predicate
+    from nowplan.core.operators import Generator, Operator, Precondition
+    from nowplan.planning.grounding import Grounder
+
+    to, via, mid = Var("to"), Var("via"), Var("mid")
+    preds = {"at": Predicate("at", 1), "road": Predicate("road", 2)}
+
+    def run(value: object) -> list[str]:
+        def pick(b: object, goal: object, belief: object, ctx: object) -> object:
+            yield {via: value}
+
+        op = Operator("go", (to, via, mid), (Precondition(atom("road", via, mid)),), (atom("at", to),),
+                      generators=(Generator("via", (via,), pick),))
+        dom = Domain("roads", preds, (op,))
+        state = State([atom("road", "x", "y"), atom("road", "x", "z"), atom("road", "w", "y")])
+        return [str(a) for a in Grounder(dom, {"x": None, "y": None, "z": None, "w": None, "b": None},
+                                         state).achievers(atom("at", "b"), Goal.of([atom("at", "b")]))]
+
+    assert run("x") == ["go(b, x, y)", "go(b, x, z)"]
+    assert run(_Pose(1.0)) == []

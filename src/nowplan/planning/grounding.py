@@ -461,7 +461,11 @@ class Grounder:
                 return
             positions = tuple(k for k, a in enumerate(s.args) if not isinstance(a, Var) or a in cur)
             key = tuple(cur[a] if isinstance(a, Var) else a for a in (s.args[k] for k in positions))
-            for args in self._facts_by(s.predicate, len(s.args), positions).get(key, ()):
+            try:
+                rows: Iterable[Any] = self._facts_by(s.predicate, len(s.args), positions).get(key, ())
+            except TypeError:  # a bound value that cannot be hashed (a generator's): scan the facts
+                rows = self.belief.facts(s.predicate)
+            for args in rows:
                 nxt = dict(cur)
                 ok = True
                 for t, v in zip(s.args, args, strict=False):
