@@ -11,6 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from nowplan.core.atoms import Atom, Goal
+from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.operators import Action, StateFreeCost
 from nowplan.io.pddl_read import load_pddl
@@ -38,10 +39,18 @@ def _fresh(*args: object) -> Task:
     return build_task(*args)  # type: ignore[arg-type]
 
 
+def _all_operators(p: Problem, level: int) -> None:
+    """Ground every operator first: the calls that follow share that grounding whatever their goal's
+    relevant operators (planning/relevance.py), so only the structure's reuse is under test."""
+    task_grounding.grounding(p.domain, p.objects, p.init, level)
+
+
 def test_a_kept_structure_gives_the_task_a_fresh_build_gives() -> None:
     p = load_pddl(DATA / "logistics" / "domain.pddl", DATA / "logistics" / "p02.pddl",
                   DATA / "logistics" / "logistics.crit")
     top = p.domain.top_level
+    task_grounding._CACHE.clear()
+    _all_operators(p, top)
     first = build_task(p.domain, p.objects, p.init, p.goal, LevelMap(top), lambda a: 1.0)
     # a level map that moves two actions down: only their rows change
     moved = [a for a in first.actions if not a.is_primitive(top)][:2]
@@ -50,7 +59,9 @@ def test_a_kept_structure_gives_the_task_a_fresh_build_gives() -> None:
     goal = Goal.of(list(p.goal.atoms)[:1])
     kept = build_task(p.domain, p.objects, p.init, goal, levels, lambda a: 1.0)
     assert kept.facts is first.facts  # the structure was shared
-    fresh = _fresh(p.domain, p.objects, p.init, goal, levels, lambda a: 1.0)
+    task_grounding._CACHE.clear()
+    _all_operators(p, top)
+    fresh = build_task(p.domain, p.objects, p.init, goal, levels, lambda a: 1.0)
     assert _rows(kept) == _rows(fresh)
     assert _state(kept, kept.init) == _state(fresh, fresh.init)
     assert _state(kept, frozenset(kept.goal)) == _state(fresh, frozenset(fresh.goal))
@@ -119,3 +130,34 @@ def test_a_belief_reading_cost_is_not_state_free() -> None:
     assert not Action(op, tuple("x" for _ in op.params)).cost_is_state_free
     op2 = replace(p.domain.operators[0], cost=_Flat())
     assert Action(op2, tuple("x" for _ in op2.params)).cost_is_state_free
+
+
+def test_a_floored_map_moves_the_rows_of_the_floored_operator_only() -> None:
+    # a floor (acting/refine.py's swaps) lowers every instance of an operator: the structure of the map
+    # without it is kept and those rows are made anew, as if each instance were overridden to its level
+    p = load_pddl(DATA / "logistics" / "domain.pddl", DATA / "logistics" / "p02.pddl",
+                  DATA / "logistics" / "logistics.crit")
+    top = p.domain.top_level
+    task_grounding._CACHE.clear()
+    _all_operators(p, top)
+    plain = build_task(p.domain, p.objects, p.init, p.goal, LevelMap(top), lambda a: 1.0)
+    name = next(a.name for a in plain.actions if not a.is_primitive(top))
+    floored = LevelMap(top, floors=frozenset({(name, -1)}))
+    kept = build_task(p.domain, p.objects, p.init, p.goal, floored, lambda a: 1.0)
+    assert kept.facts is plain.facts  # one structure for both maps
+    as_overrides = LevelMap(top, frozenset((a.key, -1) for a in plain.actions if a.name == name))
+    other = build_task(p.domain, p.objects, p.init, p.goal, as_overrides, lambda a: 1.0)
+    assert _rows(kept) == _rows(other)
+    rows_top = _rows(plain)
+    changed = {k for k, r in _rows(kept).items() if r != rows_top[k]}
+    assert changed and all(k[0] == name for k in changed)
+    for k in range(len(kept.actions)):
+        for f in kept.pre[k]:
+            assert k in kept.by_pre[f]
+    assert sorted(kept.no_pre) == [k for k in range(len(kept.actions)) if not kept.pre[k]]
+    assert all(sorted(v) == v for v in kept.by_pre.values())
+    adders: dict[int, list[int]] = {}
+    for k, row in enumerate(kept.add):
+        for f in row:
+            adders.setdefault(f, []).append(k)
+    assert kept.memo["adders"] == adders

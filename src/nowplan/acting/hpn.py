@@ -226,6 +226,8 @@ class Executive:
             cfg = replace(cfg, max_nodes=max_nodes, shortcut_nodes=min(cfg.shortcut_nodes, max_nodes))
         if remaining < cfg.time_limit:
             cfg = replace(cfg, time_limit=max(remaining, 0.01))
+        if cfg.relevant_to is None:  # every call serves the problem's goal: ground what it needs, once
+            cfg = replace(cfg, relevant_to=self.problem.goal)
         context = self.context()
         forbidden = self.nogoods.forbidden(goal, levels)
         if forbidden:

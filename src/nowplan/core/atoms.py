@@ -63,10 +63,12 @@ class Atom:
         return not any(isinstance(a, Var) for a in self.args) and not isinstance(self.value, Var)
 
     def bind(self, bindings: Bindings) -> Atom:
+        # (substitute, inlined: every ground action binds its preconditions and effects with it)
+        v = self.value
         return Atom(
             self.predicate,
-            tuple(substitute(a, bindings) for a in self.args),
-            substitute(self.value, bindings),
+            tuple([bindings.get(a, a) if isinstance(a, Var) else a for a in self.args]),
+            bindings.get(v, v) if isinstance(v, Var) else v,
         )
 
     def negate(self) -> Atom:

@@ -181,12 +181,13 @@ class Action:
         """Ground preconditions of ``abs(op, level)``: criticality > level (all if None)."""
         out = self._ground.get(level)
         if out is None:
-            b = self.bindings
-            out = self._ground[level] = tuple(
-                p.atom.bind(b)
-                for p in self.operator.preconditions
-                if level is None or p.criticality > level
-            )
+            if level is None:
+                b = self.bindings
+                out = tuple(p.atom.bind(b) for p in self.operator.preconditions)
+            else:  # a level's are the full list's of criticality > level, made ground once
+                full = self.preconditions(None)
+                out = tuple(a for a, p in zip(full, self.operator.preconditions, strict=True) if p.criticality > level)
+            self._ground[level] = out
         return out
 
     def effects(self) -> tuple[Atom, ...]:

@@ -11,6 +11,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
+from nowplan.core.atoms import Goal
+
 
 @dataclass(frozen=True)
 class PlannerConfig:
@@ -61,6 +63,10 @@ class PlannerConfig:
     # its own budget (shortcut_nodes, max_nodes) only.  RCHPN bounds the searches below a combined step
     # with it, so a refinement that fails costs one budget, not one per attempt
     call_nodes: int = 0
+    # the forward engine grounds the operators relevant to the call's goal and to this one (None: the
+    # call's goal only); the executive sets its problem's goal, so that its calls share one grounding
+    # (planning/relevance.py)
+    relevant_to: Goal | None = None
 
 
 

@@ -345,12 +345,15 @@ def forward_plan(
     out_of_time: Callable[[], bool] = lambda: False,
     improve: float = 0.0,
     cache_costs: bool = False,
+    relevant_to: Goal | None = None,
 ) -> tuple[ForwardResult, list[tuple[Action | None, Goal]] | None]:
     """Ground, search and regress: the result and the plan's steps (``None`` unless solved).
 
-    ``cache_costs``: ``cost_of`` is ``Action.cost`` in ``belief`` (see :func:`build_task`).
+    ``cache_costs``: ``cost_of`` is ``Action.cost`` in ``belief``; ``relevant_to``: a goal whose
+    relevant operators are grounded too (see :func:`build_task`).
     """
-    task = build_task(domain, objects, belief, goal, levels, cost_of, cache_costs=cache_costs)
+    task = build_task(domain, objects, belief, goal, levels, cost_of, cache_costs=cache_costs,
+                      relevant_to=relevant_to)
     t0 = time.process_time()
     res = search(task, method=method, heuristic=heuristic, cost_type=cost_type, weight=weight,
                  max_nodes=max_nodes, out_of_time=out_of_time)
@@ -409,7 +412,7 @@ def plan_forward(
         domain, objects, belief, goal, levels, cost_of,
         method=config.search, heuristic=config.forward_heuristic, cost_type=config.cost_type,
         weight=config.weight, max_nodes=config.max_nodes, out_of_time=lambda: now() > deadline,
-        improve=config.improve, cache_costs=True,
+        improve=config.improve, cache_costs=True, relevant_to=config.relevant_to,
     )
     method = f"forward:{config.search}"
     common: dict[str, Any] = dict(expanded=res.expanded, generated=res.generated, method=method,

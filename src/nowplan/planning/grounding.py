@@ -25,8 +25,8 @@ from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding_index import (
-    _effects_by_predicate, _per_atom, _per_state, _PerAtom, _PerState, _shared, context_key, point_state,
-    unify_effect,
+    _effects_by_predicate, _FillPlan, _is_plain, _per_atom, _per_state, _PerAtom, _PerState, _shared, context_key,
+    point_state, unify_effect,
 )
 
 if TYPE_CHECKING:
@@ -69,6 +69,7 @@ class Grounder:
         # does the belief list its facts (``lists_facts``: the caller has asked already)?
         self._facts_ok = isinstance(belief, ListsFacts) if lists_facts is None else lists_facts
         self._fill_plans: dict[int, _FillPlan] = {}
+        self._fact_index: dict[tuple[str, int, tuple[int, ...]], dict[tuple[Any, ...], list[Any]]] = {}
         self._task: GroundTask | None = None
         self._allobj: frozenset[Any] | None = None
         self._op_cache: dict[tuple[int, Atom], list[Action]] = {}
@@ -85,6 +86,8 @@ class Grounder:
             self._op_cache, self._fills = shared.op_cache, shared.fills
             self._shared_answers = shared.answers
             self._no_gen = shared.no_gen
+            self._fill_plans = shared.fill_plans
+            self._fact_index = shared.fact_index
         # per predicate: the operators (in order) with an effect of it, and those effects
         self._by_pred, self._gen_by_pred, self._gen_by_pred_nonempty = _effects_by_predicate(domain)
         self._gen_cache: dict[tuple[Atom, Hashable], list[Action]] = {}
@@ -198,6 +201,14 @@ class Grounder:
         else:
             self.kept = False
         return out
+
+    def known(self, target: Atom) -> list[Action] | None:
+        """``target``'s achievers if :meth:`achievers` has them kept for this problem and state
+        without running a generator (no grounding here), else ``None``."""
+        cached = self._cache.get(target)
+        if cached is None and self._shared_answers is not None and self._no_generator(target):
+            cached = self._shared_answers.get(target)
+        return cached
 
     def shares_answer(self, target: Atom) -> bool:
         """Is ``target``'s answer the one every call of this problem gets (no generator achieves it)?"""
@@ -404,6 +415,18 @@ class Grounder:
             plan = self._fill_plans[id(op)] = _FillPlan(op, statics, later, allobj, tuple(typed))
         return plan
 
+    def _facts_by(self, pred: str, arity: int, positions: tuple[int, ...]) -> dict[tuple[Any, ...], list[Any]]:
+        """The listed facts of the static ``pred`` with ``arity`` arguments by their values at ``positions``,
+        in the belief's order (kept per problem: they depend on the static facts only)."""
+        k = (pred, arity, positions)
+        table = self._fact_index.get(k)
+        if table is None:
+            table = self._fact_index[k] = {}
+            for args in self.belief.facts(pred):
+                if len(args) == arity:
+                    table.setdefault(tuple(args[i] for i in positions), []).append(args)
+        return table
+
     def _fill(self, op: Operator, b: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
         """Complete ``b`` by joining static preconditions with listed facts, then typed objects.
 
@@ -412,6 +435,10 @@ class Grounder:
         """
         plan = self._fill_plan(op)
         statics, later = plan.statics, plan.later
+        for v, ok_objs in plan.typed:  # a value of ``b`` that names an object of another type: no instance
+            val = b.get(v, _UNSET)  # (checked again after the join; here it spares the join)
+            if val is not _UNSET and isinstance(val, str) and val in plan.allobj and val not in ok_objs:
+                return
 
         def check(bind: dict[Var, Any]) -> bool:
             for s in later:
@@ -432,7 +459,13 @@ class Grounder:
             if not self._facts_ok or s.value is not True:
                 yield from join(i + 1, cur)  # enumerate later
                 return
-            for args in self.belief.facts(s.predicate):
+            positions = tuple(k for k, a in enumerate(s.args) if not isinstance(a, Var) or a in cur)
+            key = tuple(cur[a] if isinstance(a, Var) else a for a in (s.args[k] for k in positions))
+            try:
+                rows: Iterable[Any] = self._facts_by(s.predicate, len(s.args), positions).get(key, ())
+            except TypeError:  # a bound value that cannot be hashed (a generator's): scan the facts
+                rows = self.belief.facts(s.predicate)
+            for args in rows:
                 nxt = dict(cur)
                 ok = True
                 for t, v in zip(s.args, args, strict=False):
@@ -470,28 +503,6 @@ class Grounder:
                 if later and not check(full):
                     continue
                 yield full
-
-
-class _FillPlan:
-    """An operator's static preconditions and typed parameters, as :meth:`Grounder._fill` uses them."""
-
-    __slots__ = ("op", "statics", "later", "allobj", "typed")
-
-    def __init__(
-        self, op: Operator, statics: tuple[Atom, ...], later: tuple[Atom, ...], allobj: frozenset[str],
-        typed: tuple[tuple[Var, frozenset[str]], ...],
-    ) -> None:
-        self.op = op
-        self.statics = statics
-        self.later = later
-        self.allobj = allobj
-        self.typed = typed
-
-
-def _is_plain(domain: Domain, a: Atom) -> bool:
-    """A static fluent that a belief can list facts of (no test function, boolean)."""
-    pred = domain.predicates.get(a.predicate)
-    return pred is not None and pred.test is None and a.value in (True, False)
 
 
 _UNSET = object()

@@ -4,8 +4,9 @@
 ``_effects_by_predicate`` indexes a domain's operators by the predicates
 they change (kept per domain); ``_shared`` holds the answers the calls of
 one problem share (kept per objects and static facts: the executive plans
-many times with the same static facts).  :class:`nowplan.planning.grounding.Grounder`
-uses all three.
+many times with the same static facts: achievers, fills, each operator's
+``_FillPlan`` and the static facts indexed by bound positions).
+:class:`nowplan.planning.grounding.Grounder` uses all three.
 """
 
 from __future__ import annotations
@@ -72,6 +73,8 @@ class _Shared:
         self.fills: dict[tuple[int, frozenset[tuple[Var, type, Any]]], list[Action]] = {}  # instances per binding
         self.answers: dict[Atom, list[Action]] = {}  # achievers of atoms no generator achieves
         self.no_gen: dict[Atom, bool] = {}  # is an atom achieved by no operator with generators?
+        self.fill_plans: dict[int, _FillPlan] = {}  # Grounder._fill_plan's answers (by operator identity, checked)
+        self.fact_index: dict[tuple[str, int, tuple[int, ...]], dict[tuple[Any, ...], list[Any]]] = {}  # static facts
 
 
 _SHARED_PER_DOMAIN = 4
@@ -177,3 +180,25 @@ def _shared(domain: Domain, signature: Hashable) -> _Shared:
             store.pop(next(iter(store)))
         hit = store[signature] = _Shared()
     return hit
+
+
+class _FillPlan:
+    """An operator's static preconditions and typed parameters, as :meth:`Grounder._fill` uses them."""
+
+    __slots__ = ("op", "statics", "later", "allobj", "typed")
+
+    def __init__(
+        self, op: Operator, statics: tuple[Atom, ...], later: tuple[Atom, ...], allobj: frozenset[str],
+        typed: tuple[tuple[Var, frozenset[str]], ...],
+    ) -> None:
+        self.op = op
+        self.statics = statics
+        self.later = later
+        self.allobj = allobj
+        self.typed = typed
+
+
+def _is_plain(domain: Domain, a: Atom) -> bool:
+    """A static fluent that a belief can list facts of (no test function, boolean)."""
+    pred = domain.predicates.get(a.predicate)
+    return pred is not None and pred.test is None and a.value in (True, False)

@@ -21,7 +21,6 @@ re-exported here (``__all__``).
 
 from __future__ import annotations
 
-import bisect
 import dataclasses
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -32,6 +31,7 @@ from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
+from nowplan.planning.relevance import relevant_operators
 from nowplan.planning.task_grounding import Grounding, grounding
 
 __all__ = [
@@ -131,6 +131,7 @@ class _Structure:
     position: dict[Any, int] = field(default_factory=dict)  # action key -> its id
     costs: list[float] | None = None  # each action's cost, where every cost is state-free
     adders: dict[int, list[int]] | None = None  # fact -> the actions whose row adds it, ascending
+    by_operator: dict[str, list[int]] | None = None  # operator name -> its actions' ids (floors move them)
 
 
 _STRUCTURES_PER_GROUNDING = 8
@@ -145,6 +146,7 @@ def build_task(
     cost_of: Any,
     *,
     cache_costs: bool = False,
+    relevant_to: Goal | None = None,
 ) -> Task:
     """The integer task for ``goal`` from ``belief`` with each action at its level in ``levels``.
 
@@ -159,21 +161,36 @@ def build_task(
     so a row at any level finds its facts.  With ``cache_costs`` (``cost_of`` is
     ``Action.cost`` in the call's belief) and every cost state-free
     (:attr:`Action.cost_is_state_free`), the costs are kept with the structure.
+
+    Only the operators relevant to ``goal`` and ``relevant_to`` (:mod:`nowplan.planning.relevance`, with
+    the preconditions of the map's lowest level, a superset of every action's own) are grounded; the
+    executive passes its problem's goal as ``relevant_to``, so the calls of a run share one grounding
+    (an abstract level's goal hides most of some domains: where the lift is in miconic).
     """
     top = max([levels.top, *(lv for _, lv in levels.overrides)])
-    gr = grounding(domain, objects, belief, top)
+    low = min([levels.top, *(lv for _, lv in levels.overrides), *(lv for _, lv in levels.floors)])
+    gr = grounding(domain, objects, belief, top, relevant_operators(domain, objects, goal, low, relevant_to))
     statics = gr.statics
     true_now = {a for a in belief.atoms() if a.value is True}
     goal_negs = frozenset(a.negate() for a in goal.atoms if a.value is False and a.predicate not in statics)
-    st = _structure(domain, gr, dataclasses.replace(levels, overrides=frozenset()), goal_negs)
+    # the structure is the map's without overrides and floors: the actions these move get their rows anew
+    st = _structure(domain, gr, dataclasses.replace(levels, overrides=frozenset(), floors=frozenset()), goal_negs)
     pre, add, dele, by_pre, no_pre = st.pre, st.add, st.dele, st.by_pre, st.no_pre
-    moved = sorted(st.position[key] for key, _ in levels.overrides if key in st.position)
+    moved_ids = {st.position[key] for key, _ in levels.overrides if key in st.position}
+    if levels.floors:
+        if st.by_operator is None:
+            st.by_operator = {}
+            for k, act in enumerate(st.actions):
+                st.by_operator.setdefault(act.operator.name, []).append(k)
+        for name, fl in levels.floors:
+            if fl < levels.top:
+                moved_ids.update(st.by_operator.get(name, ()))
+    moved = sorted(moved_ids)
     if moved:
-        pre, add, dele, by_pre, no_pre = list(pre), list(add), list(dele), dict(by_pre), list(no_pre)
+        pre, add, dele = list(pre), list(add), list(dele)
         for k in moved:
-            _unindex(by_pre, no_pre, pre[k], k)
             pre[k], add[k], dele[k] = st.rows.row(st.actions[k], levels.level(st.actions[k]))
-            _reindex(by_pre, no_pre, pre[k], k)
+        by_pre, no_pre = _reindexed(st.by_pre, st.no_pre, st.pre, pre, moved)
     init = frozenset({st.index[a] for a in true_now if a in st.index}
                      | {st.index[n.negate()] for n in st.negs if n not in true_now})
     if cache_costs and st.costs is not None:
@@ -218,31 +235,48 @@ def _adders(st: _Structure, add: list[tuple[int, ...]], moved: list[int]) -> dic
                 st.adders.setdefault(f, []).append(k)
     if not moved:
         return st.adders
-    out = dict(st.adders)
+    gone = set(moved)
+    extra: dict[int, list[int]] = {}
+    touched: set[int] = set()
     for k in moved:
-        for f in st.add[k]:
-            out[f] = [x for x in out[f] if x != k]
+        touched.update(st.add[k])
         for f in add[k]:
-            acts = list(out.get(f, ()))
-            bisect.insort(acts, k)
-            out[f] = acts
+            extra.setdefault(f, []).append(k)
+    touched.update(extra)
+    out = dict(st.adders)
+    for f in touched:
+        acts = [x for x in st.adders.get(f, []) if x not in gone]
+        more = extra.get(f)
+        if more:
+            acts = sorted(acts + more)
+        out[f] = acts
     return {f: r for f, r in out.items() if r}
 
 
-def _unindex(by_pre: dict[int, list[int]], no_pre: list[int], pre: tuple[int, ...], k: int) -> None:
-    if not pre:
-        no_pre.remove(k)
-    for f in pre:
-        by_pre[f] = [x for x in by_pre[f] if x != k]
-
-
-def _reindex(by_pre: dict[int, list[int]], no_pre: list[int], pre: tuple[int, ...], k: int) -> None:
-    if not pre:
-        bisect.insort(no_pre, k)
-    for f in pre:
-        row = list(by_pre.get(f, ()))
-        bisect.insort(row, k)
-        by_pre[f] = row
+def _reindexed(by_pre: dict[int, list[int]], no_pre: list[int], old: list[tuple[int, ...]],
+               new: list[tuple[int, ...]], moved: list[int]) -> tuple[dict[int, list[int]], list[int]]:
+    """The successor index (fact -> the actions needing it, ascending; the actions needing nothing)
+    with the rows of ``moved`` changed from ``old`` to ``new`` (each list touched is rebuilt once)."""
+    gone = set(moved)
+    adds: dict[int, list[int]] = {}
+    touched: set[int] = set()
+    for k in moved:
+        touched.update(old[k])
+        for f in new[k]:
+            adds.setdefault(f, []).append(k)
+    touched.update(adds)
+    out = dict(by_pre)
+    for f in touched:
+        row = [x for x in by_pre.get(f, []) if x not in gone]
+        extra = adds.get(f)
+        if extra:
+            row = sorted(row + extra)
+        if row:
+            out[f] = row
+        else:
+            out.pop(f, None)
+    free = sorted([x for x in no_pre if x not in gone] + [k for k in moved if not new[k]])
+    return out, free
 
 
 def _structure(domain: Domain, gr: Grounding, base: LevelMap, goal_negs: frozenset[Atom]) -> _Structure:

@@ -31,6 +31,7 @@ class Grounding:
     actions: list[Action]
     reached: set[Atom]  # positive atoms reachable from the states seen so far
     statics: frozenset[str]
+    operators: frozenset[str] | None = None  # the operators grounded (None: all)
     # integer task structures built from these actions (nowplan.planning.task), by level map and "not" facts
     tasks: dict[Any, Any] = field(default_factory=dict, repr=False)
 
@@ -48,17 +49,35 @@ def _key_of(domain: Domain, objects: Mapping[str, str | None], belief: Any, stat
     return (domain, costs, tuple(sorted(objects.items(), key=repr)), facts, level)
 
 
-def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, level: int) -> Grounding:
-    """The reachable actions for ``belief`` at ``level`` (cached across calls)."""
+def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, level: int,
+              operators: frozenset[str] | None = None) -> Grounding:
+    """The reachable actions for ``belief`` at ``level`` (cached across calls), of at least the
+    operators named in ``operators`` (``None``: all; e.g. those relevant to a goal,
+    :mod:`nowplan.planning.relevance`).
+
+    A cached grounding of the same objects, static facts and level that covers ``belief`` (it
+    reached every fact true there) serves if it has these operators; else the new grounding
+    starts from the latest such grounding and adds what is missing (the union of the operators,
+    and the facts ``belief`` adds), keeping its actions: a run whose goals need more and more of
+    the domain grounds each action once."""
     statics = domain.static_predicates
-    key = _key_of(domain, objects, belief, statics, level)
+    base = _key_of(domain, objects, belief, statics, level)
     init = {a for a in belief.atoms() if a.value is True}
-    hit = _CACHE.get(key)
-    if hit is not None and init <= hit.reached:
-        return hit
-    start = init | (hit.reached if hit is not None else set())
-    g = _ground(domain, objects, start, statics, level)
-    if len(_CACHE) >= _CACHE_SIZE and key not in _CACHE:
+    prev: Grounding | None = None
+    for (b, ops), g in reversed(_CACHE.items()):  # the latest first
+        if b != base:
+            continue
+        covers = init <= g.reached
+        if covers and (ops is None or (operators is not None and operators <= ops)):
+            return g
+        if prev is None or covers and not init <= prev.reached:
+            prev = g
+    if prev is not None:
+        operators = None if operators is None or prev.operators is None else operators | prev.operators
+    g = _ground(domain, objects, init, statics, level, operators, prev)
+    key = (base, operators)
+    _CACHE.pop(key, None)
+    if len(_CACHE) >= _CACHE_SIZE:
         _CACHE.pop(next(iter(_CACHE)))
     _CACHE[key] = g
     return g
@@ -75,17 +94,28 @@ def _objects_by_type(domain: Domain, objects: Mapping[str, str | None]) -> dict[
 
 
 def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
-            statics: frozenset[str], level: int) -> Grounding:
+            statics: frozenset[str], level: int, operators: frozenset[str] | None = None,
+            prev: Grounding | None = None) -> Grounding:
+    """The fixpoint of relaxed reachability from ``start`` (and ``prev``'s facts) over the operators
+    named in ``operators`` (``None``: all).  ``prev``, a grounding of the same objects, static facts and
+    level, is extended: its actions are kept (the same objects, with their ground atoms), and when
+    ``start`` adds no fact to it, the first round joins only the operators it did not have (it is a
+    fixpoint for its own)."""
     by_type = _objects_by_type(domain, objects)
     type_sets = {t: frozenset(v) for t, v in by_type.items()}
-    reached: set[Atom] = set(start)
+    reached: set[Atom] = set(start) | (prev.reached if prev is not None else set())
     facts: dict[str, set[tuple[Any, ...]]] = {}
     for a in reached:
         facts.setdefault(a.predicate, set()).add(a.args)
-    schemas = (*domain.operators, *domain.axioms)  # an axiom's conditions are kept at every level
+    schemas = (*(op for op in domain.operators if operators is None or op.name in operators),
+               *domain.axioms)  # an axiom's conditions are kept at every level
     joins = [_Join(op, statics, level, facts) for op in schemas]
-    seen: set[tuple[str, tuple[Any, ...]]] = set()
-    actions: list[Action] = []
+    actions: list[Action] = list(prev.actions) if prev is not None else []
+    seen: set[tuple[str, tuple[Any, ...]]] = {a.key for a in actions}
+    fresh: set[str] | None = None  # the operators the first round joins (None: all)
+    if prev is not None and start <= prev.reached:
+        had = prev.operators
+        fresh = set() if had is None else {op.name for op in schemas if op.name not in had}
     changed: set[str] | None = None  # predicates with new facts in the last round (None: all)
     while changed is None or changed:
         index = _Index(facts)
@@ -93,6 +123,8 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
         for op, join in zip(schemas, joins, strict=True):
             if changed is not None and not join.predicates & changed:
                 continue  # nothing new to join against: the same bindings as last round
+            if changed is None and fresh is not None and op.name not in fresh:
+                continue  # ``prev`` has every binding of this operator over its facts
             for args in join.bindings(index, by_type, type_sets):
                 key = (op.name, args)
                 if key in seen:
@@ -110,7 +142,7 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
         for e in new:
             facts.setdefault(e.predicate, set()).add(e.args)
             changed.add(e.predicate)
-    return Grounding(actions, reached, statics)
+    return Grounding(actions, reached, statics, operators)
 
 
 def _negative_statics_hold(act: Action, statics: frozenset[str], facts: Mapping[str, set[Any]]) -> bool:
