@@ -170,6 +170,20 @@ class NamoBelief:
     def at(self, p: Pt) -> bool:
         return self.pose.dist(p) <= self.params.at_tol
 
+    def surely_at(self, p: Pt) -> bool:
+        """``RobotAt(p)`` in the belief: ``p`` is the pose the planner names for the robot (:meth:`nominal`:
+        the end of a completed move, or the cell centre a stopped one is rounded to), or the mean lies
+        ``at_sd`` standard deviations inside the tolerance around ``p``.
+
+        The plain mean test (:meth:`at`) takes a move that stopped just inside the tolerance of its
+        target for arrival while the true pose, a centimetre away, lies just outside it: the belief
+        said "done" and the world did not (issue 14).  With no variance (the world's true state) the
+        two tests agree.
+        """
+        if p == self.nominal():
+            return True
+        return self.pose.dist(p) + self.params.at_sd * self.robot_sigma <= self.params.at_tol
+
     def nominal(self) -> Pt:
         """Where the robot is, as a pose the planner names (the last commanded one if still true)."""
         if self.robot_sym is not None and self.at(self.robot_sym):

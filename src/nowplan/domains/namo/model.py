@@ -2,7 +2,8 @@
 
 Fluents (all tested on the belief):
 
-* ``RobotAt(p)`` — the robot's mean pose is within ``at_tol`` of ``p``;
+* ``RobotAt(p)`` — ``p`` is the robot's nominal pose, or its mean pose is within
+  ``at_tol`` of ``p`` by ``at_sd`` standard deviations (``NamoBelief.surely_at``);
 * ``HandEmpty()`` / ``Holding(o, m)`` — what the gripper holds (``m`` is the
   :class:`~nowplan.domains.namo.geometry.Manip` it was grasped for);
 * ``Observed(R)`` — no fog left in region ``R`` that a look from its view
@@ -60,7 +61,7 @@ WHERE, SEE, CLEAR = 3, 2, 1
 
 # -- tests -------------------------------------------------------------------------------
 def _t_robot_at(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
-    return b.at(args[0]) == bool(value)
+    return b.surely_at(args[0]) == bool(value)
 
 
 def _t_hand_empty(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
