@@ -96,6 +96,10 @@ class NamoBelief:
     touched: dict[str, list[tuple[Pt, Pt]]] = field(default_factory=dict)
     # object -> extra room (m) its drags keep from the walls, learnt from drags a wall stopped
     drag_margin: dict[str, float] = field(default_factory=dict)
+    # manipulation -> the object whose contact stopped its pick path: Fits fails for it.  A look that
+    # moved that object's estimate after the plan was made can put it in the way; the same pick
+    # would be stopped again, and was, 25 times, until the stall bound ended the run (issue 14)
+    blocked_picks: dict[Manip, str] = field(default_factory=dict)
     _cache: dict[Any, Any] = field(default_factory=dict, repr=False)
     _cache_version: int = -1
     _cells: dict[Region, np.ndarray] = field(default_factory=dict, repr=False)
@@ -400,6 +404,9 @@ class NamoBelief:
                 self.grip = (est.mean - self.robot_mean, est.cov.copy())
         else:
             est = self.objects.get(o)
+            hit = [str(c[0]) for c in data.get("contacts", ()) if str(c[0]) != o]
+            if hit:  # the pick path runs into another object: this manipulation does not fit
+                self.blocked_picks[m] = hit[0]
             if data.get("missed") and est is not None:  # it is not where we thought: look again
                 est.cov = np.eye(2) * max(est.sigma, 0.15) ** 2
                 self.percept += 1
