@@ -188,8 +188,10 @@ class Executive:
         """What the planner and generators see: the plan stack only with foresight on; a flat strategy's
         planner also gets the domain's goal-distance estimate, as the online policy's flat planner does."""
         extras: dict[str, Any] = {"foresight": self.strategy.foresight}
-        if not self.strategy.hierarchical and isinstance(self.belief, HasHeuristic):
-            extras["heuristic"] = self.belief.planning_heuristic
+        if not self.strategy.hierarchical:  # it plans the whole problem: no level above to fall back to
+            extras.update(whole_problem=True, max_nodes=self.strategy.planner.max_nodes)
+            if isinstance(self.belief, HasHeuristic):
+                extras["heuristic"] = self.belief.planning_heuristic
         return PlanningContext(tuple(f.plan for f in self.stack) if self.strategy.foresight else (), extras)
 
     # -- planning --------------------------------------------------------------

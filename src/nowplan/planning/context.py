@@ -28,6 +28,19 @@ class PlanningContext:
     def foresight(self) -> bool:
         return bool(self.extras.get("foresight", False))
 
+    @property
+    def whole_problem(self) -> bool:
+        """``extras["whole_problem"]``: the call plans the whole problem flat (a flat strategy, the online
+        policy): no level above plans again if it fails, so generators must not give up before the
+        search's own node budget (``extras["max_nodes"]``) does."""
+        return bool(self.extras.get("whole_problem", False))
+
+    @property
+    def max_nodes(self) -> int | None:
+        """``extras["max_nodes"]``: the node budget of the search this context is given to, if known."""
+        n = self.extras.get("max_nodes")
+        return n if isinstance(n, int) else None
+
     def requirements(self, predicate: str | None = None) -> list[Atom]:
         """Atoms (of ``predicate``, or all) required by pre-images of the stack's plans.
 

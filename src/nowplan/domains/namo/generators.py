@@ -16,7 +16,7 @@ from functools import lru_cache
 from typing import Any
 
 from nowplan.core.atoms import Goal, Var
-from nowplan.domains.namo.belief import NamoBelief
+from nowplan.domains.namo.belief import LOOP_LIMIT, NamoBelief
 from nowplan.domains.namo.geometry import Box, Pt, Region, point_back
 from nowplan.domains.namo.paths import INF, PathPlanner
 
@@ -30,6 +30,19 @@ Out = Iterator[dict[Var, Any]]
 
 def foresight(context: Any) -> bool:
     return bool(context is not None and getattr(context, "foresight", False))
+
+
+def move_request_bound(context: Any) -> int:
+    """How many move requests one planning call gets before its move generator gives up.
+
+    A refinement: ``LOOP_LIMIT`` (it fails fast and the level above plans again).  A call planning the
+    whole problem: its search's node budget, one request per node it may expand (default 50,000), so
+    the guard never starves it before its own node limit ends it.
+    """
+    if context is None or not getattr(context, "whole_problem", False):
+        return LOOP_LIMIT
+    n = getattr(context, "max_nodes", None)
+    return max(LOOP_LIMIT, n if isinstance(n, int) else 50_000)
 
 
 def robot_at_in(goal: Goal) -> Pt | None:
@@ -55,7 +68,7 @@ def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -
     trigger, or always for aggressive replanning) computes a new path.
     """
     b = bindings.get(B)
-    if not isinstance(b, Pt) or belief.planning_loop(context):
+    if not isinstance(b, Pt) or belief.planning_loop(context, move_request_bound(context)):
         return
     fs = foresight(context)
     seg = belief.params.segment
