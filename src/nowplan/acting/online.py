@@ -35,6 +35,7 @@ from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
+from nowplan.acting.whole import plan_whole_problem
 from nowplan.belief.protocols import check_belief
 from nowplan.belief.protocols import AfterAction, HasHeuristic, HasStreams
 from nowplan.core.domain import Problem
@@ -77,17 +78,6 @@ register_switch(Switch("deferred", "deferred evaluation of expensive, likely str
                        mechanism=_OnlineOnly))
 
 
-# Replanning while the last plan's rest still applies (its first action went as planned) is a search
-# for a better plan than one the policy already has: it gets this many times the nodes the search that
-# made that plan expanded (at least INCUMBENT_MIN_NODES, at most the planner's max_nodes); past them the
-# policy keeps its plan (``OnlinePolicy._fall_back``), or, if the plan's next step no longer applies,
-# searches again with the full budget.  Before, a replanning search that needed more than its node
-# budget ended the run with "no plan" one action after a plan had been found (issue 14: online on
-# domain1?sigma_per_m=0.1 seed 4, 50,000 nodes, 35 s).
-INCUMBENT_FACTOR = 20
-INCUMBENT_MIN_NODES = 2000
-
-
 class OnlinePolicy:
     """Runs one problem under Alg. 1; ``reuse_budget`` caps each constrained planning attempt."""
 
@@ -127,8 +117,6 @@ class OnlinePolicy:
         self.streams = belief.streams if isinstance(belief, HasStreams) else None
         self.levels = flat_levels()
         self._tail: list[Action] = []  # after a cycle: the rest of the plan committed to
-        self._rest: list[Action] = []  # the last plan's actions not yet taken (a fallback, see _fall_back)
-        self._rest_expanded = 0  # nodes the search that made that plan expanded
         self._last_failed: tuple[Action, Observation] | None = None  # the last action that failed
         self.planning_s = 0.0  # time (on :attr:`clock`) spent planning and binding streams
         self.constrained_ok = 0
@@ -136,19 +124,11 @@ class OnlinePolicy:
         self._plan_id = 0
 
     # -- one planning call -------------------------------------------------------
-    def incumbent_budget(self) -> int | None:
-        """The node budget of a replanning search while the last plan's rest is kept (None: no cap)."""
-        if not self._rest:
-            return None
-        cap = max(INCUMBENT_MIN_NODES, INCUMBENT_FACTOR * self._rest_expanded)
-        return cap if cap < self.strategy.planner.max_nodes else None
-
-    def _plan(self, prev: tuple[SkeletonStep, ...] | None, deadline: float, capped: bool = True) -> PlanResult:
+    def _plan(self, prev: tuple[SkeletonStep, ...] | None, deadline: float) -> PlanResult:
         goal = self.problem.goal
         # a domain may offer its own goal-distance estimate through the belief (regression's hook)
         h = self.belief.planning_heuristic if isinstance(self.belief, HasHeuristic) else None
-        ctx = PlanningContext((), {"online": True, "heuristic": h, "whole_problem": True,
-                                   "max_nodes": self.strategy.planner.max_nodes})
+        ctx = PlanningContext((), {"online": True, "heuristic": h, "whole_problem": True})
         if self.reuse and prev:
             self.constrained_tried += 1
             budget = max(min(self.reuse_budget, deadline - self.clock()), 0.01)
@@ -161,9 +141,6 @@ class OnlinePolicy:
                 return res
             self.trace.emit("note", text=f"constrained replanning failed ({res.reason}); unconstrained")
         base = self.strategy.planner
-        cap = self.incumbent_budget() if capped else None
-        if cap is not None:
-            base = replace(base, max_nodes=cap)
         if self.streams is not None:
             self.streams.reset_level()
         while True:
@@ -172,8 +149,8 @@ class OnlinePolicy:
             remaining = deadline - self.clock()
             if remaining < cfg.time_limit:
                 cfg = replace(cfg, time_limit=max(remaining, 0.01))
-            res = regression_plan(
-                self.domain, self.problem.objects, self.belief, goal, self.levels, cfg, ctx, self.rng
+            res = plan_whole_problem(
+                regression_plan, self.domain, self.problem.objects, self.belief, goal, self.levels, cfg, ctx, self.rng
             )
             # adaptive sampling: a search that ran out of candidates gets larger sample pools
             if res.solved or res.status is PlanStatus.TIME_LIMIT or self.streams is None or not self.streams.grow():
@@ -245,24 +222,6 @@ class OnlinePolicy:
         self.trace.emit("note", text="progress: commitment ends (the committed plan's next step is not applicable)")
         return None
 
-    def _fall_back(self, res: PlanResult) -> bool:
-        """Replanning ran out of its node budget: commit to the last plan's rest if its next step applies.
-
-        The online policy replans after every action from scratch; a search that did not finish within
-        its budget (not one that proved the goal unreachable) says nothing against the plan it made one
-        action ago, which the action went as planned along.  Each plan's rest is used once, so this
-        cannot loop: the committed steps are taken, then the policy replans.
-        """
-        rest, self._rest = self._rest, []
-        if res.status is not PlanStatus.NODE_LIMIT or not rest:
-            return False
-        self._tail = rest
-        if self._committed_step() is None:
-            return False
-        self.trace.emit("note", text=f"replanning found no plan ({res.reason}); the previous plan's next step "
-                        f"still applies: committing to its {len(rest)} remaining action(s)")
-        return True
-
     def run(self) -> Metrics:
         t0 = self.clock()
         wall0 = time.perf_counter()
@@ -296,30 +255,14 @@ class OnlinePolicy:
                 prev = None
                 continue
             tp = self.clock()
-            capped = self.incumbent_budget() is not None
             res = self._plan(prev, deadline)
             self.metrics.planning_cpu_s += res.cpu_time_s
-            if capped and not res.solved and res.status is PlanStatus.NODE_LIMIT:
-                self.metrics.plan_failures += 1
-            if capped and not res.solved and res.status is PlanStatus.NODE_LIMIT and not self._fall_back(res):
-                # the kept plan's next step no longer applies: search with the full budget
-                self.trace.emit("note", text=f"replanning found no plan within the kept plan's budget "
-                                f"({res.reason}) and that plan's next step no longer applies; full budget")
-                res = self._plan(prev, deadline, capped=False)
-                self.metrics.planning_cpu_s += res.cpu_time_s
-            elif capped and not res.solved and res.status is PlanStatus.NODE_LIMIT:
-                self.planning_s += self.clock() - tp
-                prev = None
-                continue
             if not res.solved or res.plan is None:
                 self.planning_s += self.clock() - tp
                 self.metrics.plan_failures += 1
                 self.trace.emit("plan_failed", parent=None, parent_step=None,
                                 goal=[str(a) for a in self.problem.goal], status=res.status.value,
                                 reason=res.reason, cpu_s=round(res.cpu_time_s, 6))
-                if self._fall_back(res):
-                    prev = None
-                    continue
                 timed = res.status is PlanStatus.TIME_LIMIT
                 outcome = Outcome.LIMIT if timed else Outcome.FAILED
                 reason = f"no plan for the goal ({res.status.value}: {res.reason})"
@@ -364,8 +307,6 @@ class OnlinePolicy:
                 break
             # Alg. 1 line 17: the unexecuted tail constrains the next plan (if it went as planned)
             prev = skeleton(actions[1:]) if obs.success else None
-            self._rest = list(actions[1:]) if obs.success else []
-            self._rest_expanded = res.expanded
         self.metrics.outcome = outcome
         self.metrics.reason = reason
         judge(self.domain, self.problem.goal, self.belief, self.world, self.metrics, self.trace)

@@ -31,15 +31,14 @@ class PlanningContext:
     @property
     def whole_problem(self) -> bool:
         """``extras["whole_problem"]``: the call plans the whole problem flat (a flat strategy, the online
-        policy): no level above plans again if it fails, so generators must not give up before the
-        search's own node budget (``extras["max_nodes"]``) does."""
+        policy): no level above plans again if it fails (see :mod:`nowplan.acting.whole`)."""
         return bool(self.extras.get("whole_problem", False))
 
     @property
-    def max_nodes(self) -> int | None:
-        """``extras["max_nodes"]``: the node budget of the search this context is given to, if known."""
-        n = self.extras.get("max_nodes")
-        return n if isinstance(n, int) else None
+    def restricted(self) -> bool:
+        """``extras["restricted"]``: the second pass of a whole-problem call, in which a domain's
+        generators may restrict what they offer as they do in a refinement (:mod:`nowplan.acting.whole`)."""
+        return bool(self.extras.get("restricted", False))
 
     def requirements(self, predicate: str | None = None) -> list[Atom]:
         """Atoms (of ``predicate``, or all) required by pre-images of the stack's plans.

@@ -36,6 +36,7 @@ from nowplan.domains.namo.estimate import ObjectEstimate, k_of
 from nowplan.domains.namo.geometry import (Box, Manip, MapGeometry, Pt, Region, along, heading_to, polyline_length,
                                           snap_free)
 from nowplan.domains.namo.params import DEFAULT_PARAMS, DEFAULT_SENSOR, Params, Sensor
+from nowplan.planning.context import PlanningContext
 from nowplan.worlds.base import Observation
 
 __all__ = [
@@ -55,12 +56,12 @@ __all__ = [
 log = logging.getLogger(__name__)
 
 # Move-generator calls in one refinement (a planning call below the top of a hierarchical plan) that
-# signal a planning loop: the refinement gives up and the level above plans again.  A call that plans
-# the whole problem (``PlanningContext.whole_problem``: a flat strategy, the online policy) has no level
-# above; it asks for moves about once per node it expands (4,354 and 9,822 requests for 9 distinct
-# targets on domain1?sigma_per_m=0.1 seed 16, where 1,500 starved it: 50,000 nodes without a plan,
-# issue 14), so its bound is its own node budget (generators.move_request_bound): the guard cannot end
-# such a search before its node limit would, and still ends one asking for moves without expanding.
+# signal a planning loop: the generator gives up, the refinement's search ends (planning_gave_up) and
+# the level above plans again.  A call that plans the whole problem (``PlanningContext.whole_problem``)
+# asks for moves about once per node it expands (4,354 and 9,822 requests for 9 distinct targets on
+# domain1?sigma_per_m=0.1 seed 16, where 1,500 starved it, issue 14): its first pass gets moves up to
+# its node budget, its second (``restricted``) LOOP_LIMIT (generators.move_request_bound,
+# nowplan.acting.whole).
 LOOP_LIMIT = 1500
 # A move stopped by a contact: the robot's centre could not go on to a point at most this far ahead
 # along the commanded path (the controller checks its path in steps of about this length) ...
@@ -159,10 +160,21 @@ class NamoBelief:
         c = self.cache()
         key = ("move_calls", id(call))
         n = c[key][1] + 1 if key in c else 1
-        c[key] = (call, n)  # (the call kept alive with its count: its id is not reused meanwhile)
+        c[key] = (call, n, limit)  # (the call kept alive with its count: its id is not reused meanwhile)
         if n == limit:
             log.warning("planning loop: %d move requests in one planning call; its move generator gives up", n)
         return n >= limit
+
+    def planning_gave_up(self, call: object) -> str | None:
+        """Why the search of refinement ``call`` should end: its move generator gave up on it (it would
+        search on without moves, up to 45,000 nodes and 40 s, before the level above plans again:
+        hpn+noshortcuts on domain1?sigma_per_m=0.1 seed 6), or None.  A whole-problem call searches on
+        without new moves (its restricted pass, nowplan.acting.whole): no level above plans again."""
+        hit = self.cache().get(("move_calls", id(call)))
+        if hit is None or hit[0] is not call or hit[1] < hit[2] or (
+                isinstance(call, PlanningContext) and call.whole_problem):
+            return None
+        return f"planning loop: {hit[1]} move requests in one refinement; its move generator gave up"
 
     def _bump(self, percept: bool = False) -> None:
         self.version += 1

@@ -19,6 +19,7 @@ from nowplan.core.atoms import Goal, Var
 from nowplan.domains.namo.belief import LOOP_LIMIT, NamoBelief
 from nowplan.domains.namo.geometry import Box, Pt, Region, point_back
 from nowplan.domains.namo.paths import INF, PathPlanner
+from nowplan.planning.context import PlanningContext
 
 A, B, SW = Var("a"), Var("b"), Var("sw")
 V, R, O, AT, LM, E = Var("v"), Var("r"), Var("o"), Var("at"), Var("lm"), Var("e")
@@ -32,17 +33,20 @@ def foresight(context: Any) -> bool:
     return bool(context is not None and getattr(context, "foresight", False))
 
 
+# Move requests in the unrestricted pass of a whole-problem call: more than any search within its node
+# budget asks (about one per node); the bound only ends a call asking for moves without expanding.
+UNRESTRICTED_LIMIT = 1_000_000
+
+
 def move_request_bound(context: Any) -> int:
     """How many move requests one planning call gets before its move generator gives up.
 
-    A refinement: ``LOOP_LIMIT`` (it fails fast and the level above plans again).  A call planning the
-    whole problem: its search's node budget, one request per node it may expand (default 50,000), so
-    the guard never starves it before its own node limit ends it.
+    A refinement, or the restricted pass of a whole-problem call: ``LOOP_LIMIT``.  The first pass of a
+    whole-problem call (:mod:`nowplan.acting.whole`): ``UNRESTRICTED_LIMIT``; its node budget ends it.
     """
-    if context is None or not getattr(context, "whole_problem", False):
+    if not isinstance(context, PlanningContext) or not context.whole_problem or context.restricted:
         return LOOP_LIMIT
-    n = getattr(context, "max_nodes", None)
-    return max(LOOP_LIMIT, n if isinstance(n, int) else 50_000)
+    return UNRESTRICTED_LIMIT
 
 
 def robot_at_in(goal: Goal) -> Pt | None:
