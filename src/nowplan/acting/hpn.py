@@ -31,6 +31,7 @@ from nowplan.acting.progress import (
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
 from nowplan.acting.refine_flat import FlatSteps, refinement_key
 from nowplan.acting.strategy import Strategy, check_supported
+from nowplan.acting.whole import plan_whole_problem
 from nowplan.belief.protocols import HasHeuristic, check_belief
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
@@ -188,8 +189,10 @@ class Executive:
         """What the planner and generators see: the plan stack only with foresight on; a flat strategy's
         planner also gets the domain's goal-distance estimate, as the online policy's flat planner does."""
         extras: dict[str, Any] = {"foresight": self.strategy.foresight}
-        if not self.strategy.hierarchical and isinstance(self.belief, HasHeuristic):
-            extras["heuristic"] = self.belief.planning_heuristic
+        if not self.strategy.hierarchical:  # it plans the whole problem: no level above to fall back to
+            extras["whole_problem"] = True
+            if isinstance(self.belief, HasHeuristic):
+                extras["heuristic"] = self.belief.planning_heuristic
         return PlanningContext(tuple(f.plan for f in self.stack) if self.strategy.foresight else (), extras)
 
     # -- planning --------------------------------------------------------------
@@ -232,9 +235,14 @@ class Executive:
         forbidden = self.nogoods.forbidden(goal, levels)
         if forbidden:
             context = replace(context, extras={**context.extras, "forbidden_first": forbidden})
-        res = self._planner(
-            self.domain, self.problem.objects, self.belief, goal, levels, cfg, context, self.rng,
-        )
+        if context.whole_problem:  # no level above: the generators' restricted pass comes second
+            res = plan_whole_problem(
+                self._planner, self.domain, self.problem.objects, self.belief, goal, levels, cfg, context, self.rng,
+            )
+        else:
+            res = self._planner(
+                self.domain, self.problem.objects, self.belief, goal, levels, cfg, context, self.rng,
+            )
         self.metrics.planning_cpu_s += res.cpu_time_s
         if not res.solved or res.plan is None:
             self.metrics.plan_failures += 1

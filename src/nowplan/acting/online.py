@@ -35,6 +35,7 @@ from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
+from nowplan.acting.whole import plan_whole_problem
 from nowplan.belief.protocols import check_belief
 from nowplan.belief.protocols import AfterAction, HasHeuristic, HasStreams
 from nowplan.core.domain import Problem
@@ -127,7 +128,7 @@ class OnlinePolicy:
         goal = self.problem.goal
         # a domain may offer its own goal-distance estimate through the belief (regression's hook)
         h = self.belief.planning_heuristic if isinstance(self.belief, HasHeuristic) else None
-        ctx = PlanningContext((), {"online": True, "heuristic": h})
+        ctx = PlanningContext((), {"online": True, "heuristic": h, "whole_problem": True})
         if self.reuse and prev:
             self.constrained_tried += 1
             budget = max(min(self.reuse_budget, deadline - self.clock()), 0.01)
@@ -148,8 +149,8 @@ class OnlinePolicy:
             remaining = deadline - self.clock()
             if remaining < cfg.time_limit:
                 cfg = replace(cfg, time_limit=max(remaining, 0.01))
-            res = regression_plan(
-                self.domain, self.problem.objects, self.belief, goal, self.levels, cfg, ctx, self.rng
+            res = plan_whole_problem(
+                regression_plan, self.domain, self.problem.objects, self.belief, goal, self.levels, cfg, ctx, self.rng
             )
             # adaptive sampling: a search that ran out of candidates gets larger sample pools
             if res.solved or res.status is PlanStatus.TIME_LIMIT or self.streams is None or not self.streams.grow():

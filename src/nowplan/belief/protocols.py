@@ -100,6 +100,18 @@ class HasHeuristic(Protocol):
 
 
 @runtime_checkable
+class GivesUp(Protocol):
+    """A belief whose generators guard against planning loops (e.g. NAMO's move generator).
+
+    ``planning_gave_up(context)``: why the search of the planning call with ``context`` should end
+    (its generators gave up on it), or None; the regression search polls it as it expands nodes.
+    A planning call for the whole problem is then made in two passes (:mod:`nowplan.acting.whole`).
+    """
+
+    def planning_gave_up(self, context: Any) -> str | None: ...
+
+
+@runtime_checkable
 class AfterAction(Protocol):
     """``after_action(trace, action, observation)``: called by the online policy after each action."""
 

@@ -72,8 +72,11 @@ def split_scenario(name: str) -> tuple[str, Faults]:
             v = float(raw)
         except ValueError:
             raise ScenarioError(f"scenario '{name}': fault {key}: '{raw}' is not a number") from None
-        if not 0.0 <= v <= (10.0 if key == "sigma_per_m" else 1.0):
-            raise ScenarioError(f"scenario '{name}': fault {key}={raw} is out of range")
+        top = 10.0 if key == "sigma_per_m" else 1.0
+        if not 0.0 <= v <= top:
+            what = "noise per metre" if key == "sigma_per_m" else "probability"
+            raise ScenarioError(f"scenario '{name}': fault {key}={raw} is out of range; give a {what} "
+                                f"in [0, {top:g}]")
         values[key] = v
     return base, Faults(**values)
 

@@ -113,10 +113,12 @@ class Store:
                 log.info("created run store %s (schema %d)", self.path, SCHEMA_VERSION)
                 return
         if "meta" not in tables:
-            raise StoreError(f"{self.path}: a SQLite file but not a nowplan run store (no 'meta' table)")
+            raise StoreError(f"{self.path}: a SQLite file but not a nowplan run store (no 'meta' table); "
+                             "give a new --store file, or restore the store from a copy if it was one")
         meta = self._meta()
         if meta.get("application") != APPLICATION:
-            raise StoreError(f"{self.path}: a SQLite file but not a nowplan run store")
+            raise StoreError(f"{self.path}: a SQLite file but not a nowplan run store (its meta table names no nowplan); "
+                             "give a new --store file, or restore the store from a copy if it was one")
         found = meta.get("schema_version", "?")
         if found != str(SCHEMA_VERSION):
             raise StoreError(

@@ -28,6 +28,18 @@ class PlanningContext:
     def foresight(self) -> bool:
         return bool(self.extras.get("foresight", False))
 
+    @property
+    def whole_problem(self) -> bool:
+        """``extras["whole_problem"]``: the call plans the whole problem flat (a flat strategy, the online
+        policy): no level above plans again if it fails (see :mod:`nowplan.acting.whole`)."""
+        return bool(self.extras.get("whole_problem", False))
+
+    @property
+    def restricted(self) -> bool:
+        """``extras["restricted"]``: the second pass of a whole-problem call, in which a domain's
+        generators may restrict what they offer as they do in a refinement (:mod:`nowplan.acting.whole`)."""
+        return bool(self.extras.get("restricted", False))
+
     def requirements(self, predicate: str | None = None) -> list[Atom]:
         """Atoms (of ``predicate``, or all) required by pre-images of the stack's plans.
 

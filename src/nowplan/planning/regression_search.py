@@ -15,7 +15,7 @@ import math
 from collections.abc import Callable, Hashable, Mapping, Sequence
 from typing import Any
 
-from nowplan.belief.protocols import ListsFacts
+from nowplan.belief.protocols import GivesUp, ListsFacts
 from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
 from nowplan.core.facts import FactTable
@@ -107,6 +107,9 @@ class _Search:
         # set of action keys, see nowplan.acting.backtrack): a plan may not start with one of them
         self.forbidden_first: frozenset[Any] = frozenset(
             context.extras.get("forbidden_first", ()) if context is not None else ())
+        # the domain's generators may give up on this call (GivesUp): the search ends, with their reason
+        self.gave_up: Callable[[], str | None] | None = (
+            (lambda: belief.planning_gave_up(context)) if isinstance(belief, GivesUp) else None)
         self._no_relax = relax_unsupported(self.grounder, belief)
         self._can_relax = self._no_relax is None
         # with a belief that lists its facts and boolean predicates without tests, truth is membership
@@ -387,6 +390,10 @@ class _Search:
             self.expanded += 1
             if exp > max_nodes:
                 return PlanStatus.NODE_LIMIT, None, f"expanded {max_nodes} nodes without a plan"
+            if self.gave_up is not None and not exp & 63:
+                why = self.gave_up()
+                if why is not None:
+                    return PlanStatus.NODE_LIMIT, None, why
             if self.now() > self.deadline:
                 return PlanStatus.TIME_LIMIT, None, f"time limit of {self.config.time_limit:g} s reached"
             gcost = best_g[node]

@@ -36,6 +36,7 @@ from nowplan.domains.namo.estimate import ObjectEstimate, k_of
 from nowplan.domains.namo.geometry import (Box, Manip, MapGeometry, Pt, Region, along, heading_to, polyline_length,
                                           snap_free)
 from nowplan.domains.namo.params import DEFAULT_PARAMS, DEFAULT_SENSOR, Params, Sensor
+from nowplan.planning.context import PlanningContext
 from nowplan.worlds.base import Observation
 
 __all__ = [
@@ -54,7 +55,14 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-LOOP_LIMIT = 1500  # move-generator calls in one planning call (one belief) that signal a planning loop
+# Move-generator calls in one refinement (a planning call below the top of a hierarchical plan) that
+# signal a planning loop: the generator gives up, the refinement's search ends (planning_gave_up) and
+# the level above plans again.  A call that plans the whole problem (``PlanningContext.whole_problem``)
+# asks for moves about once per node it expands (4,354 and 9,822 requests for 9 distinct targets on
+# domain1?sigma_per_m=0.1 seed 16, where 1,500 starved it, issue 14): its first pass gets moves up to
+# its node budget, its second (``restricted``) LOOP_LIMIT (generators.move_request_bound,
+# nowplan.acting.whole).
+LOOP_LIMIT = 1500
 # A move stopped by a contact: the robot's centre could not go on to a point at most this far ahead
 # along the commanded path (the controller checks its path in steps of about this length) ...
 CONTACT_AHEAD = 0.05
@@ -96,6 +104,10 @@ class NamoBelief:
     touched: dict[str, list[tuple[Pt, Pt]]] = field(default_factory=dict)
     # object -> extra room (m) its drags keep from the walls, learnt from drags a wall stopped
     drag_margin: dict[str, float] = field(default_factory=dict)
+    # manipulation -> the object whose contact stopped its pick path: Fits fails for it.  A look that
+    # moved that object's estimate after the plan was made can put it in the way; the same pick
+    # would be stopped again, and was, 25 times, until the stall bound ended the run (issue 14)
+    blocked_picks: dict[Manip, str] = field(default_factory=dict)
     _cache: dict[Any, Any] = field(default_factory=dict, repr=False)
     _cache_version: int = -1
     _cells: dict[Region, np.ndarray] = field(default_factory=dict, repr=False)
@@ -134,7 +146,7 @@ class NamoBelief:
 
         return estimate
 
-    def planning_loop(self, call: object = None) -> bool:
+    def planning_loop(self, call: object = None, limit: int = LOOP_LIMIT) -> bool:
         """Has one planning call (``call``: its context) asked for moves far more often than any plan needs?
 
         Past this bound the move generator gives up for that call, so a search
@@ -148,10 +160,21 @@ class NamoBelief:
         c = self.cache()
         key = ("move_calls", id(call))
         n = c[key][1] + 1 if key in c else 1
-        c[key] = (call, n)  # (the call kept alive with its count: its id is not reused meanwhile)
-        if n == LOOP_LIMIT:
+        c[key] = (call, n, limit)  # (the call kept alive with its count: its id is not reused meanwhile)
+        if n == limit:
             log.warning("planning loop: %d move requests in one planning call; its move generator gives up", n)
-        return n >= LOOP_LIMIT
+        return n >= limit
+
+    def planning_gave_up(self, call: object) -> str | None:
+        """Why the search of refinement ``call`` should end: its move generator gave up on it (it would
+        search on without moves, up to 45,000 nodes and 40 s, before the level above plans again:
+        hpn+noshortcuts on domain1?sigma_per_m=0.1 seed 6), or None.  A whole-problem call searches on
+        without new moves (its restricted pass, nowplan.acting.whole): no level above plans again."""
+        hit = self.cache().get(("move_calls", id(call)))
+        if hit is None or hit[0] is not call or hit[1] < hit[2] or (
+                isinstance(call, PlanningContext) and call.whole_problem):
+            return None
+        return f"planning loop: {hit[1]} move requests in one refinement; its move generator gave up"
 
     def _bump(self, percept: bool = False) -> None:
         self.version += 1
@@ -169,6 +192,20 @@ class NamoBelief:
 
     def at(self, p: Pt) -> bool:
         return self.pose.dist(p) <= self.params.at_tol
+
+    def surely_at(self, p: Pt) -> bool:
+        """``RobotAt(p)`` in the belief: ``p`` is the pose the planner names for the robot (:meth:`nominal`:
+        the end of a completed move, or the cell centre a stopped one is rounded to), or the mean lies
+        ``at_sd`` standard deviations inside the tolerance around ``p``.
+
+        The plain mean test (:meth:`at`) takes a move that stopped just inside the tolerance of its
+        target for arrival while the true pose, a centimetre away, lies just outside it: the belief
+        said "done" and the world did not (issue 14).  With no variance (the world's true state) the
+        two tests agree.
+        """
+        if p == self.nominal():
+            return True
+        return self.pose.dist(p) + self.params.at_sd * self.robot_sigma <= self.params.at_tol
 
     def nominal(self) -> Pt:
         """Where the robot is, as a pose the planner names (the last commanded one if still true)."""
@@ -386,6 +423,9 @@ class NamoBelief:
                 self.grip = (est.mean - self.robot_mean, est.cov.copy())
         else:
             est = self.objects.get(o)
+            hit = [str(c[0]) for c in data.get("contacts", ()) if str(c[0]) != o]
+            if hit:  # the pick path runs into another object: this manipulation does not fit
+                self.blocked_picks[m] = hit[0]
             if data.get("missed") and est is not None:  # it is not where we thought: look again
                 est.cov = np.eye(2) * max(est.sigma, 0.15) ** 2
                 self.percept += 1

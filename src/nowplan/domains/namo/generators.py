@@ -16,9 +16,10 @@ from functools import lru_cache
 from typing import Any
 
 from nowplan.core.atoms import Goal, Var
-from nowplan.domains.namo.belief import NamoBelief
+from nowplan.domains.namo.belief import LOOP_LIMIT, NamoBelief
 from nowplan.domains.namo.geometry import Box, Pt, Region, point_back
 from nowplan.domains.namo.paths import INF, PathPlanner
+from nowplan.planning.context import PlanningContext
 
 A, B, SW = Var("a"), Var("b"), Var("sw")
 V, R, O, AT, LM, E = Var("v"), Var("r"), Var("o"), Var("at"), Var("lm"), Var("e")
@@ -30,6 +31,22 @@ Out = Iterator[dict[Var, Any]]
 
 def foresight(context: Any) -> bool:
     return bool(context is not None and getattr(context, "foresight", False))
+
+
+# Move requests in the unrestricted pass of a whole-problem call: more than any search within its node
+# budget asks (about one per node); the bound only ends a call asking for moves without expanding.
+UNRESTRICTED_LIMIT = 1_000_000
+
+
+def move_request_bound(context: Any) -> int:
+    """How many move requests one planning call gets before its move generator gives up.
+
+    A refinement, or the restricted pass of a whole-problem call: ``LOOP_LIMIT``.  The first pass of a
+    whole-problem call (:mod:`nowplan.acting.whole`): ``UNRESTRICTED_LIMIT``; its node budget ends it.
+    """
+    if not isinstance(context, PlanningContext) or not context.whole_problem or context.restricted:
+        return LOOP_LIMIT
+    return UNRESTRICTED_LIMIT
 
 
 def robot_at_in(goal: Goal) -> Pt | None:
@@ -55,7 +72,7 @@ def gen_move(bindings: Bindings, goal: Goal, belief: NamoBelief, context: Any) -
     trigger, or always for aggressive replanning) computes a new path.
     """
     b = bindings.get(B)
-    if not isinstance(b, Pt) or belief.planning_loop(context):
+    if not isinstance(b, Pt) or belief.planning_loop(context, move_request_bound(context)):
         return
     fs = foresight(context)
     seg = belief.params.segment

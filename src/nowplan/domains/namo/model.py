@@ -2,7 +2,8 @@
 
 Fluents (all tested on the belief):
 
-* ``RobotAt(p)`` — the robot's mean pose is within ``at_tol`` of ``p``;
+* ``RobotAt(p)`` — ``p`` is the robot's nominal pose, or its mean pose is within
+  ``at_tol`` of ``p`` by ``at_sd`` standard deviations (``NamoBelief.surely_at``);
 * ``HandEmpty()`` / ``Holding(o, m)`` — what the gripper holds (``m`` is the
   :class:`~nowplan.domains.namo.geometry.Manip` it was grasped for);
 * ``Observed(R)`` — no fog left in region ``R`` that a look from its view
@@ -22,6 +23,9 @@ Fluents (all tested on the belief):
   still believes it is (its estimate within ``refit`` of ``m.obj_at``, 0.15 m): a look
   that moves the estimate further makes a plan that picks with ``m`` inapplicable,
   so the drag is planned again for where the object is, not where it was thought;
+  nor does it fit once a pick with ``m`` was stopped by another object
+  (``NamoBelief.blocked_picks``): the level above plans another manipulation
+  instead of issuing the same pick again (issue 14);
 * ``Placed(o, box)`` — an effect only: ``o`` rests as ``box`` (used by the
   conflict rule that keeps placements out of regions a plan needs clear).
 
@@ -60,7 +64,7 @@ WHERE, SEE, CLEAR = 3, 2, 1
 
 # -- tests -------------------------------------------------------------------------------
 def _t_robot_at(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
-    return b.at(args[0]) == bool(value)
+    return b.surely_at(args[0]) == bool(value)
 
 
 def _t_hand_empty(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
@@ -109,7 +113,8 @@ def _t_promising(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
 
 def _t_fits(b: NamoBelief, args: tuple[Any, ...], value: Any) -> bool:
     o, m = b.objects.get(args[0]), args[1]
-    fits = o is not None and isinstance(m, Manip) and o.center.dist(m.obj_at) <= b.params.refit
+    fits = (o is not None and isinstance(m, Manip) and o.center.dist(m.obj_at) <= b.params.refit
+            and m not in b.blocked_picks)  # a pick this manipulation began was stopped by another object
     return fits == bool(value)
 
 

@@ -45,6 +45,10 @@ class Params:
     eps_pick: float = 0.06  # BVRelPose needed before picking (m)
     eps_loc: float = 0.2  # robot localisation needed before a base move (m)
     at_tol: float = 0.15  # RobotAt tolerance (m)
+    # RobotAt(p) away from the robot's nominal pose needs the mean this many standard deviations of
+    # the pose estimate inside at_tol (belief.surely_at): a move stopped just inside the tolerance is
+    # not taken for arrival when the truth may lie just outside it
+    at_sd: float = 2.0
     refit: float = 0.15  # Fits: a manipulation is planned again once the object's estimate moved this far (m)
     fog_observed_slack: int = 3  # Observed: this many visible fog cells are tolerated
     connectivity: bool = True  # placements keep the robot connected to where it started (Fig. 8)
