@@ -30,7 +30,7 @@ def _situation() -> tuple[NamoWorld, NamoBelief, Action, Region]:
     box = Box(2.19, 2.43, 0.5, 0.5)  # touches the robot at its pose, deeper at the move's start
     world = NamoWorld(geom, pose, [TrueObject("box", box)], seed=0)
     belief = NamoBelief(geom, np.array([pose.x, pose.y]), robot_sym=start)
-    belief._detect("box", box.cx - pose.x, box.cy - pose.y, 0.005, (box.w, box.h))  # well localised
+    belief.detect("box", box.cx - pose.x, box.cy - pose.y, 0.005, (box.w, box.h))  # well localised
     region = Region(start, end, geom.robot_radius)
     move = build_domain().operator_map["Move"]
     return world, belief, Action(move, (start, end, region)), region
@@ -73,7 +73,7 @@ def _dragging_into_a_wall() -> tuple[NamoWorld, NamoBelief, Action]:
     world.held, world.grip = "box", np.array([0.0, -0.7])
     m = Manip("box", home, home, box.center, Pt(3.8, 2.6), release, (home,), (home, release), (release, home))
     belief = NamoBelief(geom, np.array([home.x, home.y]), robot_sym=home)
-    belief._detect("box", 0.0, -0.7, 0.005, (box.w, box.h))
+    belief.detect("box", 0.0, -0.7, 0.005, (box.w, box.h))
     belief.held, belief.held_manip, belief.grip = "box", m, (np.array([0.0, -0.7]), np.eye(2) * 1e-4)
     place = build_domain().operator_map["Place"]
     region = Region(home, release, geom.robot_radius)

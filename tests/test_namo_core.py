@@ -62,11 +62,11 @@ def test_path_planner_goes_around_walls_and_prefers_detours_to_clearing():
 def test_kalman_update_shrinks_uncertainty_and_respects_walls():
     geom = MapGeometry(4.0, 2.0, ((0.0, 0.0, 4.0, 0.3),))
     b = NamoBelief(geom, np.array([1.0, 1.0]))
-    b._detect("chair", 1.0, -0.6, 0.2, (0.5, 0.5))  # would put the chair into the wall
+    b.detect("chair", 1.0, -0.6, 0.2, (0.5, 0.5))  # would put the chair into the wall
     est = b.objects["chair"]
     assert est.center.y - 0.25 >= 0.29
     s0 = est.sigma
-    b._detect("chair", 1.0, -0.4, 0.05, (0.5, 0.5))
+    b.detect("chair", 1.0, -0.4, 0.05, (0.5, 0.5))
     assert b.objects["chair"].sigma < s0
 
 

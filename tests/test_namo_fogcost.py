@@ -43,8 +43,8 @@ def test_density_is_the_gamma_poisson_posterior_mean_of_what_was_observed():
     assert f.density == pytest.approx(1.0 / (10.0 + area))
     assert f.width == pytest.approx(2 * b.geom.robot_radius + p.fog_prior_width)
     assert f.per_metre == pytest.approx(f.density * f.width * p.clear_cost)
-    b._detect("seen", 2.0, 0.0, 0.01, (0.4, 0.6))  # in observed space, 2 m ahead
-    b._detect("far", 6.5, 1.0, 0.01, (0.4, 0.4))  # in fog (a prior map entry, say): not evidence
+    b.detect("seen", 2.0, 0.0, 0.01, (0.4, 0.6))  # in observed space, 2 m ahead
+    b.detect("far", 6.5, 1.0, 0.01, (0.4, 0.4))  # in fog (a prior map entry, say): not evidence
     f2 = fog_price(b)
     assert f2.objects == 1
     assert f2.density == pytest.approx(2.0 / (10.0 + area))
@@ -131,8 +131,8 @@ def _fig6_with_crate(params: Params) -> tuple[object, NamoBelief]:
     # the straight route's band has been looked at (up to the crate); the sides of the room are fog
     g = b.geom.grid
     b.observed[:] = (np.abs(g.ys - mid.y) < 0.45) & (g.xs < mid.x + 0.3)
-    b._detect("crate", mid.x - b.pose.x, mid.y - b.pose.y, 0.02, (0.6, 0.6))
-    b._detect("seen1", 1.5 - b.pose.x, 0.0, 0.02, (0.3, 0.3))  # objects seen so far (evidence of clutter)
+    b.detect("crate", mid.x - b.pose.x, mid.y - b.pose.y, 0.02, (0.6, 0.6))
+    b.detect("seen1", 1.5 - b.pose.x, 0.0, 0.02, (0.3, 0.3))  # objects seen so far (evidence of clutter)
     b.params = params
     b._bump(percept=True)
     return plan, b
@@ -190,7 +190,7 @@ def test_fog_price_bounds_every_move_and_every_tree(seen_x, objects, ax, ay, bx,
     b = _belief()
     _observe_left(b, seen_x)
     for i in range(objects):  # objects seen in the observed part (out of the way: at the map's bottom edge)
-        b._detect(f"o{i}", min(seen_x, 0.6 + 0.5 * i) - b.pose.x, 0.3 - b.pose.y, 0.01, (0.2, 0.2))
+        b.detect(f"o{i}", min(seen_x, 0.6 + 0.5 * i) - b.pose.x, 0.3 - b.pose.y, 0.01, (0.2, 0.2))
     rho = fog_price(b).per_metre
     assert rho == pytest.approx(fog_price(b).density * fog_price(b).width * b.params.clear_cost)
     a, c = Pt(ax, ay), Pt(bx, by)

@@ -24,7 +24,7 @@ def _belief(sigma: float = 0.005) -> NamoBelief:
     geom = MapGeometry(6.0, 4.0, ())
     b = NamoBelief(geom, np.array([1.0, 2.0]), robot_sym=Pt(1.0, 2.0))
     b.observed[:] = True
-    b._detect("box", 2.0, 0.0, sigma, (0.4, 0.4))  # at (3, 2)
+    b.detect("box", 2.0, 0.0, sigma, (0.4, 0.4))  # at (3, 2)
     return b
 
 

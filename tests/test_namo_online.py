@@ -33,7 +33,7 @@ def _holding(place: Pt) -> tuple[NamoBelief, Manip]:
     box = Box(2.0, 2.5, 0.4, 0.4)
     belief = NamoBelief(geom, np.array([home.x, home.y]), robot_sym=home)
     belief.observed[:] = True
-    belief._detect("box", 0.0, 0.5, 0.005, (box.w, box.h))
+    belief.detect("box", 0.0, 0.5, 0.005, (box.w, box.h))
     release = Pt(place.x, place.y - 0.5)
     m = Manip("box", home, home, box.center, place, release, (home,), (home, release), (release, home),
               Region(home, home, 0.0))
@@ -113,7 +113,7 @@ def _holding_close(other_at: Pt | None) -> tuple[NamoBelief, Manip]:
     belief.objects["box"].mean = np.array([2.0, 2.45])
     belief.grip = (np.array([0.0, 0.45]), np.eye(2) * 1e-4)
     if other_at is not None:
-        belief._detect("other", other_at.x - 2.0, other_at.y - 2.0, 0.05, (0.4, 0.4))
+        belief.detect("other", other_at.x - 2.0, other_at.y - 2.0, 0.05, (0.4, 0.4))
     return belief, m
 
 
@@ -140,7 +140,7 @@ def test_while_holding_an_object_another_one_in_the_way_can_be_moved() -> None:
     # the placement generator offered only the held object while one was held, so a plan made after
     # a grasp could never move a second object (one a missed detection showed only after the grasp)
     belief, m = _holding(Pt(2.0, 3.2))
-    belief._detect("other", 1.5, 0.0, 0.01, (0.4, 0.4))  # at (3.5, 2): in the way east
+    belief.detect("other", 1.5, 0.0, 0.01, (0.4, 0.4))  # at (3.5, 2): in the way east
     way = Region(Pt(2.0, 2.0), Pt(4.5, 2.0), 0.25)
     assert belief.blockers(way, 0.025) == ["other"]
     goal = Goal((atom("RobotAt", m.home),))

@@ -36,7 +36,7 @@ BOX = Box(4.0, 2.0, 0.5, 0.5)
 
 def _belief(x: float = 1.0, y: float = 2.0) -> NamoBelief:
     b = NamoBelief(GEOM, np.array([x, y]))
-    b._detect("box", BOX.cx - x, BOX.cy - y, 0.3, (BOX.w, BOX.h))  # seen from afar: sigma about 0.3
+    b.detect("box", BOX.cx - x, BOX.cy - y, 0.3, (BOX.w, BOX.h))  # seen from afar: sigma about 0.3
     return b
 
 
@@ -57,7 +57,7 @@ def test_progress_changes_the_fingerprint() -> None:
     seen = {b.fingerprint()}
     for noise in (0.1, 0.03, 0.01):  # looks that tighten the object's variance (each by more than FP_SIGMA)
         before = b.objects["box"].sigma
-        b._detect("box", BOX.cx - 1.0, BOX.cy - 2.0, noise, (BOX.w, BOX.h))
+        b.detect("box", BOX.cx - 1.0, BOX.cy - 2.0, noise, (BOX.w, BOX.h))
         assert b.objects["box"].sigma < before / 1.25
         assert b.fingerprint() not in seen
         seen.add(b.fingerprint())

@@ -66,7 +66,7 @@ def test_new_obstacle_trigger_fires_once_per_perceptual_event():
     b = ep.belief
     route = [a.args[2] for a in plan.actions if a.name == "Move"]
     mid = route[len(route) // 2].centroid
-    b._detect("crate", mid.x - b.pose.x, mid.y - b.pose.y, 0.02, (0.5, 0.5))
+    b.detect("crate", mid.x - b.pose.x, mid.y - b.pose.y, 0.02, (0.5, 0.5))
     reason = new_obstacle(plan, b)
     assert reason is not None and "crate" in reason
     assert new_obstacle(plan, b) is None  # already answered for this perceptual state
@@ -100,7 +100,7 @@ def test_cost_of_a_move_rises_with_an_obstacle_in_its_volume():
     move = move_op.instantiate({Var("a"): a, Var("b"): c, Var("sw"): region(b, a, c, False)})
     before = move.cost(b)
     assert before == pytest.approx(a.dist(c))
-    b._detect("box", 0.8, 0.0, 0.02, (0.4, 0.4))  # right on the way
+    b.detect("box", 0.8, 0.0, 0.02, (0.4, 0.4))  # right on the way
     assert move.cost(b) == pytest.approx(before + params.clear_cost)
 
 
@@ -177,7 +177,7 @@ def test_a_new_obstacle_replans_only_when_a_path_is_cheaper_by_the_gain():
     route = [a.args[2] for a in plan.actions if a.name == "Move"]
     mid = route[len(route) // 2].centroid
     b.observed[:] = True  # the whole room seen: the detour is known to be free
-    b._detect("crate", mid.x - b.pose.x, mid.y - b.pose.y, 0.02, (0.5, 0.5))
+    b.detect("crate", mid.x - b.pose.x, mid.y - b.pose.y, 0.02, (0.5, 0.5))
     huge = Params(reconsider_gain=100.0)  # no detour can save 100 m: keep the plan (clear the crate)
     new_obstacle, shorter = make_triggers(huge)
     assert new_obstacle(plan, b) is None and shorter(plan, b) is None
@@ -195,10 +195,10 @@ def test_segment_cost_charges_only_objects_the_move_really_enters():
     b.observed[:] = True
     a, c = Pt(0.5, 1.5), Pt(2.1, 1.5)
     # a box whose edge is 0.31 m from the move's axis (robot radius 0.25): beside the path, not in it
-    b._detect("side", 1.3 - 0.5, 0.31 + 0.2 + 0.05, 0.001, (0.4, 0.4))
+    b.detect("side", 1.3 - 0.5, 0.31 + 0.2 + 0.05, 0.001, (0.4, 0.4))
     pp = PathPlanner.of(b, False)
     assert pp.segment_cost(a, c) == pytest.approx(a.dist(c))
-    b._detect("inway", 1.3 - 0.5, 0.0, 0.001, (0.4, 0.4))
+    b.detect("inway", 1.3 - 0.5, 0.0, 0.001, (0.4, 0.4))
     pp = PathPlanner.of(b, False)
     assert pp.segment_cost(a, c) >= a.dist(c) + b.params.clear_cost
 
@@ -210,7 +210,7 @@ def test_a_look_that_did_not_localise_is_not_offered_again_from_there():
 
     geom = MapGeometry(6.0, 3.0, ())
     b = NamoBelief(geom, np.array([0.5, 1.5]))
-    b._detect("box", 1.5, 0.0, 0.2, (0.4, 0.4))  # seen badly from afar
+    b.detect("box", 1.5, 0.0, 0.2, (0.4, 0.4))  # seen badly from afar
     here = b.nominal()
     binds = {Var("o"): "box", Var("e"): 0.06}
     assert list(gen_look_obj(binds, Goal(()), b, None))  # a look from here should localise it
@@ -245,7 +245,7 @@ def test_a_noisy_sensor_plans_enough_looks_and_their_pre_image_asks_for_a_looser
     geom = MapGeometry(6.0, 3.0, ())
     noisy = replace(DEFAULT_SENSOR, sigma_per_m=0.08)
     b = NamoBelief(geom, np.array([0.5, 1.5]), sensor=noisy)
-    b._detect("box", 1.5, 0.0, 0.3, (0.4, 0.4))
+    b.detect("box", 1.5, 0.0, 0.3, (0.4, 0.4))
     binds = {Var("o"): "box", Var("e"): 0.06}
     opts = list(gen_look_obj(binds, Goal(()), b, None))
     assert len(opts) == 1  # one look cannot reach 0.06 from 1.5 m (noise 0.13), several can
@@ -262,7 +262,7 @@ def test_a_noisy_sensor_plans_enough_looks_and_their_pre_image_asks_for_a_looser
     assert look.name == "LookObj" and look.cost(b) == n  # n looks cost n
     # a worse estimate takes more looks (the number comes from the estimate the plan starts from)
     b2 = NamoBelief(geom, np.array([0.5, 1.5]), sensor=noisy)
-    b2._detect("box", 1.5, 0.0, 0.6, (0.4, 0.4))
+    b2.detect("box", 1.5, 0.0, 0.6, (0.4, 0.4))
     res2 = plan(dom, {}, b2, Goal.of([atom("BVRelPose", "box", value=0.03)], dom.rules), flat_levels())
     assert res2.solved and res2.plan is not None
     (look2,) = res2.plan.actions
@@ -278,7 +278,7 @@ def test_a_look_that_saw_nothing_is_futile_but_a_small_tightening_is_not():
 
     geom = MapGeometry(6.0, 3.0, ())
     b = NamoBelief(geom, np.array([0.5, 1.5]))
-    b._detect("box", 1.5, 0.0, 0.07, (0.4, 0.4))
+    b.detect("box", 1.5, 0.0, 0.07, (0.4, 0.4))
     here = b.nominal()
     look = build_domain(b.params).operator_map["LookObj"].instantiate(
         {Var("v"): here, Var("o"): "box", Var("at"): b.objects["box"].center, Var("e"): 0.06, Var("pre"): 0.065,

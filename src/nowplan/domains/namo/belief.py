@@ -18,7 +18,8 @@ methods at the bottom, which the domain's predicate tests call.
 One object's estimate (:class:`ObjectEstimate`) and ``k_of`` are in
 :mod:`nowplan.domains.namo.estimate`, the polyline helpers ``along`` and
 ``heading_to`` in :mod:`nowplan.domains.namo.geometry`; all are re-exported
-here (``__all__``).
+here (``__all__``).  The Kalman updates from landmarks and detections are in
+:mod:`nowplan.domains.namo.sensing` (:meth:`NamoBelief.detect` folds in one detection).
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ from nowplan.domains.namo.estimate import ObjectEstimate, k_of
 from nowplan.domains.namo.geometry import (Box, Manip, MapGeometry, Pt, Region, along, heading_to, polyline_length,
                                           snap_free)
 from nowplan.domains.namo.params import DEFAULT_PARAMS, DEFAULT_SENSOR, Params, Sensor
+from nowplan.domains.namo.sensing import detect, sense
 from nowplan.planning.context import PlanningContext
 from nowplan.worlds.base import Observation
 
@@ -460,86 +462,9 @@ class NamoBelief:
         self.percept += 1  # the map changed where the object was and where it went
 
     def _sense(self, data: dict[str, Any]) -> None:
-        g = self.geom.grid
-        rc = g.cell(self.pose)
-        ri, rj = g.ij(rc)
-        visible = data.get("visible")
-        seen_cells = np.zeros(0, dtype=int)
-        if visible is not None and len(visible):
-            rel = np.asarray(visible, dtype=int).reshape(-1, 2)
-            ii, jj = rel[:, 0] + ri, rel[:, 1] + rj
-            ok = (ii >= 0) & (ii < g.nx) & (jj >= 0) & (jj < g.ny)
-            seen_cells = jj[ok] * g.nx + ii[ok]
-            self.observed[seen_cells] = True
-        self.observed |= g.disk_mask(self.pose, 0.5)
-        bump = data.get("bump")
-        if bump is not None:  # the robot cannot stand there: keep paths off that spot
-            self.bumps.add(g.cell(Pt.of(self.robot_mean[0] + bump[0], self.robot_mean[1] + bump[1])))
-        for lm, rx, ry, s in data.get("landmarks", ()):
-            self._localise(self.geom.landmark(lm), float(rx), float(ry), float(s))
-        detected = set()
-        for name, rx, ry, s, w, h in [*data.get("detections", ()), *data.get("contacts", ())]:
-            detected.add(name)
-            self._detect(name, float(rx), float(ry), float(s), (float(w), float(h)))
-        if seen_cells.size:
-            seen = set(seen_cells.tolist())
-            for o in self.free_objects():
-                if o.name not in detected and g.cell(o.center) in seen and o.sigma < 0.15:
-                    log.info("object %s not seen where believed: dropped", o.name)
-                    del self.objects[o.name]
-                    self.percept += 1
+        sense(self, data)
 
-    def _localise(self, lm: Pt, rx: float, ry: float, s: float) -> None:
-        z = np.array([lm.x - rx, lm.y - ry])
-        r = s * s
-        k = self.robot_var / (self.robot_var + r)
-        self.robot_mean = self.robot_mean + k * (z - self.robot_mean)
-        self.robot_var = (1 - k) * self.robot_var
-
-    def _detect(self, name: str, rx: float, ry: float, s: float, size: tuple[float, float]) -> None:
-        self.version += 1  # (update() bumps it again at the end; this keeps direct calls honest)
-        z = self.robot_mean + np.array([rx, ry])
-        R = np.eye(2) * (s * s + self.robot_var)
-        est = self.objects.get(name)
-        if name == self.held:
-            return
-        if est is None:
-            self.percept += 1
-            self.objects[name] = est = ObjectEstimate(name, z, R, size, self.percept)
-            self._off_walls(est)
-            log.info("new object %s at %s", name, est.center)
-            return
-        before_sigma, before_mean = est.sigma, est.mean.copy()
-        S = est.cov + R
-        K = est.cov @ np.linalg.inv(S)
-        est.mean = est.mean + K @ (z - est.mean)
-        est.cov = (np.eye(2) - K) @ est.cov
-        est.looks += 1
-        self._off_walls(est)
-        if est.sigma < 0.7 * before_sigma or float(np.hypot(*(est.mean - before_mean))) > 0.2:
-            self.percept += 1
-
-
-    def _off_walls(self, est: ObjectEstimate) -> None:
-        """Objects cannot be inside walls: move the estimate to the nearest position clear of them."""
-        w = np.array(self.geom.walls, dtype=float).reshape(-1, 4)
-        if not len(w):
-            return
-        hw, hh = est.size[0] / 2 - 0.01, est.size[1] / 2 - 0.01
-
-        def clear(x: float, y: float) -> bool:
-            return not bool(np.any((x - hw < w[:, 2]) & (x + hw > w[:, 0]) & (y - hh < w[:, 3]) & (y + hh > w[:, 1])))
-
-        x, y = float(est.mean[0]), float(est.mean[1])
-        if clear(x, y):
-            return
-        for r in np.arange(0.02, 0.6, 0.02):
-            best = None
-            for a in np.linspace(0, 2 * math.pi, 24, endpoint=False):
-                cx, cy = x + r * math.cos(a), y + r * math.sin(a)
-                if clear(cx, cy):
-                    best = (cx, cy)
-                    break
-            if best is not None:
-                est.mean = np.array(best)
-                return
+    def detect(self, name: str, rx: float, ry: float, s: float, size: tuple[float, float]) -> None:
+        """Fold in one detection of ``name`` at ``(rx, ry)`` from the robot with noise ``s``
+        (:func:`nowplan.domains.namo.sensing.detect`)."""
+        detect(self, name, rx, ry, s, size)
