@@ -87,7 +87,7 @@ class PeepholeConfig:
     # node budget of the refinement of a step taken alone that was part of a combination whose
     # joint planning failed earlier in the run (0: the planner's own budgets).  On marsupial these
     # are unloads of a package buried in a bay that combined loads filled: refined alone at the
-    # loader's level, the full search proved them unsolvable after 3-7 k expansions each (0.3-0.6
+    # loader's level, the full search proved them unsolvable after 3-19 k expansions each (0.3-2.1
     # CPU s, most of RCHPN's extra time on the problems where it gains nothing) and the executive
     # then backtracked, as it does after the budget
     fallout_nodes: int = 500
