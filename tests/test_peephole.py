@@ -692,3 +692,41 @@ def test_gather_never_moves_prerequisites_held_by_different_resources():
     toy = Domain("toy-rooms-one-leg", PREDS, (*OPS, lift, hand_arm), conflicts=(one_place,))
     ops, new = run([lift.instantiate({o: "y"}), hand_arm.instantiate({o: "y"})])
     assert [x.name for x in new] == ["lift", "hand", "place", "stow"]
+
+
+@pytest.mark.parametrize("fallout", [500, 0])
+def test_a_step_of_a_given_up_combination_refined_alone_gets_the_fallout_budget(fallout: int):
+    from types import SimpleNamespace
+
+    from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
+    from nowplan.planning.regression import PlannerConfig
+
+    s = state(robot="yard", x="yard", z="yard", w="yard")
+    ops = [act("carry", "x", "yard"), act("carry", "z", "yard"), act("carry", "w", "yard")]
+    goal = Goal.of([atom("carried", q) for q in "xzw"])
+    own = LevelMap(TOY.top_level)
+    kept, goals = Reorderer(TOY, OBJECTS, s, own).chain(ops, goal)
+    plan = Plan((PlanStep(None, goals[0]), *(PlanStep(a, g) for a, g in zip(kept, goals[1:]))), own)
+    m = Peephole(PeepholeConfig(max_combined=2, min_hidden_to_combine=1, fallout_nodes=fallout))
+    ex = _toy_executive(s)
+    frame = SimpleNamespace(plan=plan, plan_id=1, i=0, root=False, info={}, n=len(plan.steps))
+    m.next_step(ex, frame)
+    assert frame.info["joint"] == 2 and not frame.info["fallout"]  # combined: the joint budget applies
+    combined = {a.key for a in frame.plan.actions[:2]}
+    base = PlannerConfig()
+    # before any combination failed, a step taken alone is planned with the planner's own budgets
+    m2 = Peephole(PeepholeConfig(max_combined=1, fallout_nodes=fallout))
+    alone = SimpleNamespace(plan=plan, plan_id=2, i=0, root=False, info={}, n=len(plan.steps))
+    m2.next_step(ex, alone)
+    assert not alone.info["fallout"] and m2.planner_config(ex, alone, Goal(), base) is None
+    # the joint subgoal ran out of nodes: its steps, chosen alone from now on, get the fallout budget
+    m.after_plan_failure(ex, frame, goals[-1], PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
+    frame.i = 0
+    step = m.next_step(ex, frame)
+    assert frame.info["joint"] is None and step.action.key in combined
+    cfg = m.planner_config(ex, frame, Goal(), base)
+    if fallout:
+        assert frame.info["fallout"] == frame.i
+        assert cfg is not None and cfg.call_nodes == fallout and cfg.max_nodes <= fallout
+    else:
+        assert not frame.info["fallout"] and cfg is None

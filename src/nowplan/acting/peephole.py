@@ -84,6 +84,13 @@ class PeepholeConfig:
     # after SelectParallelOps, move the prerequisites of a step that would join the group in front
     # of it (:mod:`nowplan.acting.gather`; ours, not in the paper)
     gather: bool = True
+    # node budget of the refinement of a step taken alone that was part of a combination whose
+    # joint planning failed earlier in the run (0: the planner's own budgets).  On marsupial these
+    # are unloads of a package buried in a bay that combined loads filled: refined alone at the
+    # loader's level, the full search proved them unsolvable after 3-19 k expansions each (0.3-2.1
+    # CPU s, most of RCHPN's extra time on the problems where it gains nothing) and the executive
+    # then backtracked, as it does after the budget
+    fallout_nodes: int = 500
 
 
 class Reorderer:
@@ -296,6 +303,8 @@ class Peephole(Mechanism):
         self._unwind_to: int | None = None
         # the highest true kernel found by ``applicable`` (frame, plan, actions taken, k)
         self._applicable: tuple[Any, Plan, int, int | None] | None = None
+        # action keys of every combination whose joint planning failed in this run (``_fallout``)
+        self._given_up: set[Any] = set()
 
     def _failed_now(self, ex: Executive) -> list[frozenset[Any]]:
         """The combinations that failed in the current belief (forgotten after each action)."""
@@ -397,9 +406,15 @@ class Peephole(Mechanism):
             )
             log.info("peephole on plan %d: %s", frame.plan_id, "; ".join(r.moves))
         frame.i = k + 1 + last
+        frame.info["fallout"] = frame.i if last == 0 and self._fallout(r, ops[0]) else None
         frame.info["joint"] = frame.i if last > 0 else None
         frame.info["joint_ops"] = frozenset(a.key for a in ops[: last + 1]) if last > 0 else None
         return frame.plan.steps[frame.i]
+
+    def _fallout(self, r: Reorderer, step: Action) -> bool:
+        """A step taken alone that was part of a combination given up earlier in this run: its
+        refinement gets ``fallout_nodes`` (``planner_config``)."""
+        return self.config.fallout_nodes > 0 and step.key in self._given_up and r.arrangeable(step)
 
     def after_plan_failure(self, ex: Executive, parent: Frame, goal: Goal, result: PlanResult) -> None:
         """A combined subgoal with no plan: remember the combination until the next action."""
@@ -407,6 +422,7 @@ class Peephole(Mechanism):
         if ops is None:
             return
         self._failed_now(ex).append(ops)
+        self._given_up.update(ops)
         too_big = result.status in (PlanStatus.TIME_LIMIT, PlanStatus.NODE_LIMIT)
         if too_big:
             self._cap = min(self._cap, len(ops) - 1)
@@ -440,6 +456,11 @@ class Peephole(Mechanism):
             base = out or config
             out = replace(base, max_nodes=min(base.max_nodes, cap), shortcut_nodes=min(base.shortcut_nodes, cap),
                           call_nodes=cap)
+        fallout = self.config.fallout_nodes
+        if not below and fallout > 0 and parent.info.get("fallout") == parent.i:
+            base = out or config
+            out = replace(base, max_nodes=min(base.max_nodes, fallout),
+                          shortcut_nodes=min(base.shortcut_nodes, fallout), call_nodes=fallout)
         if below and not self.config.held_rewrites:
             out = replace(out or config, held_rewrites=False)
         return out

@@ -51,6 +51,9 @@ Config = tuple[Hold, Door]
 EPS = 1e-3  # weight of the packer's placement preference in the search cost
 MAX_PLACEMENTS = 6  # storage spots the loader walks towards per held package (best first)
 MAX_BUFFER = 2  # temporary spots in the load region it walks towards
+# configurations a search with an infeasibility test expands before asking it (PathCache.path):
+# the fetch searches that succeed on marsupial's bays expand fewer; the ones that fail 20 000
+PROBE_NODES = 1_000
 
 
 @dataclass(frozen=True)
@@ -263,6 +266,14 @@ def search(
     start: Config, goal: Goal, h: Heuristic, max_nodes: int = 20_000, weight: float = 1.0
 ) -> list[Transition] | None:
     """Weighted A* over configurations: a cheap operator sequence reaching ``goal``, or None."""
+    return search_status(start, goal, h, max_nodes, weight)[0]
+
+
+def search_status(
+    start: Config, goal: Goal, h: Heuristic, max_nodes: int = 20_000, weight: float = 1.0
+) -> tuple[list[Transition] | None, bool]:
+    """:func:`search`, and whether it stopped at ``max_nodes`` (False: it found a path or
+    expanded every configuration it can reach)."""
     counter = itertools.count()
     frontier: list[tuple[float, int, Config]] = [(h(start), next(counter), start)]
     best: dict[Config, float] = {start: 0.0}
@@ -281,11 +292,11 @@ def search(
                 path.append(t)
                 cur = t.before
             path.reverse()
-            return path
+            return path, False
         closed.add(conf)
         if len(closed) > max_nodes:
             log.info("loader search gave up after %d configurations", max_nodes)
-            return None
+            return None, True
         g = best[conf]
         for t, cost in successors(conf):
             nxt = t.after
@@ -295,7 +306,7 @@ def search(
             best[nxt] = ng
             parent[nxt] = t
             heapq.heappush(frontier, (ng + weight * h(nxt), next(counter), nxt))
-    return None
+    return None, False
 
 
 class PathCache:
@@ -308,15 +319,33 @@ class PathCache:
         # paths only; scanning every cached path made it the loader's costliest call under RCHPN)
         self._by_start: dict[Config, list[list[Transition]]] = {}
         self.searches = 0
+        self.relaxed_tests = 0  # searches that asked their infeasibility test, and were cut by it
+        self.relaxed_proofs = 0
 
-    def path(self, start: Config, mode: str, goal: Goal, h: Heuristic) -> list[Transition] | None:
+    def path(
+        self, start: Config, mode: str, goal: Goal, h: Heuristic,
+        infeasible: Callable[[Config], bool] | None = None,
+    ) -> list[Transition] | None:
+        """The search's path for ``mode`` from ``start`` (cached).  With ``infeasible`` (a test that
+        answers True only where the search must fail, e.g. :func:`.bay_relaxed.fetch_infeasible`),
+        a search that has not ended after :data:`PROBE_NODES` configurations asks the test, and
+        stops if it says so; the answer is always the full search's."""
         key = (start, mode)
         if key not in self._paths:
             if len(self._paths) >= self.limit:
                 self._paths.clear()
                 self._by_start.clear()
             self.searches += 1
-            found = search(start, goal, h)
+            if infeasible is None:
+                found = search(start, goal, h)
+            else:
+                found, cut = search_status(start, goal, h, max_nodes=PROBE_NODES)
+                if cut:
+                    self.relaxed_tests += 1
+                    if infeasible(start):
+                        self.relaxed_proofs += 1
+                    else:
+                        found = search(start, goal, h)
             self._paths[key] = found
             if found:
                 self._by_start.setdefault(start, []).append(found)

@@ -51,6 +51,7 @@ from nowplan.core.operators import (
     Action, Generator, Operator, Precondition, Resource, ResourceUse, reads_nothing,
 )
 from nowplan.domains.marsupial import loader as lp
+from nowplan.domains.marsupial.bay_relaxed import fetch_infeasible
 from nowplan.domains.marsupial.grid import NONE, Door, Hold, can_share, door_package, is_packed
 from nowplan.planning.regression import PlannerConfig
 
@@ -141,7 +142,8 @@ def _transition(kind: str, goal: Any, belief: Any, veh: str) -> lp.Transition | 
         if target == NONE:
             path = lp.CACHE.path(start, "stow", lp.stow_goal, lp.stow_h)
         elif pkg is not None and pkg == target:
-            path = lp.CACHE.path(start, f"fetch:{pkg}", lp.fetch_goal(pkg), lp.fetch_h(pkg))
+            path = lp.CACHE.path(start, f"fetch:{pkg}", lp.fetch_goal(pkg), lp.fetch_h(pkg),
+                                 infeasible=lambda c: fetch_infeasible(c[0], c[1], pkg))
         else:
             path = None
         t = path[-1] if path else None
