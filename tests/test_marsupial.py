@@ -528,7 +528,7 @@ def test_arrange_asked_for_one_verdict_keeps_rchpns_choices_on_marsupial(monkeyp
     """On a real domain (the packer and the loader's stow search as the shareability test), every
     ``arrange`` SelectGap and SelectParallelOps ask answers as the full rules would."""
     from nowplan.acting.arrange import Arrange
-    from nowplan.acting.peephole import Reorderer
+    from nowplan.acting.reorder import Reorderer
 
     seen = {Arrange.SECOND: 0, Arrange.COMBINE: 0}
     original = Reorderer.arrange

@@ -8,7 +8,8 @@ import pytest
 
 from nowplan.acting.arrange import Arrange, Subgoal, arrange, depends
 from nowplan.acting.metrics import Outcome
-from nowplan.acting.peephole import Peephole, PeepholeConfig, Reorderer, highest_applicable
+from nowplan.acting.peephole import Peephole, PeepholeConfig
+from nowplan.acting.reorder import Reorderer, highest_applicable
 from nowplan.acting.resources import Estimator, ResourceModel
 from nowplan.acting.run import run_episode
 from nowplan.acting.strategy import parse_strategy
@@ -373,7 +374,7 @@ def test_without_a_node_budget_below_combined_steps_the_planners_budgets_apply()
 
 
 def test_estimates_can_use_the_executives_planner_settings():
-    from nowplan.acting.peephole import estimate_config
+    from nowplan.acting.reorder import estimate_config
     from nowplan.planning.regression import PlannerConfig
 
     cfg = estimate_config(PlannerConfig(heuristic="lmcut", lazy_relaxation=True, max_nodes=9, improve=2.0), 300)

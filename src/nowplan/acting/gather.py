@@ -37,7 +37,7 @@ from nowplan.core.atoms import Goal
 from nowplan.core.operators import Action
 
 if TYPE_CHECKING:
-    from nowplan.acting.peephole import Reorderer
+    from nowplan.acting.reorder import Reorderer
 
 
 def prerequisites(r: Reorderer, ops: list[Action], start: int, j: int) -> list[int]:
