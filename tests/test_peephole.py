@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import Any
 
 import pytest
 
@@ -400,17 +401,24 @@ def _toy_executive(s: State):
                            metrics=SimpleNamespace(actions=0), trace=Trace(), stack=[])
 
 
-def test_combined_operators_are_lowered_for_their_joint_refinement_only():
-    from types import SimpleNamespace
-
-    from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
+def _three_carries() -> tuple[Any, Any, LevelMap]:
+    """The toy yard with three carries planned at the top level: (belief, plan, its level map)."""
+    from nowplan.planning.plan import Plan, PlanStep
 
     s = state(robot="yard", x="yard", z="yard", w="yard")
     ops = [act("carry", "x", "yard"), act("carry", "z", "yard"), act("carry", "w", "yard")]
     goal = Goal.of([atom("carried", q) for q in "xzw"])
     own = LevelMap(TOY.top_level)
     kept, goals = Reorderer(TOY, OBJECTS, s, own).chain(ops, goal)
-    plan = Plan((PlanStep(None, goals[0]), *(PlanStep(a, g) for a, g in zip(kept, goals[1:]))), own)
+    return s, Plan((PlanStep(None, goals[0]), *(PlanStep(a, g) for a, g in zip(kept, goals[1:]))), own), own
+
+
+def test_combined_operators_are_lowered_for_their_joint_refinement_only():
+    from types import SimpleNamespace
+
+    from nowplan.planning.plan import PlanResult, PlanStatus
+
+    s, plan, own = _three_carries()
     m = Peephole(PeepholeConfig(max_combined=3, min_hidden_to_combine=1))
     ex = _toy_executive(s)
     frame = SimpleNamespace(plan=plan, plan_id=1, i=0, root=False, info={}, n=len(plan.steps))
@@ -421,12 +429,12 @@ def test_combined_operators_are_lowered_for_their_joint_refinement_only():
     # the joint subgoal had no plan: the next choice refines one step, from the plan's own levels
     # the joint subgoal ran out of nodes: two steps are combined, lowered from the plan's own levels
     # (not from the levels lowered for the three)
-    m.after_plan_failure(ex, frame, goals[-1], PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
+    m.after_plan_failure(ex, frame, plan.steps[-1].goal, PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
     frame.i = 0
     m.next_step(ex, frame)
     assert frame.info["joint"] == 2 and frame.plan.levels == own.next_level(frame.plan.steps[1].action)
     # that one too: the next choice refines one step, at the plan's own levels
-    m.after_plan_failure(ex, frame, goals[-1], PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
+    m.after_plan_failure(ex, frame, plan.steps[-1].goal, PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
     frame.i = 0
     m.next_step(ex, frame)
     assert frame.info["joint"] is None and frame.plan.levels == own and "own_levels" not in frame.info
@@ -699,15 +707,10 @@ def test_gather_never_moves_prerequisites_held_by_different_resources():
 def test_a_step_of_a_given_up_combination_refined_alone_gets_the_fallout_budget(fallout: int):
     from types import SimpleNamespace
 
-    from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
+    from nowplan.planning.plan import PlanResult, PlanStatus
     from nowplan.planning.regression import PlannerConfig
 
-    s = state(robot="yard", x="yard", z="yard", w="yard")
-    ops = [act("carry", "x", "yard"), act("carry", "z", "yard"), act("carry", "w", "yard")]
-    goal = Goal.of([atom("carried", q) for q in "xzw"])
-    own = LevelMap(TOY.top_level)
-    kept, goals = Reorderer(TOY, OBJECTS, s, own).chain(ops, goal)
-    plan = Plan((PlanStep(None, goals[0]), *(PlanStep(a, g) for a, g in zip(kept, goals[1:]))), own)
+    s, plan, own = _three_carries()
     m = Peephole(PeepholeConfig(max_combined=2, min_hidden_to_combine=1, fallout_nodes=fallout))
     ex = _toy_executive(s)
     frame = SimpleNamespace(plan=plan, plan_id=1, i=0, root=False, info={}, n=len(plan.steps))
@@ -721,7 +724,7 @@ def test_a_step_of_a_given_up_combination_refined_alone_gets_the_fallout_budget(
     m2.next_step(ex, alone)
     assert not alone.info["fallout"] and m2.planner_config(ex, alone, Goal(), base) is None
     # the joint subgoal ran out of nodes: its steps, chosen alone from now on, get the fallout budget
-    m.after_plan_failure(ex, frame, goals[-1], PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
+    m.after_plan_failure(ex, frame, plan.steps[-1].goal, PlanResult(PlanStatus.NODE_LIMIT, reason="budget"))
     frame.i = 0
     step = m.next_step(ex, frame)
     assert frame.info["joint"] is None and step.action.key in combined
