@@ -21,7 +21,6 @@ import argparse
 import json
 import logging
 from pathlib import Path
-from typing import Any
 
 from nowplan.acting.run import run_episode
 from nowplan.acting.strategy import parse_strategy
@@ -48,16 +47,9 @@ def split_cost(regime: str, n: int, trial: int) -> tuple[float, float]:
     """(route, per-package) cost of HPN on the problem's one-package version."""
     problem, spec = generate(regime, n, trial)
     ep = make_episode(first_package_only(problem), spec, trial)
-    executed: list[Any] = []
-    original = ep.world.execute
-
-    def execute(action: Any) -> Any:
-        executed.append(action)
-        return original(action)
-
-    ep.world.execute = execute  # type: ignore[method-assign]
     st = parse_strategy("hpn", max_actions=3000, max_plans=20000, time_limit=120, planner=PLANNER)
     run_episode(ep, st, seed=trial)
+    executed = ep.world.asked
     route = sum(a.cost() for a in executed if a.name == "travel")
     return route, sum(a.cost() for a in executed) - route
 

@@ -29,15 +29,8 @@ def breakdown(regime: str, n: int, trial: int, strategy: str) -> dict[str, Any]:
     ep = episode(regime, n, trial)
     _, spec = generate(regime, n, trial)
     shapes = dict(ep.belief.facts("shape"))
-    executed: list[Any] = []
-    original = ep.world.execute
-
-    def execute(action: Any) -> Any:
-        executed.append(action)
-        return original(action)
-
-    ep.world.execute = execute  # type: ignore[method-assign]
     _, cpu, ok = timed_run(ep, strategy, trial, 600.0)
+    executed = ep.world.asked
     load_work = unload_work = pending = 0.0
     last = None
     batches: dict[str, list[list[str]]] = defaultdict(list)

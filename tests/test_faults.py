@@ -64,3 +64,17 @@ def test_aggressive_replanning_does_not_undo_its_work_on_a_tie():
     rec = execute(RunConfig("marsupial", "single-3?failure=0.5", "hpn+aggressive", 1, 60.0))
     assert rec.outcome == "reached", rec.reason
     assert rec.metrics["actions"] < 400
+
+
+def test_a_simulated_world_keeps_every_action_asked_of_it_in_order_whether_it_ran_or_not():
+    from nowplan.acting.run import run_episode
+    from nowplan.acting.strategy import parse_strategy
+    from nowplan.trace import Trace
+
+    ep = get_domain("logistics").scenario("small")(0)
+    apply_faults(ep, Faults(failure=0.5))
+    trace = Trace()
+    m = run_episode(ep, parse_strategy("hpn"), seed=0, trace=trace)
+    assert ep.world.failures > 0  # some actions did not run
+    assert len(ep.world.asked) == m.actions
+    assert [a.pddl() for a in ep.world.asked] == [e["action"] for e in trace.of("action")]

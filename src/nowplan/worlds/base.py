@@ -74,6 +74,7 @@ class SimulatedWorld:
         self.exogenous_prob = 0.0
         self.failures = 0
         self.exogenous_events = 0
+        self.asked: list[Action] = []  # every action asked of the world, in order, whether it ran or not
         self.set_faults(failure_prob=failure_prob, exogenous_prob=exogenous_prob)
 
     def set_faults(self, *, failure_prob: float | None = None, exogenous_prob: float | None = None) -> None:
@@ -110,6 +111,7 @@ class SimulatedWorld:
 
     # -- the loop --------------------------------------------------------------------------
     def execute(self, action: Action) -> Observation:
+        self.asked.append(action)
         info: dict[str, Any] = {}
         why = self.refuse(action)
         if why is None and self.failure_prob and self.rng.random() < self.failure_prob:
