@@ -139,7 +139,8 @@ class _Search:
             additive = kind in ("add", "ff")
             r = self._relaxers.get(additive)
             if r is None:
-                r = self._relaxers[additive] = LazyRelaxed(self._supporters, self.fholds, kind, self._context_key)
+                r = self._relaxers[additive] = LazyRelaxed(self._supporters, self.fholds, kind, self._context_key,
+                                                               park=True)
             r.kind = kind
             self.relaxed = r
         elif self._can_relax:
