@@ -143,3 +143,27 @@ def test_marsupial_hpn_same_plans_with_and_without_parking(monkeypatch, regime, 
         monkeypatch.undo()
     assert len(runs[0]) > 40 and runs[0] == runs[1]
     assert sum(r.parked_count for r in made) > 0  # (parking took place)
+
+
+@pytest.mark.parametrize("fetch_cost", [3.0, 0.0])
+def test_achievers_listed_before_the_dominating_one(fetch_cost):
+    """The held item is the last one: drops listed before drop(i11) cost as much.  They are parked only
+    where a precondition of theirs cannot cost 0 (``mine`` is made by fetch, of cost 3); with a free
+    fetch they could be LM-cut's first cheapest achiever of ``free`` with preconditions of cost 0."""
+    ops = tuple(replace(o, cost=fetch_cost) if o.name == "fetch" else o for o in FREE.operators)
+    dom = Domain("free3", FREE.predicates, ops)
+    items = [f"i{k}" for k in range(12)]
+    init = State([Atom("mine", ("i11",)), *(Atom("far", (x,)) for x in items[:-1])])
+    done = [Atom("done", ())]
+    on, off = _search(dom, items, init, True), _search(dom, items, init, False)
+    assert on.h(on.table.ids_of(done)) == off.h(off.table.ids_of(done)) == 6.0
+    r = on.relaxed
+    assert r is not None
+    names = [str(a).split(",")[0] for a in r._acts]
+    first = [str(s[0]) for s in on._supporters(on.table.id(Atom("free", ())), frozenset())]
+    before = [n.split(",")[0] for n in first[: next(i for i, n in enumerate(first) if "i11" in n)]]
+    assert before  # (some drops are listed before drop(i11))
+    if fetch_cost > 0:
+        assert r.parked_count == 11 and not any(n in names for n in before)
+    else:
+        assert r.parked_count == 11 - len(before) and all(n in names for n in before)

@@ -90,6 +90,7 @@ class _Search:
         self._hv: dict[int, float] = {}
         self._costs: dict[tuple[str, tuple[Any, ...]], float] = {}
         self._held: set[int] = set()  # the facts fholds found true
+        self._zero_preds: frozenset[str] | None = None  # predicates an operator that may cost 0 changes
         kept = self.grounder.per_state
         if kept is not None:  # a plain point belief: the calls from its state share the tests and costs
             self._holds, self._fholds, self._costs, self._held = kept.holds, kept.fholds, kept.costs, kept.held
@@ -140,7 +141,7 @@ class _Search:
             r = self._relaxers.get(additive)
             if r is None:
                 r = self._relaxers[additive] = LazyRelaxed(self._supporters, self.fholds, kind, self._context_key,
-                                                               park=True)
+                                                               park=True, maybe_zero=self.maybe_zero)
             r.kind = kind
             self.relaxed = r
         elif self._can_relax:
@@ -180,6 +181,17 @@ class _Search:
             info = action_facts(self.table, act, self.levels.level(act), self.drop)
             out.append((act, self.cost(act), info.pre))
         return out
+
+    def maybe_zero(self, f: int) -> bool:
+        """Can fact ``f`` cost 0 in the relaxation: it holds, or an operator that may cost 0 changes its predicate?"""
+        if self.fholds(f):
+            return True
+        zero = self._zero_preds
+        if zero is None:
+            zero = self._zero_preds = frozenset(
+                e.predicate for o in self.domain.operators if callable(o.cost) or float(o.cost) <= 0.0
+                for e in o.effects)
+        return self.table.atoms[f].predicate in zero
 
     def holds(self, a: Atom) -> bool:
         r = self._holds.get(a)

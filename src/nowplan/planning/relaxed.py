@@ -59,6 +59,7 @@ class LazyRelaxed:
         unknown: float = 0.0,
         recontext: bool = False,
         park: bool = False,
+        maybe_zero: Callable[[int], bool] | None = None,
     ) -> None:
         if kind not in KINDS:
             raise ValueError(f"relaxed estimate {kind!r}: use add, max, ff or lmcut")
@@ -71,6 +72,8 @@ class LazyRelaxed:
         # h_max / LM-cut only: leave out achievers dominated while exploring (see _unparked)
         self.park = park and kind in ("max", "lmcut")
         self._parked: dict[int, tuple[int, Supporter]] = {}  # id(action) -> (its one target, its supporter)
+        # can fact f cost 0 (it holds, or an operator of cost 0 may make it)? None: any fact may
+        self.maybe_zero = maybe_zero
         self._reopened = False  # a parked achiever was registered for an old fact (see _register)
         self.parked_count = 0
         self.val: dict[int, float] = {}  # facts reached so far (others explored: inf)
@@ -353,8 +356,11 @@ class LazyRelaxed:
 
         Let ``a`` be the first cheapest achiever of ``f`` whose preconditions all
         hold.  An achiever ``b`` that is not registered yet, costs more than
-        ``a`` (or as much, listed after it) and is parked for no other fact is
-        parked: neither registered nor its preconditions explored.  ``f`` then
+        ``a`` (or as much, listed after it or with a precondition that cannot
+        cost 0, ``maybe_zero``) and is parked for no other fact is parked:
+        neither registered nor its preconditions explored.  (So ``b`` is never
+        the first cheapest achiever with preconditions of cost 0 that
+        :func:`~nowplan.planning.lmcut_lazy.cut_graph` keeps.)  ``f`` then
         costs ``a``'s cost in h_max whatever ``b`` gives, and in LM-cut's pruned
         graph (:func:`~nowplan.planning.lmcut_lazy.cut_graph`) ``b`` would be
         left out as dominated by an achiever no more costly with preconditions
@@ -375,11 +381,12 @@ class LazyRelaxed:
         if best < 0:
             return sups
         out: list[Supporter] = []
-        parked, index = self._parked, self._index
+        parked, index, zero = self._parked, self._index, self.maybe_zero
         for i, sup in enumerate(sups):
             c = sup[1]
             k = id(sup[0])
-            if i == best or c < bc or (c == bc and i < best) or k in index:
+            if i == best or c < bc or k in index or (
+                    c == bc and i < best and (zero is None or all(zero(p) for p in sup[2]))):
                 out.append(sup)
                 continue
             prev = parked.get(k)
