@@ -90,6 +90,7 @@ class _Search:
         self._hv: dict[int, float] = {}
         self._costs: dict[tuple[str, tuple[Any, ...]], float] = {}
         self._held: set[int] = set()  # the facts fholds found true
+        self._zero_preds: frozenset[str] | None = None  # predicates an operator that may cost 0 changes
         kept = self.grounder.per_state
         if kept is not None:  # a plain point belief: the calls from its state share the tests and costs
             self._holds, self._fholds, self._costs, self._held = kept.holds, kept.fholds, kept.costs, kept.held
@@ -139,7 +140,8 @@ class _Search:
             additive = kind in ("add", "ff")
             r = self._relaxers.get(additive)
             if r is None:
-                r = self._relaxers[additive] = LazyRelaxed(self._supporters, self.fholds, kind, self._context_key)
+                r = self._relaxers[additive] = LazyRelaxed(self._supporters, self.fholds, kind, self._context_key,
+                                                               park=True, maybe_zero=self.maybe_zero)
             r.kind = kind
             self.relaxed = r
         elif self._can_relax:
@@ -179,6 +181,17 @@ class _Search:
             info = action_facts(self.table, act, self.levels.level(act), self.drop)
             out.append((act, self.cost(act), info.pre))
         return out
+
+    def maybe_zero(self, f: int) -> bool:
+        """Can fact ``f`` cost 0 in the relaxation: it holds, or an operator that may cost 0 changes its predicate?"""
+        if self.fholds(f):
+            return True
+        zero = self._zero_preds
+        if zero is None:
+            zero = self._zero_preds = frozenset(
+                e.predicate for o in self.domain.operators if callable(o.cost) or float(o.cost) <= 0.0
+                for e in o.effects)
+        return self.table.atoms[f].predicate in zero
 
     def holds(self, a: Atom) -> bool:
         r = self._holds.get(a)
@@ -285,8 +298,12 @@ class _Search:
         root = T.ids_of(goal.atoms)
         root_ok = T.consistent(root)  # else its successors are computed on Goals (see subgoals)
         order_ids = [T.id(a) for a in order] if order is not None else None
-        # the atoms left out of the search while the focus is k: order[: k - 1]
-        hidden = [frozenset(order_ids[: max(k - 1, 0)]) for k in range(len(order_ids) + 1)] if order_ids else []
+        # the atoms left out of the search while the focus is k: order[: k - 1], i.e. those whose first
+        # position in the order is below k - 1 (by position: sets for every focus took O(n²) per call)
+        pos: dict[int, int] = {}
+        for i, f in enumerate(order_ids or ()):
+            pos.setdefault(f, i)
+        pos_of, never = pos.get, len(order_ids or ()) + 1
         guard = {fluent[f]: f for f in T.ids_of(protect)}
         focus0 = len(order) if order is not None else 0
         counter = itertools.count()
@@ -380,10 +397,10 @@ class _Search:
             fs, focus = node
             if order_ids is not None:
                 # shift the focus down once the non-focused part already holds
-                if focus > 0:
-                    unmet = self.unmet(fs)
-                    while focus > 0 and hidden[focus].issuperset(unmet):
-                        focus -= 1
+                if focus > 0:  # (down to the focus below which the unmet atoms are no longer all hidden)
+                    last = max([pos_of(u, never) for u in self.unmet(fs)], default=-1)
+                    if last < focus - 1:
+                        focus = last + 1
             if self.satisfied(fs):
                 return PlanStatus.SOLVED, self._path(node, parent), ""
             exp += 1
@@ -397,8 +414,11 @@ class _Search:
             if self.now() > self.deadline:
                 return PlanStatus.TIME_LIMIT, None, f"time limit of {self.config.time_limit:g} s reached"
             gcost = best_g[node]
-            skip = hidden[focus] if order_ids is not None else frozenset()
-            allowed = [f for f in T.sorted(fs) if f not in skip]
+            if order_ids is not None and focus > 1:
+                cut = focus - 1
+                allowed = [f for f in T.sorted(fs) if pos_of(f, never) >= cut]
+            else:
+                allowed = T.sorted(fs)
             index = NodeIndex(T, fs)
             goal_of = _GoalOf(T, fs)
             legacy = not root_ok and fs == root

@@ -58,6 +58,8 @@ class LazyRelaxed:
         context_key: ContextKeyFn | None = None,
         unknown: float = 0.0,
         recontext: bool = False,
+        park: bool = False,
+        maybe_zero: Callable[[int], bool] | None = None,
     ) -> None:
         if kind not in KINDS:
             raise ValueError(f"relaxed estimate {kind!r}: use add, max, ff or lmcut")
@@ -67,6 +69,13 @@ class LazyRelaxed:
         self.context_key = context_key
         self.unknown = unknown
         self.recontext = recontext
+        # h_max / LM-cut only: leave out achievers dominated while exploring (see _unparked)
+        self.park = park and kind in ("max", "lmcut")
+        self._parked: dict[int, tuple[int, Supporter]] = {}  # id(action) -> (its one target, its supporter)
+        # can fact f cost 0 (it holds, or an operator of cost 0 may make it)? None: any fact may
+        self.maybe_zero = maybe_zero
+        self._reopened = False  # a parked achiever was registered for an old fact (see _register)
+        self.parked_count = 0
         self.val: dict[int, float] = {}  # facts reached so far (others explored: inf)
         self._zero: set[int] = set()  # the facts of val that cost 0 (they hold, or 0-cost steps make them)
         self.sup: dict[int, int] = {}  # best supporter of a reached fact that does not hold
@@ -335,7 +344,59 @@ class LazyRelaxed:
             tg.append(target)
             self._achieved_by.setdefault(target, []).append(a)
             fresh.append(a)
+        parked = self._parked.pop(k, None) if self._parked else None
+        if parked is not None and parked[0] not in tg:  # the fact it was left out for gets it back
+            tg.append(parked[0])
+            self._achieved_by.setdefault(parked[0], []).append(a)
+            self._reopened = True
         return a
+
+    def _unparked(self, f: int, sups: list[Supporter]) -> list[Supporter]:
+        """``f``'s achievers to register now; the others wait, parked, until an exploration needs them.
+
+        Let ``a`` be the first cheapest achiever of ``f`` whose preconditions all
+        hold.  An achiever ``b`` that is not registered yet, costs more than
+        ``a`` (or as much, listed after it or with a precondition that cannot
+        cost 0, ``maybe_zero``) and is parked for no other fact is parked:
+        neither registered nor its preconditions explored.  (So ``b`` is never
+        the first cheapest achiever with preconditions of cost 0 that
+        :func:`~nowplan.planning.lmcut_lazy.cut_graph` keeps.)  ``f`` then
+        costs ``a``'s cost in h_max whatever ``b`` gives, and in LM-cut's pruned
+        graph (:func:`~nowplan.planning.lmcut_lazy.cut_graph`) ``b`` would be
+        left out as dominated by an achiever no more costly with preconditions
+        of cost 0 and ``b``'s one target among its own.  As soon as ``b`` is
+        asked for by another fact (registered there, or parked a second time)
+        it is registered for ``f`` too and its preconditions are explored, so
+        every action the pruned graph keeps is registered with all its targets
+        as in the whole exploration: the values are the whole exploration's
+        (``tests/test_relaxed_parking.py`` compares them).  This keeps the
+        exploration of a vehicle's door, which unloading any package frees,
+        from exploring every package.
+        """
+        holds = self.holds
+        best, bc = -1, math.inf
+        for i, (_, c, pre) in enumerate(sups):
+            if c < bc and all(holds(p) for p in pre):
+                best, bc = i, c
+        if best < 0:
+            return sups
+        out: list[Supporter] = []
+        parked, index, zero = self._parked, self._index, self.maybe_zero
+        for i, sup in enumerate(sups):
+            c = sup[1]
+            k = id(sup[0])
+            if i == best or c < bc or k in index or (
+                    c == bc and i < best and (zero is None or all(zero(p) for p in sup[2]))):
+                out.append(sup)
+                continue
+            prev = parked.get(k)
+            if prev is not None and prev[0] != f:
+                out.append(sup)  # parked for another fact: registered now (and for that fact, in _register)
+                continue
+            if prev is None:
+                parked[k] = (f, sup)
+                self.parked_count += 1
+        return out
 
     def _explore(self, f0: int, context: frozenset[int]) -> None:
         fresh: list[int] = []  # actions with a new target
@@ -362,7 +423,10 @@ class LazyRelaxed:
             elif not first:
                 continue
             old = old or not first
-            for sup in self.achievers(f, ctx):
+            sups = self.achievers(f, ctx)
+            if self.park and len(sups) > 1:
+                sups = self._unparked(f, sups)
+            for sup in sups:
                 a = self._register(sup, f, fresh)
                 pre = self._pre[a]
                 pctx: frozenset[int] | None = None
@@ -371,6 +435,9 @@ class LazyRelaxed:
                         if pctx is None:
                             pctx = frozenset(pre)
                         stack.append((p, pctx))
+        if self._reopened:  # achievers added to facts seen before: their cuts and closures change
+            self._reopened = False
+            old = True
         self._propagate(reached, fresh, old)
 
     def _propagate(self, reached: list[int], fresh: list[int], old: bool = True) -> None:
