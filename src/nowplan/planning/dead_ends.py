@@ -49,9 +49,9 @@ def _restorable(missing: set[Atom], adders: dict[Atom, list[frozenset[Atom]]]) -
     """
     still = set(missing)
     grew = True
-    while grew and still:
+    while grew and still:  # (the fixpoint does not depend on the order the atoms are tried in)
         grew = False
-        for d in sorted(still, key=str):
+        for d in list(still):
             if any(not (pre & still) for pre in adders.get(d, ())):
                 still.discard(d)
                 grew = True
@@ -87,6 +87,7 @@ def irreversible_step(problem: Problem, below_top: Callable[[Action], bool],
         )
 
     checked = 0
+    restorable: dict[frozenset[Atom], set[Atom]] = {}  # many actions delete the same atoms (one per target)
     for act in g.actions:
         if checked >= limit:
             break
@@ -97,7 +98,11 @@ def irreversible_step(problem: Problem, below_top: Callable[[Action], bool],
         if not dels:
             continue
         checked += 1
-        lost = sorted((d for d in dels - _restorable(dels, adders) if not harmless(d, act, adds)), key=str)
+        key = frozenset(dels)
+        back = restorable.get(key)
+        if back is None:
+            back = restorable[key] = _restorable(dels, adders)
+        lost = sorted((d for d in dels - back if not harmless(d, act, adds)), key=str)
         if lost:
             return Irreversible(act, lost[0])
     return None
