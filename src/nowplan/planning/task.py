@@ -340,6 +340,8 @@ class _Rows:
                  reached: set[Atom]) -> None:
         self.domain, self.statics, self.index, self.negs, self.reached = domain, statics, index, negs, reached
         self._excluder: _Excluder | None = None
+        # per added atom, the ids its exclusions delete (the atoms) and add (their "not" facts)
+        self._excluded_ids: dict[Atom, tuple[frozenset[int], frozenset[int]]] = {}
 
     def row(self, act: Action, level: int) -> tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...]]:
         index, negs = self.index, self.negs
@@ -347,15 +349,31 @@ class _Rows:
         p_ids = tuple(sorted({index[c] for c in conds}))
         adds = {e for e in act.effects() if e.value is True}
         dels = {e.negate() for e in act.effects() if e.value is False} - adds
-        if self.domain.rules.conflicts and not act.is_primitive(level):
-            if self._excluder is None:
-                self._excluder = _Excluder(self.domain, self.reached)
-            dels |= self._excluder(adds) - adds
         a_ids = {index[e] for e in adds if e in index}
         d_ids = {index[e] for e in dels if e in index}
         a_ids |= {index[e.negate()] for e in dels if e in negs}
-        d_ids |= {index[e.negate()] for e in adds if e in negs}
+        not_adds = {index[e.negate()] for e in adds if e in negs}
+        d_ids |= not_adds
+        if adds and self.domain.rules.conflicts and not act.is_primitive(level):
+            # what the conflict rules exclude once ``adds`` hold is deleted too (kept as ids per atom:
+            # an abstract level's task has one row per action, and the atoms recur across them)
+            for e in adds:
+                gone, back = self._excluded(e)
+                d_ids |= gone
+                a_ids |= back
+            a_ids -= not_adds  # (an added atom is no exclusion: its "not" fact stays deleted)
         return p_ids, tuple(sorted(a_ids)), tuple(sorted(d_ids - a_ids))
+
+    def _excluded(self, e: Atom) -> tuple[frozenset[int], frozenset[int]]:
+        hit = self._excluded_ids.get(e)
+        if hit is None:
+            if self._excluder is None:
+                self._excluder = _Excluder(self.domain, self.reached)
+            index, negs = self.index, self.negs
+            out = self._excluder([e])
+            hit = self._excluded_ids[e] = (frozenset(index[x] for x in out if x in index),
+                                           frozenset(index[x.negate()] for x in out if x in negs))
+        return hit
 
 
 class FactMutex:
