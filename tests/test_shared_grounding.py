@@ -69,6 +69,7 @@ def test_every_level_is_filed_with_what_it_would_ground(name: str) -> None:
 
 
 @pytest.mark.parametrize("name", ["logistics", "zenotravel", "miconic", "satellite"])
+@pytest.mark.timeout(300, method="thread")  # hypothesis and the signal method: see pyproject.toml
 @settings(max_examples=15, deadline=None)
 @given(data=st.data())
 def test_fewer_operators_are_filtered_as_grounding_them_would_find(name: str, data: st.DataObject) -> None:
