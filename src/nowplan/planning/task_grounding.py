@@ -317,14 +317,18 @@ def share_concrete(concrete: Grounding, domain: Domain, objects: Mapping[str, st
     level the relaxed exploration from ``belief`` reaches the same atoms and actions as concretely:
     an action found there has its dropped preconditions reachable, hence all of them.  So the run's
     first planner call does not ground the problem a second time (``--criticality auto`` grounded it
-    once to find the reachability statics).  An action's effects and its old preconditions, bound
-    already, are carried over.
+    once to find the reachability statics).  The actions of an operator that gained no precondition
+    are the same objects; for the others, the effects and the old preconditions, bound already, are
+    carried over.
     """
     ops = {op.name: op for op in domain.operators}
     statics = domain.static_predicates
     actions: list[Action] = []
     for old in concrete.actions:
         op = ops.get(old.operator.name)
+        if op is old.operator:  # an operator that gained no precondition: its actions are the same
+            actions.append(old)
+            continue
         k = len(old.operator.preconditions)
         if (op is None or op.effects != old.operator.effects or op.params != old.operator.params
                 or op.preconditions[:k] != old.operator.preconditions):
