@@ -356,11 +356,21 @@ class _Rows:
         d_ids |= not_adds
         if adds and self.domain.rules.conflicts and not act.is_primitive(level):
             # what the conflict rules exclude once ``adds`` hold is deleted too (kept as ids per atom:
-            # an abstract level's task has one row per action, and the atoms recur across them)
+            # an abstract level's task has one row per action, and the atoms recur across them), but
+            # for what a kept precondition excludes already: false before the action in a state that
+            # keeps the rules (every state these rows reach from one that does), and not added, so
+            # false after it too (board's exclusions in zenotravel are all of this kind)
+            held_gone: set[int] = set()
+            held_back: set[int] = set()
+            for c in conds:
+                if c.value is True:
+                    gone, back = self._excluded(c)
+                    held_gone |= gone
+                    held_back |= back
             for e in adds:
                 gone, back = self._excluded(e)
-                d_ids |= gone
-                a_ids |= back
+                d_ids |= gone - held_gone
+                a_ids |= back - held_back
             a_ids -= not_adds  # (an added atom is no exclusion: its "not" fact stays deleted)
         return p_ids, tuple(sorted(a_ids)), tuple(sorted(d_ids - a_ids))
 
