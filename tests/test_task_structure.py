@@ -145,6 +145,8 @@ def test_a_floored_map_moves_the_rows_of_the_floored_operator_only() -> None:
     floored = LevelMap(top, floors=frozenset({(name, -1)}))
     kept = build_task(p.domain, p.objects, p.init, p.goal, floored, lambda a: 1.0)
     assert kept.facts is plain.facts  # one structure for both maps
+    # the floored rows are kept beside it: a second call under the floor moves no row again
+    assert build_task(p.domain, p.objects, p.init, p.goal, floored, lambda a: 1.0).pre is kept.pre
     as_overrides = LevelMap(top, frozenset((a.key, -1) for a in plain.actions if a.name == name))
     other = build_task(p.domain, p.objects, p.init, p.goal, as_overrides, lambda a: 1.0)
     assert _rows(kept) == _rows(other)

@@ -134,7 +134,7 @@ class _Structure:
     by_operator: dict[str, list[int]] | None = None  # operator name -> its actions' ids (floors move them)
 
 
-_STRUCTURES_PER_GROUNDING = 8
+_STRUCTURES_PER_GROUNDING = 12
 
 
 def build_task(
@@ -175,17 +175,10 @@ def build_task(
     goal_negs = frozenset(a.negate() for a in goal.atoms if a.value is False and a.predicate not in statics)
     # the structure is the map's without overrides and floors: the actions these move get their rows anew
     st = _structure(domain, gr, dataclasses.replace(levels, overrides=frozenset(), floors=frozenset()), goal_negs)
+    if any(fl < levels.top for _, fl in levels.floors):  # the floored structure, kept too: its rows move once
+        st = _floored(domain, gr, st, dataclasses.replace(levels, overrides=frozenset()), goal_negs)
     pre, add, dele, by_pre, no_pre = st.pre, st.add, st.dele, st.by_pre, st.no_pre
-    moved_ids = {st.position[key] for key, _ in levels.overrides if key in st.position}
-    if levels.floors:
-        if st.by_operator is None:
-            st.by_operator = {}
-            for k, act in enumerate(st.actions):
-                st.by_operator.setdefault(act.operator.name, []).append(k)
-        for name, fl in levels.floors:
-            if fl < levels.top:
-                moved_ids.update(st.by_operator.get(name, ()))
-    moved = sorted(moved_ids)
+    moved = sorted({st.position[key] for key, _ in levels.overrides if key in st.position})
     if moved:
         pre, add, dele = list(pre), list(add), list(dele)
         for k in moved:
@@ -224,6 +217,31 @@ def build_task(
     task.memo["position"] = st.position
     task.memo["adders"] = _adders(st, add, moved)
     return task
+
+
+def _floored(domain: Domain, gr: Grounding, st: _Structure, floored: LevelMap, goal_negs: frozenset[Atom]) -> _Structure:
+    """``st`` (the structure of the map without floors) with the rows of the floored operators' actions
+    at their floors (``floored``: the map's floors, no overrides); kept on the grounding beside ``st``,
+    so the refinements planned again under one floor (acting/refine.py) move those rows once."""
+    store = gr.tasks
+    key = (floored, goal_negs)
+    hit: _Structure | None = store.get(key)
+    if hit is not None:
+        return hit
+    if st.by_operator is None:
+        st.by_operator = {}
+        for k, act in enumerate(st.actions):
+            st.by_operator.setdefault(act.operator.name, []).append(k)
+    moved = sorted(k for name, fl in floored.floors if fl < floored.top for k in st.by_operator.get(name, ()))
+    pre, add, dele = list(st.pre), list(st.add), list(st.dele)
+    for k in moved:
+        pre[k], add[k], dele[k] = st.rows.row(st.actions[k], floored.level(st.actions[k]))
+    by_pre, no_pre = _reindexed(st.by_pre, st.no_pre, st.pre, pre, moved)
+    hit = dataclasses.replace(st, pre=pre, add=add, dele=dele, by_pre=by_pre, no_pre=no_pre, adders=None)
+    if len(store) >= _STRUCTURES_PER_GROUNDING:
+        store.pop(next(iter(store)))
+    store[key] = hit
+    return hit
 
 
 def _adders(st: _Structure, add: list[tuple[int, ...]], moved: list[int]) -> dict[int, list[int]]:
