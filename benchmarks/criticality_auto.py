@@ -13,8 +13,10 @@ benchmark domains (benchmarks/classical: the checked-in p01-p05 and, with
 * ``hand``: strategy ``hpn`` with the shipped criticality file, where one exists.
 
 Records per run: outcome, total planning CPU time (every planner call of the
-run), wall time, execution cost, plans made, planner failures, and the number
-of levels of the automatic hierarchy.  Writes ``criticality_auto.csv`` and
+run), the CPU time of ``prepare_problem`` (``auto`` only: deriving the hierarchy,
+the reachability statics and the dead-end test, which ground the problem once;
+not a planner call, so not in the planning CPU), wall time, execution cost,
+plans made, planner failures, and the number of levels of the automatic hierarchy.  Writes ``criticality_auto.csv`` and
 ``criticality_auto.md`` (per-domain summary computed from the CSV) into --out.
 
     PYTHONPATH=src .venv/bin/python benchmarks/criticality_auto.py [--larger | --larger-only] [--time-limit 20]
@@ -50,7 +52,7 @@ from nowplan.worlds.symbolic import SymbolicWorld  # noqa: E402
 
 SHIPPED = ROOT / "src" / "nowplan" / "data" / "pddl"
 OUT = ROOT / "benchmarks" / "results" / "criticality_auto"
-FIELDS = ["suite", "domain", "instance", "setting", "levels", "outcome", "planning_cpu_s", "wall_s",
+FIELDS = ["suite", "domain", "instance", "setting", "levels", "outcome", "planning_cpu_s", "prep_cpu_s", "wall_s",
           "cost", "actions", "plans_made", "plan_failures", "reason"]
 # larger instances (parameters, seed) for --larger: where the hierarchy has levels to exploit
 LARGER: dict[str, list[tuple[dict[str, int], int]]] = {
@@ -70,8 +72,10 @@ LARGER: dict[str, list[tuple[dict[str, int], int]]] = {
 def run_one(domain: Path, problem: Path, criticality: str | None, strategy: str, limit: float,
             engine: str) -> dict[str, Any]:
     prob = load_pddl(domain, problem, criticality)
+    t_prep = time.process_time()
     if criticality == "auto":
         prob = prepare_problem(prob)  # what `nowplan run --criticality auto` does
+    prep = time.process_time() - t_prep  # the hierarchy, reachability statics and dead-end test
     strat = parse_strategy(strategy)
     strat = replace(strat, time_limit=limit, planner=replace(strat.planner, engine=engine))  # type: ignore[arg-type]
     episode = Episode(prob, SymbolicWorld(prob.domain, prob.init, seed=0), SymbolicBelief(prob.init), str(problem))
@@ -81,6 +85,7 @@ def run_one(domain: Path, problem: Path, criticality: str | None, strategy: str,
         "levels": prob.domain.top_level + 1,
         "outcome": m.outcome.value,
         "planning_cpu_s": round(m.planning_cpu_s, 4),
+        "prep_cpu_s": round(prep, 4),
         "wall_s": round(time.perf_counter() - t0, 4),
         "cost": round(m.execution_cost, 3),
         "actions": m.actions,
@@ -139,10 +144,12 @@ def summarize(rows: list[dict[str, Any]]) -> str:
 
 
 def larger_table(rows: list[dict[str, Any]]) -> str:
-    """Issue 18's target on the larger instances: auto-HPN's planning CPU against flat's, instance by instance."""
-    lines = ["| domain | instance | flat (CPU s, cost) | auto (CPU s, cost) | auto / flat CPU | lower? |",
-             "|---|---|---|---|---|---|"]
-    n = lower = 0
+    """Issue 18's target on the larger instances: auto-HPN's planning CPU against flat's, instance by
+    instance, without and with the CPU of ``prepare_problem`` (the run's set-up under ``--criticality auto``)."""
+    lines = ["| domain | instance | flat (CPU s, cost) | auto (CPU s, cost) | auto / flat CPU | lower? | "
+             "auto + prep CPU s | (auto + prep) / flat | lower with prep? |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    n = lower = lower_prep = 0
     for r in rows:
         if r["setting"] != "flat" or not r["instance"].startswith("large-"):
             continue
@@ -157,13 +164,19 @@ def larger_table(rows: list[dict[str, Any]]) -> str:
                     else f"{x['outcome']} ({float(x['planning_cpu_s']):.3f} s)")
 
         fa, fb = float(r["planning_cpu_s"]), float(a["planning_cpu_s"])
+        fp = fb + float(a.get("prep_cpu_s") or 0.0)
         won = a["outcome"] == "reached" and (r["outcome"] != "reached" or fb < fa)
+        won_prep = a["outcome"] == "reached" and (r["outcome"] != "reached" or fp < fa)
         lower += won
-        ratio = f"{fb / fa:.2f}" if r["outcome"] == "reached" and a["outcome"] == "reached" and fa > 0 else "–"
+        lower_prep += won_prep
+        both = r["outcome"] == "reached" and a["outcome"] == "reached" and fa > 0
+        ratio = f"{fb / fa:.2f}" if both else "–"
+        ratio_prep = f"{fp / fa:.2f}" if both else "–"
         lines.append(f"| {r['domain']} | {r['instance']} | {cell(r)} | {cell(a)} | {ratio} | "
-                     f"{'yes' if won else 'no'} |")
+                     f"{'yes' if won else 'no'} | {fp:.3f} | {ratio_prep} | {'yes' if won_prep else 'no'} |")
     lines += ["", f"auto-HPN reaches the goal with less planning CPU than flat planning (or where flat fails) "
-                  f"on {lower} of {n} larger instances; the target (issue 18) asks for all of them."]
+                  f"on {lower} of {n} larger instances, and on {lower_prep} of {n} counting its set-up "
+                  "(prepare_problem) too; the target (issue 18) asks for all of them."]
     return "\n".join(lines)
 
 

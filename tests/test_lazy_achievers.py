@@ -174,3 +174,21 @@ def test_the_static_join_takes_a_value_that_cannot_be_hashed() -> None:
 
     assert run("x") == ["go(b, x, y)", "go(b, x, z)"]
     assert run(_Pose(1.0)) == []
+
+
+def test_static_facts_are_read_again_only_after_news() -> None:
+    """Between two pieces of news the grounder's signature (objects and static facts) is reused, not read
+    from the belief again; an exogenous change (the executive counts it) makes the next lookup read it."""
+    prob = load_pddl(DATA / "logistics" / "domain.pddl", DATA / "logistics" / "p01.pddl", DATA / "logistics" / "logistics.crit")
+    ex = executive(prob)
+    target = atom("at", "pkg2", "city2-loc1")
+    unload = "(unload-truck pkg2 truck1-2 city2-loc1)"
+    first = ex.achievers.lookup(ex)
+    assert unload in [a.pddl() for a in first.of(target)]
+    assert ex.achievers.lookup(ex).grounder.signature is first.grounder.signature  # no news: reused
+    # the world closes a road and the belief adopts its state (same belief object): news
+    ex.belief.state = State([a for a in ex.belief.atoms() if a != atom("serves", "truck1-2", "city2-loc1")])
+    ex.metrics.exogenous_changes += 1
+    again = ex.achievers.lookup(ex)
+    assert again.grounder.signature != first.grounder.signature
+    assert unload not in [a.pddl() for a in again.of(target)]

@@ -29,6 +29,7 @@ exposes (the executive tries it before planning; the planner refines the step wh
 from __future__ import annotations
 
 import gc
+from collections.abc import Hashable
 from typing import TYPE_CHECKING, Any
 
 from nowplan.core.atoms import Atom, Goal
@@ -103,15 +104,26 @@ class Achievers:
         # achievers grouped by a precondition they share (see AtomAchievers.applicable), by the identity
         # of the grounder's kept list (held: the grounder hands the same list out while it is valid)
         self.groups: dict[int, tuple[list[Action], list[tuple[Atom | None, int, list[Action]]]]] = {}
+        # the grounder's signature (objects and static facts) and when it was read: what the executive had
+        # seen then (the belief and objects it held, failed actions, exogenous changes)
+        self._signature: tuple[Hashable, Hashable] | None = None
 
     def lookup(self, ex: Executive) -> AtomAchievers:
-        """The achievers of atoms for ``ex``'s objects and belief as they are now."""
+        """The achievers of atoms for ``ex``'s objects and belief as they are now.
+
+        The static facts are read again only after news (a failed action or an exogenous change, or
+        another belief or other objects): an action that succeeds changes no static fact (no operator has one as an
+        effect), and reading them scans the whole belief (a sixth of logistics-40's direct refinements)."""
         from nowplan.planning.grounding import Grounder
 
         if len(self.groups) > _GROUPS_KEPT:
             self.groups.clear()
+        when = (id(ex.belief), id(ex.problem.objects), ex.metrics.failed_actions, ex.metrics.exogenous_changes)
+        known = self._signature[1] if self._signature is not None and self._signature[0] == when else None
         # (direct chains need a belief that lists its facts: forward_unsupported was asked)
-        return AtomAchievers(Grounder(ex.domain, ex.problem.objects, ex.belief, lists_facts=True), self.groups)
+        grounder = Grounder(ex.domain, ex.problem.objects, ex.belief, lists_facts=True, signature=known)
+        self._signature = (when, grounder.signature)
+        return AtomAchievers(grounder, self.groups)
 
 
 _GROUPS_KEPT = 4096

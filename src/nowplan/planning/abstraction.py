@@ -62,6 +62,7 @@ every predicate is tied to every other) means a flat domain.
 
 from __future__ import annotations
 
+import gc
 import logging
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, replace
@@ -371,7 +372,23 @@ def goal_stages(problem: Problem, hierarchy: Hierarchy) -> tuple[Goal, ...]:
 def prepare_problem(problem: Problem) -> Problem:
     """What ``nowplan run --criticality auto`` runs: the automatic criticalities (if the domain
     has none yet), reachability statics (:mod:`nowplan.planning.reach_statics`) and the goal
-    stages (:func:`goal_stages`)."""
+    stages (:func:`goal_stages`).
+
+    The cyclic garbage collector is paused meanwhile, as during a planner call
+    (:func:`nowplan.planning.regression.plan`): the concrete grounding allocates many small
+    acyclic objects, and the collector's passes over the heap they trigger are no part of the work.
+    """
+    paused = gc.isenabled()
+    if paused:
+        gc.disable()
+    try:
+        return _prepare(problem)
+    finally:
+        if paused:
+            gc.enable()
+
+
+def _prepare(problem: Problem) -> Problem:
     from nowplan.planning.dead_ends import irreversible_step
     from nowplan.planning.reach_statics import add_reachability_statics
 
@@ -382,10 +399,10 @@ def prepare_problem(problem: Problem) -> Problem:
     if domain.top_level <= 0:
         problem = replace(problem, domain=apply_hierarchy(domain, hierarchy))
     top = hierarchy.top
+    below = {op.name: (k := hierarchy.effect_level(domain, op)) is not None and k < top for op in domain.operators}
 
     def below_top(act: Action) -> bool:
-        k = hierarchy.effect_level(domain, act.operator)
-        return k is not None and k < top
+        return below.get(act.operator.name, False)
 
     dead = irreversible_step(problem, below_top)
     if dead is not None:

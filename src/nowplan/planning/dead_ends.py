@@ -22,6 +22,7 @@ actions (in grounding order) and stops at the first irreversible one.
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 from dataclasses import dataclass
 
 from nowplan.core.atoms import Atom
@@ -49,9 +50,9 @@ def _restorable(missing: set[Atom], adders: dict[Atom, list[frozenset[Atom]]]) -
     """
     still = set(missing)
     grew = True
-    while grew and still:
+    while grew and still:  # (the fixpoint does not depend on the order the atoms are tried in)
         grew = False
-        for d in sorted(still, key=str):
+        for d in list(still):
             if any(not (pre & still) for pre in adders.get(d, ())):
                 still.discard(d)
                 grew = True
@@ -64,40 +65,53 @@ def irreversible_step(problem: Problem, below_top: Callable[[Action], bool],
     if not isinstance(problem.init, State):
         return None
     g = grounding(problem.domain, problem.objects, problem.init, -1)
-    adders: dict[Atom, list[frozenset[Atom]]] = {}
-    for a in g.actions:
-        pre = frozenset(p for p in a.preconditions() if p.value is True)
-        for e in a.effects():
-            if e.value is True:
-                adders.setdefault(e, []).append(pre)
-    deleted = {e.negate() for a in g.actions for e in a.effects() if e.value is False}
-    consumers: dict[Atom, list[Action]] = {}
-    for a in g.actions:
-        for p in a.preconditions():
-            if p.value is True:
-                consumers.setdefault(p, []).append(a)
-    goal = {a for a in problem.goal.atoms if a.value is True}
-
-    def harmless(lost: Atom, act: Action, adds: set[Atom]) -> bool:
-        # nothing needs it any more: not a goal, and everything its consumers give is already
-        # given by ``act`` and never taken away (a key taken in lights: ``has`` stays true)
-        return lost not in goal and all(
-            e.value is not True or (e in adds and e not in deleted)
-            for c in consumers.get(lost, ()) for e in c.effects()
-        )
-
-    checked = 0
+    # the steps to check, with what they add and delete; only their deleted atoms are looked up below
+    steps: list[tuple[Action, set[Atom], set[Atom]]] = []
     for act in g.actions:
-        if checked >= limit:
+        if len(steps) >= limit:
             break
         if not below_top(act):
             continue
         adds = {e for e in act.effects() if e.value is True}
         dels = {e.negate() for e in act.effects() if e.value is False} - adds
-        if not dels:
-            continue
-        checked += 1
-        lost = sorted((d for d in dels - _restorable(dels, adders) if not harmless(d, act, adds)), key=str)
+        if dels:
+            steps.append((act, adds, dels))
+    wanted = set().union(*(d for _, _, d in steps))
+    adders: dict[Atom, list[frozenset[Atom]]] = {}
+    for a in g.actions:
+        pre: frozenset[Atom] | None = None
+        for e in a.effects():
+            if e.value is True and e in wanted:
+                if pre is None:
+                    pre = frozenset(p for p in a.preconditions() if p.value is True)
+                adders.setdefault(e, []).append(pre)
+    goal = {a for a in problem.goal.atoms if a.value is True}
+    lazy: dict[str, Any] = {}  # what only a lost atom needs: every deleted atom, the consumers
+
+    def harmless(lost: Atom, act: Action, adds: set[Atom]) -> bool:
+        # nothing needs it any more: not a goal, and everything its consumers give is already
+        # given by ``act`` and never taken away (a key taken in lights: ``has`` stays true)
+        if lost in goal:
+            return False
+        if not lazy:
+            lazy["deleted"] = {e.negate() for a in g.actions for e in a.effects() if e.value is False}
+            consumers: dict[Atom, list[Action]] = {}
+            for a in g.actions:
+                for p in a.preconditions():
+                    if p.value is True:
+                        consumers.setdefault(p, []).append(a)
+            lazy["consumers"] = consumers
+        deleted: set[Atom] = lazy["deleted"]
+        return all(e.value is not True or (e in adds and e not in deleted)
+                   for c in lazy["consumers"].get(lost, ()) for e in c.effects())
+
+    restorable: dict[frozenset[Atom], set[Atom]] = {}  # many actions delete the same atoms (one per target)
+    for act, adds, dels in steps:
+        key = frozenset(dels)
+        back = restorable.get(key)
+        if back is None:
+            back = restorable[key] = _restorable(dels, adders)
+        lost = sorted((d for d in dels - back if not harmless(d, act, adds)), key=str)
         if lost:
             return Irreversible(act, lost[0])
     return None

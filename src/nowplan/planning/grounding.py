@@ -57,7 +57,10 @@ class Grounder:
         context: PlanningContext | None = None,
         max_generator_values: int = 8,
         lists_facts: bool | None = None,
+        signature: Hashable = None,
     ) -> None:
+        """``signature``: :attr:`signature` as computed for an earlier belief whose static facts
+        (and objects) are known to be these too; ``None``: computed here (it reads every static fact)."""
         self.domain = domain
         self.objects = dict(objects)
         self.belief = belief
@@ -78,7 +81,7 @@ class Grounder:
         self._shared_answers: dict[Atom, list[Action]] | None = None  # generator-free achievers, per problem
         self._no_gen: dict[Atom, bool] = {}  # atoms no operator with generators achieves (see _no_generator)
         if self._facts_ok:
-            self.signature = self._signature()
+            self.signature = signature if signature is not None else self._signature()
         if self.memo and self._facts_ok:
             # both depend only on the objects and the static facts: share them between the calls
             # of one problem (the executive plans many times with the same static facts)

@@ -29,7 +29,7 @@ from nowplan.core.atoms import Atom
 from nowplan.core.domain import Domain, Predicate, Problem
 from nowplan.core.operators import Operator, Precondition
 from nowplan.core.state import State
-from nowplan.planning.task_grounding import grounding
+from nowplan.planning.task_grounding import grounding, share_concrete
 
 log = logging.getLogger(__name__)
 
@@ -55,7 +55,8 @@ def add_reachability_statics(problem: Problem) -> Problem:
     top = domain.max_criticality
     if domain.top_level <= 0 or not isinstance(problem.init, State):
         return problem
-    reached = grounding(domain, problem.objects, problem.init, -1).reached
+    concrete = grounding(domain, problem.objects, problem.init, -1)
+    reached = concrete.reached
     by_pred: dict[str, set[Atom]] = {}
     for a in reached:
         by_pred.setdefault(a.predicate, set()).add(a)
@@ -66,14 +67,16 @@ def add_reachability_statics(problem: Problem) -> Problem:
     new_preds: dict[str, Predicate] = {}
     new_facts: list[Atom] = []
     ops: list[Operator] = []
+    exact = True
     for op in domain.operators:
         extra: list[Precondition] = []
         for p in op.preconditions:
             a = p.atom
-            if p.criticality >= top or a.value is not True or a.predicate in static or not a.args:
-                continue
+            if p.criticality >= top or a.value is not True or a.predicate in static:
+                continue  # kept at every level, or not joined by the grounder (a negative condition)
             pred = domain.predicates[a.predicate]
-            if not pred.boolean:
+            if not pred.boolean or not a.args:
+                exact = False  # dropped without a static: an abstract level may ground more
                 continue
             name = new_preds[a.predicate].name if a.predicate in new_preds else _name(domain, a.predicate)
             if a.predicate not in new_preds:
@@ -87,4 +90,7 @@ def add_reachability_statics(problem: Problem) -> Problem:
     dom = replace(domain, predicates={**dict(domain.predicates), **{p.name: p for p in new_preds.values()}},
                   operators=tuple(ops))
     init = State([*problem.init.atoms(), *new_facts])
+    if exact:  # every level grounds what the concrete level grounded: share it
+        share_concrete(concrete, dom, problem.objects, init, [-(10**9), *range(-1, dom.top_level + 1)])
     return replace(problem, domain=dom, init=init)
+

@@ -134,7 +134,7 @@ class _Structure:
     by_operator: dict[str, list[int]] | None = None  # operator name -> its actions' ids (floors move them)
 
 
-_STRUCTURES_PER_GROUNDING = 8
+_STRUCTURES_PER_GROUNDING = 12
 
 
 def build_task(
@@ -175,17 +175,10 @@ def build_task(
     goal_negs = frozenset(a.negate() for a in goal.atoms if a.value is False and a.predicate not in statics)
     # the structure is the map's without overrides and floors: the actions these move get their rows anew
     st = _structure(domain, gr, dataclasses.replace(levels, overrides=frozenset(), floors=frozenset()), goal_negs)
+    if any(fl < levels.top for _, fl in levels.floors):  # the floored structure, kept too: its rows move once
+        st = _floored(domain, gr, st, dataclasses.replace(levels, overrides=frozenset()), goal_negs)
     pre, add, dele, by_pre, no_pre = st.pre, st.add, st.dele, st.by_pre, st.no_pre
-    moved_ids = {st.position[key] for key, _ in levels.overrides if key in st.position}
-    if levels.floors:
-        if st.by_operator is None:
-            st.by_operator = {}
-            for k, act in enumerate(st.actions):
-                st.by_operator.setdefault(act.operator.name, []).append(k)
-        for name, fl in levels.floors:
-            if fl < levels.top:
-                moved_ids.update(st.by_operator.get(name, ()))
-    moved = sorted(moved_ids)
+    moved = sorted({st.position[key] for key, _ in levels.overrides if key in st.position})
     if moved:
         pre, add, dele = list(pre), list(add), list(dele)
         for k in moved:
@@ -224,6 +217,31 @@ def build_task(
     task.memo["position"] = st.position
     task.memo["adders"] = _adders(st, add, moved)
     return task
+
+
+def _floored(domain: Domain, gr: Grounding, st: _Structure, floored: LevelMap, goal_negs: frozenset[Atom]) -> _Structure:
+    """``st`` (the structure of the map without floors) with the rows of the floored operators' actions
+    at their floors (``floored``: the map's floors, no overrides); kept on the grounding beside ``st``,
+    so the refinements planned again under one floor (acting/refine.py) move those rows once."""
+    store = gr.tasks
+    key = (floored, goal_negs)
+    hit: _Structure | None = store.get(key)
+    if hit is not None:
+        return hit
+    if st.by_operator is None:
+        st.by_operator = {}
+        for k, act in enumerate(st.actions):
+            st.by_operator.setdefault(act.operator.name, []).append(k)
+    moved = sorted(k for name, fl in floored.floors if fl < floored.top for k in st.by_operator.get(name, ()))
+    pre, add, dele = list(st.pre), list(st.add), list(st.dele)
+    for k in moved:
+        pre[k], add[k], dele[k] = st.rows.row(st.actions[k], floored.level(st.actions[k]))
+    by_pre, no_pre = _reindexed(st.by_pre, st.no_pre, st.pre, pre, moved)
+    hit = dataclasses.replace(st, pre=pre, add=add, dele=dele, by_pre=by_pre, no_pre=no_pre, adders=None)
+    if len(store) >= _STRUCTURES_PER_GROUNDING:
+        store.pop(next(iter(store)))
+    store[key] = hit
+    return hit
 
 
 def _adders(st: _Structure, add: list[tuple[int, ...]], moved: list[int]) -> dict[int, list[int]]:
@@ -340,6 +358,8 @@ class _Rows:
                  reached: set[Atom]) -> None:
         self.domain, self.statics, self.index, self.negs, self.reached = domain, statics, index, negs, reached
         self._excluder: _Excluder | None = None
+        # per added atom, the ids its exclusions delete (the atoms) and add (their "not" facts)
+        self._excluded_ids: dict[Atom, tuple[frozenset[int], frozenset[int]]] = {}
 
     def row(self, act: Action, level: int) -> tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...]]:
         index, negs = self.index, self.negs
@@ -347,15 +367,41 @@ class _Rows:
         p_ids = tuple(sorted({index[c] for c in conds}))
         adds = {e for e in act.effects() if e.value is True}
         dels = {e.negate() for e in act.effects() if e.value is False} - adds
-        if self.domain.rules.conflicts and not act.is_primitive(level):
-            if self._excluder is None:
-                self._excluder = _Excluder(self.domain, self.reached)
-            dels |= self._excluder(adds) - adds
         a_ids = {index[e] for e in adds if e in index}
         d_ids = {index[e] for e in dels if e in index}
         a_ids |= {index[e.negate()] for e in dels if e in negs}
-        d_ids |= {index[e.negate()] for e in adds if e in negs}
+        not_adds = {index[e.negate()] for e in adds if e in negs}
+        d_ids |= not_adds
+        if adds and self.domain.rules.conflicts and not act.is_primitive(level):
+            # what the conflict rules exclude once ``adds`` hold is deleted too (kept as ids per atom:
+            # an abstract level's task has one row per action, and the atoms recur across them), but
+            # for what a kept precondition excludes already: false before the action in a state that
+            # keeps the rules (every state these rows reach from one that does), and not added, so
+            # false after it too (board's exclusions in zenotravel are all of this kind)
+            held_gone: set[int] = set()
+            held_back: set[int] = set()
+            for c in conds:
+                if c.value is True:
+                    gone, back = self._excluded(c)
+                    held_gone |= gone
+                    held_back |= back
+            for e in adds:
+                gone, back = self._excluded(e)
+                d_ids |= gone - held_gone
+                a_ids |= back - held_back
+            a_ids -= not_adds  # (an added atom is no exclusion: its "not" fact stays deleted)
         return p_ids, tuple(sorted(a_ids)), tuple(sorted(d_ids - a_ids))
+
+    def _excluded(self, e: Atom) -> tuple[frozenset[int], frozenset[int]]:
+        hit = self._excluded_ids.get(e)
+        if hit is None:
+            if self._excluder is None:
+                self._excluder = _Excluder(self.domain, self.reached)
+            index, negs = self.index, self.negs
+            out = self._excluder([e])
+            hit = self._excluded_ids[e] = (frozenset(index[x] for x in out if x in index),
+                                           frozenset(index[x.negate()] for x in out if x in negs))
+        return hit
 
 
 class FactMutex:

@@ -15,7 +15,7 @@ grounding into an integer task.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -32,6 +32,9 @@ class Grounding:
     reached: set[Atom]  # positive atoms reachable from the states seen so far
     statics: frozenset[str]
     operators: frozenset[str] | None = None  # the operators grounded (None: all)
+    # filed by share_concrete (not grounded at its level): a call that needs fewer operators gets
+    # them filtered from it (restricted), not this whole grounding
+    shared: bool = False
     # integer task structures built from these actions (nowplan.planning.task), by level map and "not" facts
     tasks: dict[Any, Any] = field(default_factory=dict, repr=False)
 
@@ -68,19 +71,58 @@ def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, le
         if b != base:
             continue
         covers = init <= g.reached
+        if covers and g.shared and operators is not None and (ops is None or operators < ops):
+            return _file((base, operators), _restrict(g, operators, init, level, statics))
         if covers and (ops is None or (operators is not None and operators <= ops)):
             return g
         if prev is None or covers and not init <= prev.reached:
             prev = g
     if prev is not None:
         operators = None if operators is None or prev.operators is None else operators | prev.operators
-    g = _ground(domain, objects, init, statics, level, operators, prev)
-    key = (base, operators)
+    return _file((base, operators), _ground(domain, objects, init, statics, level, operators, prev))
+
+
+def _file(key: Any, g: Grounding) -> Grounding:
     _CACHE.pop(key, None)
     if len(_CACHE) >= _CACHE_SIZE:
         _CACHE.pop(next(iter(_CACHE)))
     _CACHE[key] = g
     return g
+
+
+def _restrict(g: Grounding, operators: frozenset[str], init: set[Atom], level: int,
+              statics: frozenset[str]) -> Grounding:
+    """What :func:`_ground` finds from ``init`` over ``operators``, filtered from ``g`` (a grounding
+    of all operators whose atoms cover ``init``): every action reachable from ``init`` is in ``g``
+    (reachability is monotone in the start), so a relaxed exploration over ``g``'s actions of these
+    operators, joining the conditions :class:`_Join` joins (static or kept at ``level``), reaches the
+    same atoms and actions without binding anything again."""
+    acts = [a for a in g.actions if a.operator.name in operators]
+    reached = set(init)
+    waiting: dict[Atom, list[int]] = {}
+    count = [0] * len(acts)
+    queue: list[int] = []
+    for i, a in enumerate(acts):
+        conds = {p for p, pc in zip(a.preconditions(), a.operator.preconditions, strict=True)
+                 if p.value is True and (p.predicate in statics or pc.criticality > level)}
+        missing = [c for c in conds if c not in reached]
+        for c in missing:
+            waiting.setdefault(c, []).append(i)
+        count[i] = len(missing)
+        if not missing:
+            queue.append(i)
+    fired = [False] * len(acts)
+    while queue:  # each action fires once: bounded by the actions
+        i = queue.pop()
+        fired[i] = True
+        for e in acts[i].effects():
+            if e.value is True and e not in reached:
+                reached.add(e)
+                for j in waiting.pop(e, ()):
+                    count[j] -= 1
+                    if count[j] == 0:
+                        queue.append(j)
+    return Grounding([a for a, f in zip(acts, fired, strict=True) if f], reached, statics, operators)
 
 
 def _objects_by_type(domain: Domain, objects: Mapping[str, str | None]) -> dict[str | None, list[str]]:
@@ -261,3 +303,47 @@ class _Join:
 
 
 _UNBOUND = object()
+
+
+def share_concrete(concrete: Grounding, domain: Domain, objects: Mapping[str, str | None], belief: Any,
+                   levels: Iterable[int]) -> None:
+    """File ``concrete`` (the grounding at level -1 of a domain that ``domain`` extends with static
+    preconditions only) as ``domain``'s grounding at each of ``levels``, its actions re-made on
+    ``domain``'s operators: what :func:`grounding` would compute there, without grounding again.
+
+    The caller guarantees the premise (:func:`nowplan.planning.reach_statics.add_reachability_statics`:
+    every precondition an abstract level drops is guarded by a static that holds exactly for the
+    concretely reachable atoms, and every grounded action satisfies its new statics).  Then at every
+    level the relaxed exploration from ``belief`` reaches the same atoms and actions as concretely:
+    an action found there has its dropped preconditions reachable, hence all of them.  So the run's
+    first planner call does not ground the problem a second time (``--criticality auto`` grounded it
+    once to find the reachability statics).  The actions of an operator that gained no precondition
+    are the same objects; for the others, the effects and the old preconditions, bound already, are
+    carried over.
+    """
+    ops = {op.name: op for op in domain.operators}
+    statics = domain.static_predicates
+    actions: list[Action] = []
+    for old in concrete.actions:
+        op = ops.get(old.operator.name)
+        if op is old.operator:  # an operator that gained no precondition: its actions are the same
+            actions.append(old)
+            continue
+        k = len(old.operator.preconditions)
+        if (op is None or op.effects != old.operator.effects or op.params != old.operator.params
+                or op.preconditions[:k] != old.operator.preconditions):
+            return  # not an extension of the concrete domain's operators: ground as usual
+        act = Action(op, old.args)
+        # the same effects and the old preconditions, bound once; only the added ones are bound here
+        act._ground["effects"] = old.effects()
+        if len(op.preconditions) > k:
+            b = act.bindings
+            act._ground[None] = (*old.preconditions(), *(p.atom.bind(b) for p in op.preconditions[k:]))
+        else:
+            act._ground[None] = old.preconditions()
+        actions.append(act)
+    init = {a for a in belief.atoms() if a.value is True}
+    reached = set(concrete.reached) | init
+    for level in levels:
+        _file((_key_of(domain, objects, belief, statics, level), None),
+              Grounding(list(actions), reached, statics, None, shared=True))
