@@ -137,3 +137,25 @@ def test_a_namo_scenario_file_that_is_not_json_on_sweep(tmp_path: Path, capsys: 
     store = tmp_path / "runs.sqlite"
     err = _sweep_err(capsys, store, "namo", str(f), "hpn")
     assert "map.json" in err and not store.exists()
+
+
+# -- output paths the command cannot write: one line naming the path, exit 2 --
+
+
+def test_output_paths_that_cannot_be_written(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    domain = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl" / "logistics" / "domain.pddl"
+    a_dir, a_file = tmp_path / "adir", tmp_path / "afile"
+    a_dir.mkdir()
+    a_file.write_text("x")
+    trace = tmp_path / "t.jsonl"
+    assert main(["run", "--domain", "logistics", "--scenario", "tiny", "--trace", str(trace)]) == 0
+    capsys.readouterr()
+    cases = [
+        (["criticality", str(domain), "--out", str(a_dir)], "adir: Is a directory"),
+        (["view", str(trace), "-o", str(a_dir)], "adir: Is a directory"),
+        (["demo", "logistics", "--out", str(a_file)], "afile: File exists"),
+        (["run", "--domain", "logistics", "--scenario", "tiny", "--trace", str(a_file / "t.jsonl")], "afile"),
+    ]
+    for argv, says in cases:
+        err = _err(capsys, *argv)
+        assert says in err and "give another path" in err, (argv, err)
