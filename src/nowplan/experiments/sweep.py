@@ -99,7 +99,9 @@ class SweepSpec:
         from nowplan.experiments.precheck import check_runs
         from nowplan.experiments.runner import hard_limit
 
-        check_runs(self.probes(configs), hard_limit(self.time_limit))
+        probes = self.probes(configs)
+        scenarios = len({c.scenario for c in probes})  # each built once, as a run's start would
+        check_runs(probes, hard_limit(self.time_limit) * max(1, scenarios))
 
     def configs(self) -> list[RunConfig]:
         """Seeds outermost, so a partial sweep has every strategy on the first seeds."""
