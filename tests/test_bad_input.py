@@ -7,6 +7,8 @@ from pathlib import Path
 import pytest
 
 from nowplan.cli import main
+from nowplan.experiments.records import RunStatus
+from nowplan.experiments.store import Store
 
 LOG = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl" / "logistics"
 
@@ -45,11 +47,30 @@ def test_contradictory_strategy_on_the_command_line(capsys: pytest.CaptureFixtur
     assert "contradict" in err
 
 
-def test_a_sweep_with_a_refused_strategy_exits_non_zero(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    code = main(["sweep", "--domain", "marsupial", "--scenario", "single-2", "--strategies", "flat",
-                 "--seeds", "0", "--store", str(tmp_path / "runs.sqlite"), "--no-progress"])
+def test_a_sweep_with_a_refused_strategy_is_refused_before_it_runs(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the domain declares 'flat' unsupported: checked on a built episode before any run, nothing stored
+    err = _err(capsys, "sweep", "--domain", "marsupial", "--scenario", "single-2", "--strategies", "hpn,flat",
+               "--seeds", "0", "--store", str(tmp_path / "runs.sqlite"), "--no-progress")
+    assert "marsupial/single-2 flat seed=0" in err and "does not apply to domain marsupial" in err
+    assert "choose another strategy" in err
+    assert not (tmp_path / "runs.sqlite").exists()
+
+
+def test_a_strategy_refused_only_when_its_run_starts_is_stored_as_an_error(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the monitor finds NAMO's belief is not a point state when the run pushes its first plan: that
+    # refusal is per run (the pre-check builds the executive but does not run it), the runs are stored
+    # as errors with the reason, and the sweep exits 1
+    store = tmp_path / "runs.sqlite"
+    code = main(["sweep", "--domain", "namo", "--scenario", "simple", "--strategies", "hpn+monitor",
+                 "--seeds", "0-1", "--store", str(store), "--no-progress", "--jobs", "1"])
     out = capsys.readouterr().out
-    assert code == 1 and "does not apply to domain marsupial" in out
+    assert code == 1 and "not a point state" in out and "drop the monitor switch" in out
+    with Store(store) as st:
+        recs = st.records()
+    assert len(recs) == 2 and {r.status for r in recs} == {RunStatus.CRASHED}
+    assert all("ScenarioError" in r.reason for r in recs)
 
 
 def test_an_action_defined_twice(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

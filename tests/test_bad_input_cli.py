@@ -68,3 +68,94 @@ def test_a_sqlite_file_that_is_not_a_store(command: str, tmp_path: Path, capsys:
              "--store", str(other), "--no-progress"])
     err = _err(capsys, *argv)
     assert "other.sqlite" in err and "not a nowplan run store" in err and "new --store file" in err
+
+
+# -- a sweep checks every run before any runs: a refusal is one line, exit 2, and nothing is stored --
+
+
+def _sweep_err(capsys: pytest.CaptureFixture[str], store: Path, domain: str, scenario: str, strategies: str,
+               seeds: str = "0-2") -> str:
+    err = _err(capsys, "sweep", "--domain", domain, "--scenario", scenario, "--strategies", strategies,
+               "--seeds", seeds, "--store", str(store), "--no-progress", "--jobs", "1")
+    assert "nowplan sweep: error: " in err
+    return err
+
+
+@pytest.mark.parametrize(("strategies", "pair"), [
+    ("hpn,flat+hpn", "'flat' and 'hpn'"),
+    ("aggressive+selective", "'aggressive' and 'selective'"),
+    ("online,online+aggressive", "'online' and 'aggressive'"),
+    ("hpn+monitor-cost+monitor-goal", "'monitor-cost' and 'monitor-goal'"),
+    ("hpn+monitor+monitor-restore", "'monitor' and 'monitor-restore'"),
+])
+def test_contradictory_switches_on_sweep_run_nothing(
+        strategies: str, pair: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    store = tmp_path / "runs.sqlite"
+    err = _sweep_err(capsys, store, "logistics", "tiny", strategies)
+    assert "contradict" in err and "keep one" in err and pair in err
+    assert not store.exists()
+
+
+@pytest.mark.parametrize(("domain", "scenario", "strategies", "says"), [
+    # a switch the domain declares unsupported (marsupial's model is built per map: seen on an episode)
+    ("marsupial", "single-2", "hpn,online+reuse", ["marsupial/single-2 online+reuse seed=0",
+                                                   "'online' does not apply to domain marsupial",
+                                                   "drop 'online' from the strategy"]),
+    # the domain-planner switch on a domain without a planner of its own
+    ("logistics", "tiny", "hpn,flat+domain-planner", ["logistics/tiny flat+domain-planner seed=0",
+                                                      "no planner of its own", "drop the 'domain-planner'"]),
+    # a fault knob the domain's world lacks
+    ("logistics", "tiny?sigma_per_m=0.1", "hpn", ["logistics/tiny?sigma_per_m=0.1 hpn seed=0",
+                                                  "no sensor with sigma_per_m", "drop it"]),
+    ("pieces", "tiny?miss=0.2", "hpn", ["miss", "drop it"]),
+])
+def test_a_sweep_whose_runs_would_be_refused_exits_2_before_running(
+        domain: str, scenario: str, strategies: str, says: list[str], tmp_path: Path,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    store = tmp_path / "runs.sqlite"
+    err = _sweep_err(capsys, store, domain, scenario, strategies)
+    assert all(s in err for s in says), err
+    assert not store.exists()
+
+
+def test_a_resumed_sweep_with_a_refused_strategy_adds_no_run(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from nowplan.experiments.store import Store
+
+    store = tmp_path / "runs.sqlite"
+    assert main(["sweep", "--domain", "logistics", "--scenario", "tiny", "--strategies", "hpn", "--seeds", "0-1",
+                 "--store", str(store), "--no-progress", "--jobs", "1"]) == 0
+    capsys.readouterr()
+    err = _sweep_err(capsys, store, "logistics", "tiny", "hpn,domain-planner", "0-3")
+    assert "no planner of its own" in err
+    with Store(store) as st:
+        assert len(st) == 2  # the two runs of the first sweep, no more: nothing ran
+
+
+def test_a_namo_scenario_file_that_is_not_json_on_sweep(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    f = tmp_path / "map.json"
+    f.write_bytes(bytes(range(256)) * 4)
+    store = tmp_path / "runs.sqlite"
+    err = _sweep_err(capsys, store, "namo", str(f), "hpn")
+    assert "map.json" in err and not store.exists()
+
+
+# -- output paths the command cannot write: one line naming the path, exit 2 --
+
+
+def test_output_paths_that_cannot_be_written(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    domain = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl" / "logistics" / "domain.pddl"
+    a_dir, a_file = tmp_path / "adir", tmp_path / "afile"
+    a_dir.mkdir()
+    a_file.write_text("x")
+    trace = tmp_path / "t.jsonl"
+    assert main(["run", "--domain", "logistics", "--scenario", "tiny", "--trace", str(trace)]) == 0
+    capsys.readouterr()
+    cases = [
+        (["criticality", str(domain), "--out", str(a_dir)], "adir: Is a directory"),
+        (["view", str(trace), "-o", str(a_dir)], "adir: Is a directory"),
+        (["demo", "logistics", "--out", str(a_file)], "afile: File exists"),
+        (["run", "--domain", "logistics", "--scenario", "tiny", "--trace", str(a_file / "t.jsonl")], "afile"),
+    ]
+    for argv, says in cases:
+        err = _err(capsys, *argv)
+        assert says in err and "give another path" in err, (argv, err)

@@ -14,6 +14,7 @@ from nowplan.cli import main as cli_main
 from nowplan.domains import registry
 from nowplan.domains.registry import DomainSpec, Episode
 from nowplan.errors import ScenarioError, StoreError
+from nowplan.experiments.precheck import check_runs, refusal
 from nowplan.experiments.records import RunConfig, RunRecord, RunStatus
 from nowplan.experiments.runner import LocalBackend, execute
 from nowplan.experiments.store import Store
@@ -202,3 +203,40 @@ def test_sweep_cli_incompatible_store(tmp_path: Path, capsys: pytest.CaptureFixt
             "--seeds", "0", "--store", str(path), "--no-progress"]
     assert cli_main(argv) == 2
     assert "incompatible run store" in capsys.readouterr().err
+
+
+# -- the pre-check: every (scenario, strategy) built as its run would be, before any run ------------
+
+
+def test_probes_are_one_configuration_per_scenario_and_strategy_at_the_first_seed() -> None:
+    spec = SweepSpec("logistics", ("tiny", "small"), ("hpn", "flat"), (3, 5, 7), 10.0)
+    probes = spec.probes()
+    assert [(c.scenario, c.strategy, c.seed) for c in probes] == [
+        ("tiny", "hpn", 3), ("tiny", "flat", 3), ("small", "hpn", 3), ("small", "flat", 3)]
+    later = [c for c in spec.configs() if c.seed > 3]  # a resumed sweep checks what it has left to run
+    assert {c.seed for c in spec.probes(later)} == {5}
+
+
+def test_refusal_names_the_first_refused_run_and_leaves_crashes_to_the_runs(broken_domain: str) -> None:
+    ok = RunConfig("logistics", "tiny", "hpn", 0, 10.0)
+    assert refusal([ok, RunConfig(broken_domain, "boom", "hpn", 0, 10.0)]) is None  # a crash is not a refusal
+    why = refusal([ok, RunConfig("marsupial", "single-2", "flat", 1, 10.0),
+                   RunConfig("logistics", "tiny", "domain-planner", 0, 10.0)])
+    assert why is not None and why.startswith("marsupial/single-2 flat seed=1: strategy switch 'flat'")
+
+
+@pytest.mark.timeout(60)
+def test_a_pre_check_that_hangs_is_stopped_and_refuses_nothing(
+        tmp_path: Path, broken_domain: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("NOWPLAN_TEST_HANG_DIR", str(tmp_path))
+    check_runs([RunConfig(broken_domain, "hang", "hpn", 4, 10.0)], timeout=1.0)  # returns: no refusal
+    pid = int((tmp_path / "4.pid").read_text())  # the worker reached the scenario, and was killed
+    assert not process_alive(pid)
+
+
+def test_run_sweep_refuses_before_storing_anything(tmp_path: Path) -> None:
+    spec = SweepSpec("logistics", ("tiny",), ("hpn", "domain-planner"), (0, 1), 10.0)
+    with Store(tmp_path / "runs.sqlite") as st:
+        with pytest.raises(ScenarioError, match="logistics/tiny domain-planner seed=0: .*no planner of its own"):
+            run_sweep(spec, st, LocalBackend(jobs=1), progress=False)
+        assert len(st) == 0

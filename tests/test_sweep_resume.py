@@ -52,12 +52,13 @@ def _count(store: Path) -> int:
         return 0
 
 
-def _starts(runlog: Path) -> list[tuple[int, int]]:
-    """(seed, worker pid) of every run started so far."""
+def _starts(runlog: Path, kind: str = "run") -> list[tuple[int, int]]:
+    """(seed, worker pid) of every run started so far (``kind="check"``: every scenario the sweep's
+    pre-check built)."""
     if not runlog.exists():
         return []
     complete = runlog.read_text().split("\n")[:-1]  # a line being written has no newline yet
-    return [(int(s), int(p)) for s, p in (line.split() for line in complete)]
+    return [(int(s), int(p)) for s, p, k in (line.split() for line in complete) if k == kind]
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers die with the sweep via PR_SET_PDEATHSIG")
@@ -102,6 +103,8 @@ def test_sigkill_mid_sweep_then_resume(tmp_path: Path) -> None:
         before = {r.key: r.to_dict() for r in st.records()}
     assert set(before) == first  # exactly the runs that could finish
     assert Counter(s for s, _ in _starts(runlog)) == {0: 2, 1: 2, 2: 2}
+    # before any run, the pre-check built the scenario once (the first seed's) and ran nothing
+    assert [s for s, _ in _starts(runlog, "check")] == [0]
 
     gate.unlink()
     done = subprocess.run(_sweep_cmd(store) + ["--no-progress"], capture_output=True, text=True,
@@ -111,6 +114,7 @@ def test_sigkill_mid_sweep_then_resume(tmp_path: Path) -> None:
 
     # each stored configuration ran once; the two killed at the gate ran again, once
     assert Counter(s for s, _ in _starts(runlog)) == {0: 2, 1: 2, 2: 4, **{s: 2 for s in range(3, 10)}}
+    assert [s for s, _ in _starts(runlog, "check")] == [0, 0]  # the resumed sweep checked again
     db = sqlite3.connect(store)
     rows = db.execute("SELECT key, COUNT(*) FROM runs GROUP BY key").fetchall()
     db.close()

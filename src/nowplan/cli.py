@@ -107,6 +107,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:  # output piped into head & co.
         sys.stderr.close()
         return 0
+    except OSError as err:  # a path the command cannot read or write (a directory, a missing parent...)
+        logging.getLogger(__name__).debug("file error", exc_info=True)
+        where = f"{err.filename}: " if err.filename is not None else ""
+        print(f"nowplan {args.command}: error: {where}{err.strerror or err}; give another path "
+              f"(see 'nowplan {args.command} --help' for what each path names)", file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         print("nowplan: interrupted", file=sys.stderr)
         return 130

@@ -9,6 +9,7 @@ from typing import Any
 from nowplan import __version__
 from nowplan.acting.hpn import Executive
 from nowplan.acting.metrics import Metrics
+from nowplan.acting.online import OnlinePolicy, is_online
 from nowplan.core.operators import Action
 from nowplan.acting.strategy import Strategy
 from nowplan.domains.registry import Episode
@@ -19,6 +20,23 @@ def _frame(trace: Trace, render: Callable[[Any, Any], bytes], episode: Episode, 
     png = render(episode.world, episode.belief)
     uri = "data:image/png;base64," + base64.b64encode(png).decode("ascii")
     trace.emit("frame", n=n, image=uri, caption=caption)
+
+
+def make_runner(
+    episode: Episode,
+    strategy: Strategy,
+    seed: int = 0,
+    trace: Trace | None = None,
+    on_action: Callable[[Any, Action], None] | None = None,
+) -> Executive | OnlinePolicy:
+    """The executive that runs ``episode`` under ``strategy`` (seed 004's online policy for the switches
+    online / reuse / deferred, else the plan-stack executive), built but not run: building it refuses a
+    strategy the domain or its belief cannot support (a sweep checks its runs this way before any runs)."""
+    if is_online(strategy):
+        return OnlinePolicy(episode.problem, episode.world, episode.belief, strategy, seed=seed, trace=trace,
+                            on_action=on_action)
+    return Executive(episode.problem, episode.world, episode.belief, strategy, seed=seed, trace=trace,
+                     on_action=on_action)
 
 
 def run_episode(
@@ -41,8 +59,6 @@ def run_episode(
         "run_start", domain=p.domain.name, problem=p.name, strategy=strategy.to_dict(), seed=seed,
         goal=[str(a) for a in p.goal], version=__version__, description=episode.description,
     )
-    from nowplan.acting.online import OnlinePolicy, is_online
-
     on_action = None
     if render is not None:
         _frame(trace, render, episode, 0, "start")
@@ -52,14 +68,7 @@ def run_episode(
             if ex.metrics.actions % step == 0:
                 _frame(trace, render, episode, ex.metrics.actions, f"after {action.pddl()}")
 
-    if is_online(strategy):  # seed 004's online policy (switches online / reuse / deferred)
-        metrics = OnlinePolicy(
-            p, episode.world, episode.belief, strategy, seed=seed, trace=trace, on_action=on_action
-        ).run()
-    else:
-        metrics = Executive(
-            p, episode.world, episode.belief, strategy, seed=seed, trace=trace, on_action=on_action
-        ).run()
+    metrics = make_runner(episode, strategy, seed, trace, on_action).run()
     if render is not None and metrics.actions % max(1, every) != 0:
         _frame(trace, render, episode, metrics.actions, f"end: {metrics.outcome.value}")
     trace.emit("run_end", outcome=metrics.outcome.value, reason=metrics.reason, metrics=metrics.to_dict())

@@ -105,10 +105,24 @@ class GivesUp(Protocol):
 
     ``planning_gave_up(context)``: why the search of the planning call with ``context`` should end
     (its generators gave up on it), or None; the regression search polls it as it expands nodes.
-    A planning call for the whole problem is then made in two passes (:mod:`nowplan.acting.whole`).
+    A planning call for the whole problem then runs two searches interleaved, the generators unrestricted
+    and restricted (:mod:`nowplan.acting.whole`), which take turns at these polls.
     """
 
     def planning_gave_up(self, context: Any) -> str | None: ...
+
+
+@runtime_checkable
+class GuardReached(Protocol):
+    """A :class:`GivesUp` belief that tells when its guard starts to matter for a planning call.
+
+    ``guard_reached(context)``: has the call with ``context`` asked its generators for more than they
+    offer a restricted call (``PlanningContext.restricted``; NAMO: 1,500 move requests)?  Until then a
+    restricted search of the same goal expands the same nodes, so a whole-problem call starts its
+    restricted search only then (:mod:`nowplan.acting.whole`); without this method, at once.
+    """
+
+    def guard_reached(self, context: Any) -> bool: ...
 
 
 @runtime_checkable

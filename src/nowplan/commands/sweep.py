@@ -69,10 +69,11 @@ def main(args: argparse.Namespace) -> int:
     if args.address and args.backend != "ray":
         raise ScenarioError("--address is for the Ray backend; add --backend ray")
     backend = make_backend(args.backend, args.jobs, args.address)
+    spec.check_runs()  # a strategy or fault level a run would refuse: one line, exit 2, no store
     with Store(args.store) as store:
         result = run_sweep(
             spec, store, backend, retry_errors=args.retry_errors,
-            progress=show, progress_file=sys.stderr,
+            progress=show, progress_file=sys.stderr, check=False,
         )
     print(result.summary())
     if result.state is not SweepState.COMPLETE:

@@ -85,6 +85,24 @@ class SweepSpec:
         for st in self.strategies:
             parse_strategy(st)
 
+    def probes(self, configs: list[RunConfig] | None = None) -> list[RunConfig]:
+        """One configuration per (scenario, strategy) of ``configs`` (default: all), its first seed's:
+        what :func:`~nowplan.experiments.precheck.check_runs` builds before a sweep runs."""
+        first: dict[tuple[str, str], RunConfig] = {}
+        for c in self.configs() if configs is None else configs:
+            first.setdefault((c.scenario, c.strategy), c)
+        return list(first.values())
+
+    def check_runs(self, configs: list[RunConfig] | None = None) -> None:
+        """Refuse (:class:`ScenarioError`, one line) a sweep one of whose runs would be refused at its
+        start; see :mod:`nowplan.experiments.precheck`.  Runs domain code in a worker process."""
+        from nowplan.experiments.precheck import check_runs
+        from nowplan.experiments.runner import hard_limit
+
+        probes = self.probes(configs)
+        scenarios = len({c.scenario for c in probes})  # each built once, as a run's start would
+        check_runs(probes, hard_limit(self.time_limit) * max(1, scenarios))
+
     def configs(self) -> list[RunConfig]:
         """Seeds outermost, so a partial sweep has every strategy on the first seeds."""
         return [
@@ -153,8 +171,13 @@ def run_sweep(
     retry_errors: bool = False,
     progress: bool = True,
     progress_file: TextIO | None = None,
+    check: bool = True,
 ) -> SweepResult:
-    """Run the configurations of ``spec`` missing from ``store``; see the module docstring."""
+    """Run the configurations of ``spec`` missing from ``store``; see the module docstring.
+
+    With ``check`` (the default), those configurations are first checked (:meth:`SweepSpec.check_runs`):
+    a strategy or fault level their runs would refuse raises :class:`ScenarioError` before any run.
+    """
     from tqdm import tqdm
 
     spec.validate()
@@ -164,6 +187,8 @@ def run_sweep(
     stored = store.keys(keep)
     todo = [c for c in configs if c.key not in stored]
     already = len(configs) - len(todo)
+    if check:
+        spec.check_runs(todo)
     log.info("sweep %s: %d configurations, %d stored, %d to run on %s",
              spec.domain, len(configs), already, len(todo), backend.name)
     t0 = time.perf_counter()
