@@ -8,8 +8,6 @@ import threading
 from typing import Any
 
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
 from nowplan.acting.whole import POLL_EVERY, plan_whole_problem
 from nowplan.belief.protocols import GivesUp
@@ -213,36 +211,3 @@ def test_a_call_won_before_the_guard_applies_costs_the_unrestricted_search_alone
     p = _Planner(wide=None, narrow=None)
     res = _call(p, _GuardAfter(None), max_nodes=20 * POLL_EVERY)
     assert set(p.slices) == {"W"} and res.status is PlanStatus.NODE_LIMIT and res.expanded == 20 * POLL_EVERY
-
-
-_STATUSES = [PlanStatus.SOLVED, PlanStatus.UNSOLVABLE, PlanStatus.TIME_LIMIT, PlanStatus.NODE_LIMIT]
-
-
-@settings(max_examples=60, deadline=None)
-@given(wide=st.one_of(st.none(), st.integers(0, 40)), narrow=st.one_of(st.none(), st.integers(0, 40)),
-       wide_status=st.sampled_from(_STATUSES), narrow_status=st.sampled_from(_STATUSES),
-       guard=st.one_of(st.just(-1), st.none(), st.integers(1, 30)), slices=st.integers(1, 60))
-def test_any_pair_of_searches_ends_within_the_budget_the_same_way_twice(
-        wide: int | None, narrow: int | None, wide_status: PlanStatus, narrow_status: PlanStatus,
-        guard: int | None, slices: int) -> None:
-    results = []
-    for _ in range(2):
-        p = _Planner(wide, narrow, wide_status, narrow_status)
-        b = _Guarded() if guard == -1 else _GuardAfter(guard)  # -1: a belief that does not tell
-        res = _call(p, b, max_nodes=slices * POLL_EVERY)
-        assert "planning_gave_up" not in vars(b)
-        # together within the budget, give or take the slice in which each learns it is spent
-        assert res.expanded <= slices * POLL_EVERY + 2 * POLL_EVERY
-        # one search at a time: while both run, their slices alternate (the unrestricted first)
-        first_n = p.slices.index("N") if "N" in p.slices else len(p.slices)
-        assert set(p.slices[:first_n]) <= {"W"}
-        seq = p.slices[first_n:]  # then alternating until one ends, then the other alone
-        j = next((t for t in range(1, len(seq)) if seq[t] == seq[t - 1]), len(seq))
-        assert len(set(seq[j:])) <= 1, p.slices
-        results.append((p.slices, res.status, res.expanded, res.attempts))
-        # a plan the unrestricted search finds alone within half the budget, before the restricted
-        # search could have found one, is the call's plan
-        if wide is not None and wide_status is PlanStatus.SOLVED and 2 * (wide + 1) <= slices and (
-                narrow is None or narrow_status is not PlanStatus.SOLVED or narrow >= wide):
-            assert res.solved
-    assert results[0] == results[1]

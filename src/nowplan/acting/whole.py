@@ -120,7 +120,7 @@ class _Turns:
         """Wait for search ``i``'s first turn: False if the call was decided before it."""
         with self.cond:
             self._wait_turn(i)
-            return self._why(i) is None
+            return self.stop[i] is None
 
     def finish(self, i: int, result: PlanResult | None, error: BaseException | None) -> None:
         with self.cond:
