@@ -178,36 +178,3 @@ def test_with_the_regression_planner_on_namo_the_pause_point_is_polled_and_bound
                                flat_levels(), PlannerConfig(max_nodes=2 * POLL_EVERY, time_limit=60.0), WHOLE,
                                random.Random(0))
     assert (again.expanded, again.generated, again.attempts) == (res.expanded, res.generated, res.attempts)
-
-
-class _GuardAfter(_Guarded):
-    """A belief whose guard applies to the unrestricted search from its ``k``-th poll on (GuardReached)."""
-
-    def __init__(self, k: int | None) -> None:
-        super().__init__()
-        self.k = k
-        self.polls = 0
-
-    def guard_reached(self, context: Any) -> bool:
-        assert not context.restricted
-        self.polls += 1
-        return self.k is not None and self.polls >= self.k
-
-
-def test_the_restricted_search_starts_where_the_guard_first_applies() -> None:
-    # until then it would expand the unrestricted search's nodes again: it starts after the 3rd poll
-    p = _Planner(wide=None, narrow=2)
-    res = _call(p, _GuardAfter(3))
-    assert p.slices == ["W", "W", "W", "N", "W", "N", "W", "N"]
-    assert res.solved and res.expanded == 5 * POLL_EVERY + 2 * POLL_EVERY  # its 5 slices, the 2 restricted ones
-
-
-def test_a_call_won_before_the_guard_applies_costs_the_unrestricted_search_alone() -> None:
-    p = _Planner(wide=5, narrow=1)
-    res = _call(p, _GuardAfter(None))
-    assert p.slices == ["W"] * 6 and res.solved and res.expanded == 5 * POLL_EVERY
-    assert any("restricted search: not started" in a for a in res.attempts)
-    # and one the guard never applies to ends at the budget without the (identical) restricted search
-    p = _Planner(wide=None, narrow=None)
-    res = _call(p, _GuardAfter(None), max_nodes=20 * POLL_EVERY)
-    assert set(p.slices) == {"W"} and res.status is PlanStatus.NODE_LIMIT and res.expanded == 20 * POLL_EVERY

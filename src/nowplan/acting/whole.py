@@ -14,10 +14,7 @@ So a whole-problem call runs two searches, one with the generators unrestricted 
 to the search's own node budget) and one with them restricted (``PlanningContext.restricted``), in
 alternating slices: each runs until the regression search next polls the belief's
 ``planning_gave_up`` (every :data:`POLL_EVERY` expansions), then waits while the other runs its
-slice, the unrestricted one first in every round.  A restricted search expands the same nodes as the
-unrestricted one until the generators' guard applies, so with a belief that tells when it does
-(:class:`~nowplan.belief.protocols.GuardReached`; NAMO: the call's 1,500th move request) the restricted
-search starts only then, and not at all in a call the unrestricted search ends before it.  The call ends when either finds a plan (a plan
+slice, the unrestricted one first in every round.  The call ends when either finds a plan (a plan
 found in the unrestricted search's slice is taken before the restricted search runs that round), when
 the unrestricted search ends without one for a reason other than its node budget (then the restricted
 one, which is offered fewer moves, cannot do better), when both have ended, or when the two together
@@ -43,7 +40,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import replace
 from typing import Any
 
-from nowplan.belief.protocols import GivesUp, GuardReached
+from nowplan.belief.protocols import GivesUp
 from nowplan.core.atoms import Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
@@ -66,9 +63,8 @@ _NAMES = ("unrestricted", "restricted")
 class _Turns:
     """Two searches taking turns, one slice each, until the call is decided (see the module docstring)."""
 
-    def __init__(self, max_nodes: int, late: bool) -> None:
+    def __init__(self, max_nodes: int) -> None:
         self.max_nodes = max_nodes
-        self.opened = [True, not late]  # may the search take turns yet (the restricted one: late start)
         self.cond = threading.Condition()
         self.turn = WIDE
         self.polls = [0, 0]
@@ -104,17 +100,12 @@ class _Turns:
         with self.cond:
             self.polls[i] += 1
             why = self._why(i)
-            if why is None and not self.finished[1 - i] and self.opened[1 - i]:
+            if why is None and not self.finished[1 - i]:
                 self.turn = 1 - i
                 self.cond.notify_all()
                 self._wait_turn(i)
                 why = self._why(i)
             return why
-
-    def open(self, i: int) -> None:
-        """Search ``i`` takes turns from the next hand-over on."""
-        with self.cond:
-            self.opened[i] = True
 
     def start(self, i: int) -> bool:
         """Wait for search ``i``'s first turn: False if the call was decided before it."""
@@ -128,8 +119,6 @@ class _Turns:
             other = 1 - i
             if error is not None:
                 self.stop[other] = f"the {_NAMES[i]} search raised {type(error).__name__}"
-            elif not self.opened[other]:  # the guard never applied: the restricted search would repeat it
-                self.stop[other] = "not started: the generators' guard never applied to the unrestricted search"
             elif result is not None and result.solved:
                 self.stop[other] = f"the {_NAMES[i]} search found a plan"
             elif i == WIDE and result is not None and result.status is not PlanStatus.NODE_LIMIT:
@@ -156,15 +145,12 @@ def plan_whole_problem(
     if not isinstance(belief, GivesUp) or context.restricted:
         return planner(domain, objects, belief, goal, levels, config, context, rng)
     contexts = (context, replace(context, extras={**context.extras, "restricted": True}))
-    guard = belief.guard_reached if isinstance(belief, GuardReached) else None
-    turns = _Turns(config.max_nodes, late=guard is not None)
+    turns = _Turns(config.max_nodes)
     own = belief.planning_gave_up
     hooked: Any = belief  # (the GivesUp protocol's method is replaced on this instance only)
 
     def polled(ctx: Any) -> str | None:
         i = turns.threads.get(threading.get_ident())
-        if i == WIDE and guard is not None and not turns.opened[NARROW] and guard(ctx):
-            turns.open(NARROW)  # the restricted search would differ from here on: it starts
         why = turns.poll(i) if i is not None else None
         return why if why is not None else own(ctx)
 
@@ -207,15 +193,15 @@ def plan_whole_problem(
     for err in turns.errors:
         if err is not None:
             raise err
-    return _combine(turns.results[WIDE], turns.results[NARROW], time.process_time() - t_cpu, turns.stop[NARROW])
+    return _combine(turns.results[WIDE], turns.results[NARROW], time.process_time() - t_cpu)
 
 
-def _combine(wide: PlanResult | None, narrow: PlanResult | None, cpu: float, skipped: str | None = None) -> PlanResult:
+def _combine(wide: PlanResult | None, narrow: PlanResult | None, cpu: float) -> PlanResult:
     """The call's result: the plan found (the unrestricted one first), else why both failed."""
     assert wide is not None  # the unrestricted search always starts
     if wide.solved or narrow is None or (wide.status is not PlanStatus.NODE_LIMIT and not narrow.solved):
-        why = skipped if narrow is None else narrow.reason or narrow.status.value
-        best, attempts = wide, (*wide.attempts, *((f"restricted search: {why}",) if why else ()))
+        best, note = wide, () if narrow is None else (f"restricted search: {narrow.reason or narrow.status.value}",)
+        attempts = (*wide.attempts, *note)
     else:
         best = narrow
         attempts = (f"unrestricted search: {wide.reason}", *narrow.attempts)

@@ -113,19 +113,6 @@ class GivesUp(Protocol):
 
 
 @runtime_checkable
-class GuardReached(Protocol):
-    """A :class:`GivesUp` belief that tells when its guard starts to matter for a planning call.
-
-    ``guard_reached(context)``: has the call with ``context`` asked its generators for more than they
-    offer a restricted call (``PlanningContext.restricted``; NAMO: 1,500 move requests)?  Until then a
-    restricted search of the same goal expands the same nodes, so a whole-problem call starts its
-    restricted search only then (:mod:`nowplan.acting.whole`); without this method, at once.
-    """
-
-    def guard_reached(self, context: Any) -> bool: ...
-
-
-@runtime_checkable
 class AfterAction(Protocol):
     """``after_action(trace, action, observation)``: called by the online policy after each action."""
 

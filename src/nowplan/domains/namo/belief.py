@@ -167,12 +167,6 @@ class NamoBelief:
             log.warning("planning loop: %d move requests in one planning call; its move generator gives up", n)
         return n >= limit
 
-    def guard_reached(self, call: object) -> bool:
-        """Has planning call ``call`` asked for more moves than a restricted call is offered (LOOP_LIMIT)?
-        Until then the restricted search of a whole-problem call would repeat it (nowplan.acting.whole)."""
-        hit = self.cache().get(("move_calls", id(call)))
-        return hit is not None and hit[0] is call and hit[1] >= LOOP_LIMIT
-
     def planning_gave_up(self, call: object) -> str | None:
         """Why the search of refinement ``call`` should end: its move generator gave up on it (it would
         search on without moves, up to 45,000 nodes and 40 s, before the level above plans again:
