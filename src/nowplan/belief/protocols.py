@@ -105,8 +105,7 @@ class GivesUp(Protocol):
 
     ``planning_gave_up(context)``: why the search of the planning call with ``context`` should end
     (its generators gave up on it), or None; the regression search polls it as it expands nodes.
-    A planning call for the whole problem then runs two searches interleaved, the generators unrestricted
-    and restricted (:mod:`nowplan.acting.whole`), which take turns at these polls.
+    A planning call for the whole problem is then made in two passes (:mod:`nowplan.acting.whole`).
     """
 
     def planning_gave_up(self, context: Any) -> str | None: ...

@@ -61,8 +61,8 @@ log = logging.getLogger(__name__)
 # signal a planning loop: the generator gives up, the refinement's search ends (planning_gave_up) and
 # the level above plans again.  A call that plans the whole problem (``PlanningContext.whole_problem``)
 # asks for moves about once per node it expands (4,354 and 9,822 requests for 9 distinct targets on
-# domain1?sigma_per_m=0.1 seed 16, where 1,500 starved it, issue 14): its unrestricted search gets moves up
-# to its node budget, its restricted one (``restricted``) LOOP_LIMIT (generators.move_request_bound,
+# domain1?sigma_per_m=0.1 seed 16, where 1,500 starved it, issue 14): its first pass gets moves up to
+# its node budget, its second (``restricted``) LOOP_LIMIT (generators.move_request_bound,
 # nowplan.acting.whole).
 LOOP_LIMIT = 1500
 # A move stopped by a contact: the robot's centre could not go on to a point at most this far ahead
@@ -171,7 +171,7 @@ class NamoBelief:
         """Why the search of refinement ``call`` should end: its move generator gave up on it (it would
         search on without moves, up to 45,000 nodes and 40 s, before the level above plans again:
         hpn+noshortcuts on domain1?sigma_per_m=0.1 seed 6), or None.  A whole-problem call searches on
-        without new moves (its restricted search, nowplan.acting.whole): no level above plans again."""
+        without new moves (its restricted pass, nowplan.acting.whole): no level above plans again."""
         hit = self.cache().get(("move_calls", id(call)))
         if hit is None or hit[0] is not call or hit[1] < hit[2] or (
                 isinstance(call, PlanningContext) and call.whole_problem):

@@ -33,7 +33,7 @@ def foresight(context: Any) -> bool:
     return bool(context is not None and getattr(context, "foresight", False))
 
 
-# Move requests in the unrestricted search of a whole-problem call: more than any search within its node
+# Move requests in the unrestricted pass of a whole-problem call: more than any search within its node
 # budget asks (about one per node); the bound only ends a call asking for moves without expanding.
 UNRESTRICTED_LIMIT = 1_000_000
 
@@ -41,9 +41,8 @@ UNRESTRICTED_LIMIT = 1_000_000
 def move_request_bound(context: Any) -> int:
     """How many move requests one planning call gets before its move generator gives up.
 
-    A refinement, or the restricted search of a whole-problem call: ``LOOP_LIMIT``.  The unrestricted
-    search of a whole-problem call (:mod:`nowplan.acting.whole`): ``UNRESTRICTED_LIMIT``; its node budget
-    ends it.
+    A refinement, or the restricted pass of a whole-problem call: ``LOOP_LIMIT``.  The first pass of a
+    whole-problem call (:mod:`nowplan.acting.whole`): ``UNRESTRICTED_LIMIT``; its node budget ends it.
     """
     if not isinstance(context, PlanningContext) or not context.whole_problem or context.restricted:
         return LOOP_LIMIT
