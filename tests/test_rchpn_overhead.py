@@ -87,7 +87,7 @@ def test_bay_geometry_matches_the_reference(conf: lp.Config) -> None:
     for shape in SHAPES:
         assert lp.spots(hold, door, shape) == _spots_ref(hold, door, shape)
     # every successor is a well-formed bay: items sorted, nothing overlapping
-    for t, cost in lp._successors(conf):
+    for t, cost in lp.successors(conf):
         assert cost >= 1.0
         after = t.after[0]
         assert after.items == tuple(sorted(after.items))
