@@ -23,8 +23,8 @@ import heapq
 import itertools
 import logging
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
 from functools import lru_cache
+from typing import NamedTuple
 
 from nowplan.domains.marsupial.grid import (
     STEPS,
@@ -56,9 +56,9 @@ MAX_BUFFER = 2  # temporary spots in the load region it walks towards
 PROBE_NODES = 1_000
 
 
-@dataclass(frozen=True)
-class Transition:
-    """One robot operator: ``kind`` is move/grasp/place, ``arg`` the target cell or package."""
+class Transition(NamedTuple):
+    """One robot operator: ``kind`` is move/grasp/place, ``arg`` the target cell or package
+    (a named tuple, as :class:`~.grid.Hold`: one is made per successor the searches generate)."""
 
     kind: str
     arg: object
@@ -171,7 +171,7 @@ def successors(conf: Config) -> list[tuple[Transition, float]]:
 
 
 def _moved(hold: Hold, x: Cell) -> Hold:
-    """``hold`` with the loader at ``x`` (``dataclasses.replace`` without its generic overhead)."""
+    """``hold`` with the loader at ``x``."""
     return Hold(hold.rows, hold.cols, hold.items, x, hold.held, hold.held_shape)
 
 
