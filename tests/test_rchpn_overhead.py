@@ -87,7 +87,7 @@ def test_bay_geometry_matches_the_reference(conf: lp.Config) -> None:
     for shape in SHAPES:
         assert lp.spots(hold, door, shape) == _spots_ref(hold, door, shape)
     # every successor is a well-formed bay: items sorted, nothing overlapping
-    for t, cost in lp._successors(conf):
+    for t, cost in lp.successors(conf):
         assert cost >= 1.0
         after = t.after[0]
         assert after.items == tuple(sorted(after.items))
@@ -216,3 +216,34 @@ def test_peephole_restores_the_collector(monkeypatch: pytest.MonkeyPatch) -> Non
         assert not gc.isenabled()  # left as the caller had it
     finally:
         gc.enable()
+
+
+@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(bays(), bays())
+def test_bays_hash_compare_and_sort_by_their_fields(a: lp.Config, b: lp.Config) -> None:
+    """Hold and Transition are named tuples (they were frozen dataclasses): the same hash, equality
+    and order as the tuple of their fields, so sets, dicts and sorted lists of bays (the searches'
+    closed sets, the path cache, the packer's ties) behave as before."""
+    ha, hb = a[0], b[0]
+    fields = [(h.rows, h.cols, h.items, h.loader, h.held, h.held_shape) for h in (ha, hb)]
+    assert hash(ha) == hash(fields[0])
+    assert (ha == hb) == (fields[0] == fields[1])
+    if ha.held is None and hb.held is None and ha.held_shape is None and hb.held_shape is None:
+        assert (ha < hb) == (fields[0] < fields[1])
+    for t, _ in lp.successors(a):
+        assert t == lp.Transition(t.kind, t.arg, t.before, t.after)
+        assert hash(t) == hash((t.kind, t.arg, t.before, t.after)) and t.before == a
+    assert str(ha).startswith("[") and "loader@" in str(ha)
+
+
+def test_reorderer_finds_the_static_predicates_when_first_needed() -> None:
+    from nowplan.acting.reorder import Reorderer
+    from nowplan.core.levels import LevelMap
+    from nowplan.domains.marsupial.scenarios import episode
+    from nowplan.planning.regression import static_drop
+
+    ep = episode("both", 3, 0)
+    r = Reorderer(ep.problem.domain, ep.problem.objects, ep.belief, LevelMap(ep.problem.domain.top_level))
+    assert r._drop is None  # nothing validated yet
+    assert r.drop == static_drop(ep.problem.domain, ep.belief) and r.drop
+    assert r._drop is r.drop

@@ -94,7 +94,7 @@ class Reorderer:
         self.levels = levels
         self.model = model or resource_model(domain)
         self.config = config or PeepholeConfig()
-        self.drop = static_drop(domain, belief)
+        self._drop: frozenset[str] | None = None  # static predicates left out of pre-images (``drop``)
         search = self.config.estimate_search or estimate_config(planner, self.config.estimate_nodes)
         self.estimator = Estimator(domain, objects, belief, self.model, search)
         self.moves: list[str] = []
@@ -104,6 +104,14 @@ class Reorderer:
         # The goal and operator are kept in the value, so the ids are never reused while cached
         self._regressed: dict[tuple[int, int], tuple[Goal, Action, Goal | None]] = {}
         self.regressions = 0  # pre-images computed (not found in the cache)
+
+    @property
+    def drop(self) -> frozenset[str]:
+        """The static predicates left out of pre-images, found when a pre-image is first needed
+        (most rewrites validate nothing)."""
+        if self._drop is None:
+            self._drop = static_drop(self.domain, self.belief)
+        return self._drop
 
     # -- validity ---------------------------------------------------------------
     def chain(self, ops: Sequence[Action], goal: Goal) -> tuple[list[Action], list[Goal]] | None:

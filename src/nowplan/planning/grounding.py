@@ -394,7 +394,10 @@ class Grounder:
                 nxt.update(vals)
                 yield from rec(i + 1, nxt)
 
-        yield from rec(0, b)
+        try:
+            yield from rec(0, b)
+        finally:
+            del rec  # it refers to itself (and to the grounder): a cycle only the collector would free
 
     def _fill_plan(self, op: Operator) -> _FillPlan:
         """What :meth:`_fill` needs of ``op``, worked out once per operator."""
@@ -484,7 +487,22 @@ class Grounder:
                     yield from join(i + 1, nxt)
 
         allobj, typed = plan.allobj, plan.typed
-        for jb in join(0, b):
+        try:
+            yield from self._completed(op, join(0, b), allobj, typed, later, check)
+        finally:
+            del join  # it refers to itself (see _run_generators)
+
+    def _completed(
+        self,
+        op: Operator,
+        joined: Iterator[dict[Var, Any]],
+        allobj: frozenset[str],
+        typed: tuple[tuple[Var, frozenset[str]], ...],
+        later: tuple[Atom, ...],
+        check: Callable[[dict[Var, Any]], bool],
+    ) -> Iterator[dict[Var, Any]]:
+        """The bindings of ``joined`` type-checked and completed with typed objects (:meth:`_fill`)."""
+        for jb in joined:
             # a value bound before the product that names an object of another type: not an instance
             bad = False
             for v, ok_objs in typed:

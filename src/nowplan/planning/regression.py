@@ -180,9 +180,10 @@ def _plan(
     common = dict(
         expanded=search.expanded, generated=search.generated, cpu_time_s=cpu, attempts=tuple(attempts)
     )
+    search.release()  # freed now, not by the collector (see _Search.release)
     if status is not PlanStatus.SOLVED or steps is None:
         log.info("planning failed for %s: %s (%s)", goal, status.value, reason)
         return PlanResult(status, None, reason, method=method, **common)  # type: ignore[arg-type]
     p = Plan(tuple(PlanStep(a, g) for a, g in steps), levels)
-    log.info("plan of %d steps by %s search (%d expanded)", len(p), method, search.expanded)
+    log.info("plan of %d steps by %s search (%d expanded)", len(p), method, common["expanded"])
     return PlanResult(PlanStatus.SOLVED, p, "", method=method, **common)  # type: ignore[arg-type]

@@ -130,6 +130,13 @@ class _Search:
                 raise UsageError(f"PlannerConfig heuristic {name!r}: use hadd, hmax, hff, lmcut or count")
         self.use(config.heuristic)
 
+    def release(self) -> None:
+        """Forget everything once the call is over: its helpers hold bound methods of this search
+        (the successor generator its costs, the relaxed explorations its supporters and tests),
+        cycles that kept the call's nodes, tables and explorations alive until the collector's next
+        pass; without them the call's memory is freed when it returns.  Not used afterwards."""
+        self.__dict__.clear()
+
     def use(self, name: str) -> None:
         """Estimate with ``name`` from now on (explorations are shared: h_max with LM-cut, h_add with h_FF)."""
         self.relaxed = self.hadd = None

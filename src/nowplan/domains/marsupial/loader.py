@@ -23,8 +23,8 @@ import heapq
 import itertools
 import logging
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
 from functools import lru_cache
+from typing import NamedTuple
 
 from nowplan.domains.marsupial.grid import (
     STEPS,
@@ -56,9 +56,9 @@ MAX_BUFFER = 2  # temporary spots in the load region it walks towards
 PROBE_NODES = 1_000
 
 
-@dataclass(frozen=True)
-class Transition:
-    """One robot operator: ``kind`` is move/grasp/place, ``arg`` the target cell or package."""
+class Transition(NamedTuple):
+    """One robot operator: ``kind`` is move/grasp/place, ``arg`` the target cell or package
+    (a named tuple, as :class:`~.grid.Hold`: one is made per successor the searches generate)."""
 
     kind: str
     arg: object
@@ -115,16 +115,11 @@ def _set_down(hold: Hold, door: Door, anchor: Cell) -> Config:
     return base.with_items([*hold.items, (hold.held, hold.held_shape, anchor)]), door
 
 
-@lru_cache(maxsize=4096)
-def successors(conf: Config) -> tuple[tuple[Transition, float], ...]:
-    """The robot operators from ``conf`` (memoised: the searches of one bay, for stow, fetch and
-    the shareability test, expand many of the same configurations).  4,096 configurations keep
-    the hits of 50,000 (12 RCHPN runs, both-dispersed 6-8: 2,317 against 2,331 of 14,710) while
-    the collector no longer walks ~86,000 cached transitions at every full pass."""
-    return tuple(_successors(conf))
-
-
-def _successors(conf: Config) -> list[tuple[Transition, float]]:
+def successors(conf: Config) -> list[tuple[Transition, float]]:
+    """The robot operators from ``conf``, made anew at each call.  They were memoised (4,096
+    configurations), but across the 24 RCHPN runs of both-dispersed 5-10, trials 0-3, only 13 %
+    of the calls hit, and the ~108,000 objects the memo kept (a third of the process's heap)
+    made every pass of the cyclic collector dearer than the hits saved (docs/peephole.md)."""
     hold, door = conf
     rows, cols = hold.rows, hold.cols
     out: list[tuple[Transition, float]] = []
@@ -176,7 +171,7 @@ def _successors(conf: Config) -> list[tuple[Transition, float]]:
 
 
 def _moved(hold: Hold, x: Cell) -> Hold:
-    """``hold`` with the loader at ``x`` (``dataclasses.replace`` without its generic overhead)."""
+    """``hold`` with the loader at ``x``."""
     return Hold(hold.rows, hold.cols, hold.items, x, hold.held, hold.held_shape)
 
 
