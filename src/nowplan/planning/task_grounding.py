@@ -82,6 +82,11 @@ def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, le
     return _file((base, operators), _ground(domain, objects, init, statics, level, operators, prev))
 
 
+def clear_cache() -> None:
+    """Forget every cached grounding (a benchmark starts each run cold, as a fresh process does)."""
+    _CACHE.clear()
+
+
 def _file(key: Any, g: Grounding) -> Grounding:
     _CACHE.pop(key, None)
     if len(_CACHE) >= _CACHE_SIZE:
