@@ -75,6 +75,15 @@ class Plan:
 
     def to_json(self) -> list[dict[str, Any]]:
         out: list[dict[str, Any]] = []
+        # consecutive preimages share most atoms: each atom is written once per plan
+        text: dict[Any, str] = {}
+
+        def name(x: Any) -> str:
+            t = text.get(x)
+            if t is None:
+                t = text[x] = str(x)
+            return t
+
         for i, s in enumerate(self.steps):
             a = s.action
             out.append(
@@ -84,7 +93,7 @@ class Plan:
                     "level": self.levels.level(a) if a is not None else None,
                     "primitive": bool(a is not None and self.levels.is_primitive(a)),
                     "hidden": self.levels.describe(a) if a is not None else 0,
-                    "preimage": [str(x) for x in s.goal],
+                    "preimage": [name(x) for x in s.goal],
                 }
             )
         return out
