@@ -1,0 +1,89 @@
+"""The executive's bookkeeping under --criticality auto: refine-flat's cycle check, a plan's trace
+record, and the grounding cache a benchmark clears (issue 18's whole-run accounting)."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+from typing import Any
+
+from nowplan.acting.refine_flat import CYCLE_VISITS, FlatSteps, refinement_key
+from nowplan.belief.symbolic import SymbolicBelief
+from nowplan.core.atoms import Atom, Goal, Var
+from nowplan.core.domain import Domain, Predicate
+from nowplan.core.levels import flat_levels
+from nowplan.core.operators import Operator, Precondition
+from nowplan.core.state import State
+from nowplan.planning.plan import Plan, PlanStep
+from nowplan.planning.task_grounding import clear_cache, grounding
+from nowplan.trace import Trace
+from nowplan.worlds.base import Observation
+
+
+class _Ex:
+    """The parts of an executive that FlatSteps.check_cycle reads."""
+
+    def __init__(self, state: State) -> None:
+        self.belief = SymbolicBelief(state)
+        self.stack: list[Any] = [SimpleNamespace(root=True, i=1, plan_id=0), SimpleNamespace(root=False)]
+        self.last_observation = Observation(True)
+        self.trace = Trace(None)
+
+    def pop(self, why: str) -> None:
+        self.stack.pop()
+
+
+def test_cycle_check_counts_equal_states_not_state_objects() -> None:
+    flat = FlatSteps()
+    ex = _Ex(State([Atom("a")]))
+    for k in range(CYCLE_VISITS):
+        # a fresh but equal State each time, as the belief makes after every action
+        ex.belief.state = State([Atom("a")])
+        ex.stack[1:] = [SimpleNamespace(root=False)]
+        flat.check_cycle(ex)  # type: ignore[arg-type]
+        if k < CYCLE_VISITS - 1:
+            assert refinement_key(ex.stack[0]) not in flat
+            ex.belief.state = State([Atom("b")])  # another state in between
+            flat.check_cycle(ex)  # type: ignore[arg-type]
+    assert refinement_key(ex.stack[0]) in flat
+    assert len(ex.stack) == 1  # the hierarchical plans under the root are dropped
+
+
+def test_a_failed_action_clears_the_visits() -> None:
+    flat = FlatSteps()
+    ex = _Ex(State([Atom("a")]))
+    for _ in range(CYCLE_VISITS - 1):
+        flat.check_cycle(ex)  # type: ignore[arg-type]
+    ex.last_observation = Observation(False)
+    flat.check_cycle(ex)  # type: ignore[arg-type]
+    ex.last_observation = Observation(True)
+    flat.check_cycle(ex)  # type: ignore[arg-type]
+    assert refinement_key(ex.stack[0]) not in flat
+
+
+def _domain() -> Domain:
+    preds = {n: Predicate(n, 1) for n in ("p", "q")}
+    x = Var("x")
+    ops = (Operator("go", (x,), (Precondition(Atom("p", (x,)), 1),), (Atom("q", (x,)),)),)
+    return Domain("d", preds, ops)
+
+
+def test_plan_trace_record_writes_every_preimage_atom() -> None:
+    dom = _domain()
+    g1 = Goal.of([Atom("p", ("a",)), Atom("q", ("b",))], dom.rules)
+    g2 = Goal.of([Atom("q", ("a",)), Atom("q", ("b",))], dom.rules)
+    act = dom.operators[0].instantiate(dict(zip(dom.operators[0].params, ("a",), strict=True)))
+    plan = Plan((PlanStep(None, g1), PlanStep(act, g2)), flat_levels())
+    rec = plan.to_json()
+    assert [r["preimage"] for r in rec] == [[str(x) for x in g1], [str(x) for x in g2]]
+
+
+def test_clear_cache_makes_the_next_grounding_anew_with_the_same_actions() -> None:
+    dom = _domain()
+    objs = {"a": None, "b": None}
+    init = State([Atom("p", ("a",))])
+    first = grounding(dom, objs, init, -1)
+    assert grounding(dom, objs, init, -1) is first  # cached
+    clear_cache()
+    again = grounding(dom, objs, init, -1)
+    assert again is not first
+    assert [a.key for a in again.actions] == [a.key for a in first.actions] == [("go", ("a",))]
