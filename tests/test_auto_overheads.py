@@ -6,6 +6,9 @@ from __future__ import annotations
 from types import SimpleNamespace
 from typing import Any
 
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
 from nowplan.acting.refine_flat import CYCLE_VISITS, FlatSteps, refinement_key
 from nowplan.belief.symbolic import SymbolicBelief
 from nowplan.core.atoms import Atom, Goal, Var
@@ -87,3 +90,24 @@ def test_clear_cache_makes_the_next_grounding_anew_with_the_same_actions() -> No
     again = grounding(dom, objs, init, -1)
     assert again is not first
     assert [a.key for a in again.actions] == [a.key for a in first.actions] == [("go", ("a",))]
+
+
+_FLUENTS = [("p", ("a",)), ("p", ("b",)), ("q", ("a", "b")), ("r", ())]
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.sampled_from(_FLUENTS), max_size=4, unique=True),
+       st.lists(st.lists(st.tuples(st.sampled_from(_FLUENTS), st.sampled_from([True, False, 1, 2])),
+                         max_size=4), max_size=5),
+       st.booleans())
+def test_state_hash_after_apply_is_the_fresh_states(init: list[tuple[str, tuple[str, ...]]],
+                                                    steps: list[list[tuple[Any, Any]]], hashed: bool) -> None:
+    """apply updates the hash per effect: the same as a state built from the same fluents."""
+    s = State([Atom(p, args) for p, args in init])
+    if hashed:
+        hash(s)  # the incremental path (a known hash) or, if not, the full one
+    for effects in steps:
+        s = s.apply([Atom(p, args, v) for (p, args), v in effects])
+        fresh = State(list(s.atoms()))
+        assert s == fresh and hash(s) == hash(fresh)
+        assert State([*s.atoms()]) == s

@@ -29,7 +29,7 @@ from nowplan.core.atoms import Atom
 from nowplan.core.domain import Problem
 from nowplan.core.operators import Action
 from nowplan.core.state import State
-from nowplan.planning.task_grounding import grounding
+from nowplan.planning.task_grounding import adders_of, grounding
 
 
 @dataclass(frozen=True)
@@ -65,26 +65,42 @@ def irreversible_step(problem: Problem, below_top: Callable[[Action], bool],
     if not isinstance(problem.init, State):
         return None
     g = grounding(problem.domain, problem.objects, problem.init, -1)
-    # the steps to check, with what they add and delete; only their deleted atoms are looked up below
-    steps: list[tuple[Action, set[Atom], set[Atom]]] = []
+    # the negation of each deleted atom, made once (many actions delete the same atom: every flight
+    # from a city), so the sets below hold the same objects and compare them by identity
+    negated: dict[Atom, Atom] = {}
+
+    def neg(e: Atom) -> Atom:
+        n = negated.get(e)
+        if n is None:
+            n = negated[e] = e.negate()
+        return n
+
+    # the steps to check, with what they delete (and do not add); only their deleted atoms are looked up below
+    steps: list[tuple[Action, frozenset[Atom]]] = []
     for act in g.actions:
         if len(steps) >= limit:
             break
         if not below_top(act):
             continue
-        adds = {e for e in act.effects() if e.value is True}
-        dels = {e.negate() for e in act.effects() if e.value is False} - adds
+        effs = act.effects()
+        gone = [neg(e) for e in effs if e.value is False]
+        if not gone:
+            continue
+        dels = frozenset(gone).difference([e for e in effs if e.value is True])
         if dels:
-            steps.append((act, adds, dels))
-    wanted = set().union(*(d for _, _, d in steps))
+            steps.append((act, dels))
+    wanted = set().union(*(d for _, d in steps))
+    # the adders of the deleted atoms, from the grounding's index (made once, kept for later readers:
+    # the executive's direct refinements), in grounding order as before
+    index = adders_of(g)
+    pre_of: dict[Any, frozenset[Atom]] = {}
     adders: dict[Atom, list[frozenset[Atom]]] = {}
-    for a in g.actions:
-        pre: frozenset[Atom] | None = None
-        for e in a.effects():
-            if e.value is True and e in wanted:
-                if pre is None:
-                    pre = frozenset(p for p in a.preconditions() if p.value is True)
-                adders.setdefault(e, []).append(pre)
+    for d in wanted:
+        for a in index.get(d, ()):
+            pre = pre_of.get(a.key)
+            if pre is None:
+                pre = pre_of[a.key] = frozenset(p for p in a.preconditions() if p.value is True)
+            adders.setdefault(d, []).append(pre)
     goal = {a for a in problem.goal.atoms if a.value is True}
     lazy: dict[str, Any] = {}  # what only a lost atom needs: every deleted atom, the consumers
 
@@ -94,7 +110,7 @@ def irreversible_step(problem: Problem, below_top: Callable[[Action], bool],
         if lost in goal:
             return False
         if not lazy:
-            lazy["deleted"] = {e.negate() for a in g.actions for e in a.effects() if e.value is False}
+            lazy["deleted"] = {neg(e) for a in g.actions for e in a.effects() if e.value is False}
             consumers: dict[Atom, list[Action]] = {}
             for a in g.actions:
                 for p in a.preconditions():
@@ -106,11 +122,13 @@ def irreversible_step(problem: Problem, below_top: Callable[[Action], bool],
                    for c in lazy["consumers"].get(lost, ()) for e in c.effects())
 
     restorable: dict[frozenset[Atom], set[Atom]] = {}  # many actions delete the same atoms (one per target)
-    for act, adds, dels in steps:
-        key = frozenset(dels)
-        back = restorable.get(key)
+    for act, dels in steps:
+        back = restorable.get(dels)
         if back is None:
-            back = restorable[key] = _restorable(dels, adders)
+            back = restorable[dels] = _restorable(set(dels), adders)
+        if len(back) == len(dels):
+            continue  # every deleted atom can be made true again
+        adds = {e for e in act.effects() if e.value is True}
         lost = sorted((d for d in dels - back if not harmless(d, act, adds)), key=str)
         if lost:
             return Irreversible(act, lost[0])

@@ -13,7 +13,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
-from nowplan.core.atoms import Goal
+from nowplan.core.atoms import Goal, atom_order
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 
@@ -75,14 +75,19 @@ class Plan:
 
     def to_json(self) -> list[dict[str, Any]]:
         out: list[dict[str, Any]] = []
-        # consecutive preimages share most atoms: each atom is written once per plan
-        text: dict[Any, str] = {}
+        # consecutive preimages share most atoms: each atom's order key and text are made once per plan
+        # (the order is Goal.__iter__'s, the text str(atom))
+        made: dict[Any, tuple[tuple[str, str, str], str]] = {}
 
-        def name(x: Any) -> str:
-            t = text.get(x)
-            if t is None:
-                t = text[x] = str(x)
-            return t
+        def written(goal: Goal) -> list[str]:
+            rows = []
+            for x in goal.atoms:
+                t = made.get(x)
+                if t is None:
+                    t = made[x] = (atom_order(x), str(x))
+                rows.append(t)
+            rows.sort()  # (the keys differ between a goal's atoms: one atom per fluent and value)
+            return [text for _, text in rows]
 
         for i, s in enumerate(self.steps):
             a = s.action
@@ -93,7 +98,7 @@ class Plan:
                     "level": self.levels.level(a) if a is not None else None,
                     "primitive": bool(a is not None and self.levels.is_primitive(a)),
                     "hidden": self.levels.describe(a) if a is not None else 0,
-                    "preimage": [name(x) for x in s.goal],
+                    "preimage": written(s.goal),
                 }
             )
         return out

@@ -37,6 +37,32 @@ class Grounding:
     shared: bool = False
     # integer task structures built from these actions (nowplan.planning.task), by level map and "not" facts
     tasks: dict[Any, Any] = field(default_factory=dict, repr=False)
+    # effect atom -> the actions with that effect (made on the first ask, see adders_of)
+    adders: dict[Atom, list[Action]] | None = field(default=None, repr=False)
+
+
+def adders_of(g: Grounding) -> dict[Atom, list[Action]]:
+    """Each effect atom of ``g``'s actions -> those actions, in grounding order (made once per grounding:
+    the actions' effects are bound already, so this reads them and binds nothing)."""
+    if g.adders is None:
+        index: dict[Atom, list[Action]] = {}
+        for act in g.actions:
+            for e in act.effects():
+                index.setdefault(e, []).append(act)
+        g.adders = index
+    return g.adders
+
+
+def cached_grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any,
+                     level: int) -> Grounding | None:
+    """The cached grounding of every operator at ``level`` that covers ``belief`` (it reached every
+    fact true there), or None; never grounds (e.g. the one ``--criticality auto``'s set-up filed)."""
+    base = _key_of(domain, objects, belief, domain.static_predicates, level)
+    init = {a for a in belief.atoms() if a.value is True}
+    for (b, ops), g in reversed(_CACHE.items()):  # the latest first
+        if ops is None and b == base and init <= g.reached:
+            return g
+    return None
 
 
 _CACHE: dict[Any, Grounding] = {}
