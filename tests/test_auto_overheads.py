@@ -3,9 +3,11 @@ record, and the grounding cache a benchmark clears (issue 18's whole-run account
 
 from __future__ import annotations
 
+from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -16,8 +18,8 @@ from nowplan.core.domain import Domain, Predicate
 from nowplan.core.levels import flat_levels
 from nowplan.core.operators import Operator, Precondition
 from nowplan.core.state import State
-from nowplan.planning.plan import Plan, PlanStep
-from nowplan.planning.task_grounding import clear_cache, grounding
+from nowplan.planning.plan import Plan, PlanStep, goal_text
+from nowplan.planning.task_grounding import adders_of, cached_grounding, clear_cache, grounding
 from nowplan.trace import Trace
 from nowplan.worlds.base import Observation
 
@@ -111,3 +113,60 @@ def test_state_hash_after_apply_is_the_fresh_states(init: list[tuple[str, tuple[
         fresh = State(list(s.atoms()))
         assert s == fresh and hash(s) == hash(fresh)
         assert State([*s.atoms()]) == s
+
+
+def test_goal_text_and_a_shared_memo_write_what_str_writes() -> None:
+    dom = _domain()
+    goals = [Goal.of([Atom("p", (x,)), Atom("q", (y,), False)], dom.rules) for x, y in (("b", "a"), ("a", "b"))]
+    made: dict[Any, Any] = {}
+    for g in goals * 2:
+        assert goal_text(g, made) == [str(a) for a in g]
+    plan = Plan((PlanStep(None, goals[0]), PlanStep(dom.operators[0].instantiate({Var("x"): "a"}), goals[1])),
+                flat_levels())
+    assert plan.to_json(made) == plan.to_json()
+
+
+def test_cached_grounding_never_grounds_and_adders_index_its_actions() -> None:
+    dom = _domain()
+    objs = {"a": None, "b": None}
+    init = State([Atom("p", ("a",)), Atom("p", ("b",))])
+    clear_cache()
+    assert cached_grounding(dom, objs, init, -1) is None  # nothing grounded yet: no grounding made
+    g = grounding(dom, objs, init, -1)
+    assert cached_grounding(dom, objs, init, -1) is g
+    # a belief with a fact the grounding never reached is not covered
+    assert cached_grounding(dom, objs, State([Atom("p", ("a",)), Atom("r", ("a",))]), -1) is None
+    index = adders_of(g)
+    assert adders_of(g) is index
+    assert {a: [x.key for x in acts] for a, acts in index.items()} == {
+        Atom("q", ("a",)): [("go", ("a",))], Atom("q", ("b",)): [("go", ("b",))]}
+
+
+CLASSICAL = Path(__file__).resolve().parents[1] / "benchmarks" / "classical"
+
+
+@pytest.mark.parametrize(("domain", "problem"), [("gripper", "p03"), ("logistics", "p03"), ("zenotravel", "p03")])
+def test_direct_refinements_from_the_grounding_index_match_the_grounders(
+        domain: str, problem: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The achievers read from the run's concrete grounding give the run the lifted grounder gives."""
+    import nowplan.planning.task_grounding as tg
+    from nowplan.acting.run import run_episode
+    from nowplan.acting.strategy import parse_strategy
+    from nowplan.domains.registry import Episode
+    from nowplan.io.pddl_read import load_pddl
+    from nowplan.planning.abstraction import prepare_problem
+    from nowplan.worlds.symbolic import SymbolicWorld
+
+    def run() -> tuple[str, list[str]]:
+        clear_cache()
+        prob = prepare_problem(load_pddl(CLASSICAL / domain / "domain.pddl", CLASSICAL / domain / f"{problem}.pddl",
+                                         "auto"))
+        ep = Episode(prob, SymbolicWorld(prob.domain, prob.init, seed=0), SymbolicBelief(prob.init), problem)
+        with Trace(None) as tr:
+            m = run_episode(ep, parse_strategy("hpn+refine-flat"), seed=0, trace=tr)
+        return m.outcome.value, [e["action"] for e in tr.events if e["event"] == "action"]
+
+    with_index = run()
+    monkeypatch.setattr(tg, "cached_grounding", lambda *a, **k: None)  # the grounder's answers only
+    assert run() == with_index
+    assert with_index[0] == "reached"
