@@ -170,3 +170,97 @@ def test_direct_refinements_from_the_grounding_index_match_the_grounders(
     monkeypatch.setattr(tg, "cached_grounding", lambda *a, **k: None)  # the grounder's answers only
     assert run() == with_index
     assert with_index[0] == "reached"
+
+
+def _reference_irreversible(prob: Any, below_top: Any) -> Any:
+    """The dead-end test action by action, every adder's preconditions made up front (the definition
+    :func:`nowplan.planning.dead_ends.irreversible_step` groups and evaluates lazily)."""
+    from nowplan.planning.dead_ends import _restorable
+
+    g = grounding(prob.domain, prob.objects, prob.init, -1)
+    goal = {a for a in prob.goal.atoms if a.value is True}
+    deleted = {e.negate() for a in g.actions for e in a.effects() if e.value is False}
+    for act in g.actions:
+        if not below_top(act):
+            continue
+        adds = {e for e in act.effects() if e.value is True}
+        dels = {e.negate() for e in act.effects() if e.value is False} - adds
+        if not dels:
+            continue
+        back = _restorable(set(dels), lambda d: [frozenset(p for p in a.preconditions() if p.value is True)
+                                                 for a in g.actions if d in a.effects()])
+
+        def harmless(lost: Atom) -> bool:
+            return lost not in goal and all(
+                e.value is not True or (e in adds and e not in deleted)
+                for c in g.actions if lost in c.preconditions() for e in c.effects())
+
+        lost = sorted((d for d in dels - back if not harmless(d)), key=str)
+        if lost:
+            return act.key, lost[0]
+    return None
+
+
+@st.composite
+def lifted_problems(draw: st.DrawFn) -> Any:
+    from nowplan.core.domain import Problem
+
+    x, y = Var("x"), Var("y")
+    preds = {"p": Predicate("p", 1), "q": Predicate("q", 1), "r": Predicate("r", 2)}
+    lits = st.sampled_from([Atom("p", (x,)), Atom("p", (y,)), Atom("q", (x,)), Atom("q", (y,)),
+                            Atom("r", (x, y)), Atom("r", (y, x)), Atom("p", ("a",))])
+    ops = []
+    for i in range(draw(st.integers(1, 4))):
+        pre = draw(st.lists(lits, max_size=2, unique=True))
+        add = draw(st.lists(lits, max_size=1, unique=True))  # few adds: atoms lost for ever are common
+        dele = [d for d in draw(st.lists(lits, min_size=1, max_size=2, unique=True)) if d not in add]
+        ops.append(Operator(f"o{i}", (x, y), tuple(Precondition(a, 1) for a in pre),
+                            (*(Atom(d.predicate, d.args, False) for d in dele), *add)))
+    dom = Domain("lifted", preds, tuple(ops))
+    objs = ("a", "b", "c")
+    facts = st.sampled_from([Atom("p", (o,)) for o in objs] + [Atom("q", (o,)) for o in objs]
+                            + [Atom("r", (o, u)) for o in objs for u in objs])
+    init = State(draw(st.lists(facts, min_size=2, max_size=8, unique=True)))
+    goal = Goal.of(draw(st.lists(facts, min_size=1, max_size=2, unique=True)), dom.rules)
+    return Problem(dom, {o: None for o in objs}, init, goal, "lifted")
+
+
+@settings(max_examples=300, deadline=None)
+@given(lifted_problems(), st.sets(st.sampled_from(["o0", "o1", "o2", "o3"])))
+def test_grouped_dead_end_test_matches_the_action_by_action_definition(prob: Any, below: set[str]) -> None:
+    from nowplan.planning.dead_ends import irreversible_step
+
+    clear_cache()
+
+    def below_top(a: Any) -> bool:
+        return a.operator.name in below
+
+    found = irreversible_step(prob, below_top)
+    assert (None if found is None else (found.action.key, found.atom)) == _reference_irreversible(prob, below_top)
+
+
+def test_an_instance_whose_add_cancels_its_delete_does_not_stand_for_its_siblings() -> None:
+    """burn(x, y) moves p from x to y along next: burn(a, a) deletes nothing, burn(a, b) loses p(a) for
+    ever; grouping the instances by their deletes' arguments alone would let the first hide the second
+    (burn(a, b) needs ready(b), which arm(a) gives after burn(a, a): it is grounded second)."""
+    from nowplan.core.domain import Problem
+    from nowplan.planning.dead_ends import irreversible_step
+
+    x, y = Var("x"), Var("y")
+    burn = Operator("burn", (x, y), (Precondition(Atom("p", (x,)), 1), Precondition(Atom("next", (x, y)), 1),
+                                     Precondition(Atom("ready", (y,)), 1)),
+                    (Atom("p", (x,), False), Atom("p", (y,)), Atom("done", (x,))))
+    arm = Operator("arm", (x,), (Precondition(Atom("done", (x,)), 1),), (Atom("ready", ("b",)),))
+    dom = Domain("burn", {n: Predicate(n, k) for n, k in (("p", 1), ("next", 2), ("ready", 1), ("done", 1))},
+                 (burn, arm))
+    init = State([Atom("p", ("a",)), Atom("ready", ("a",)), Atom("next", ("a", "a")), Atom("next", ("a", "b"))])
+    prob = Problem(dom, {"a": None, "b": None}, init, Goal.of([Atom("p", ("b",))], dom.rules), "burn")
+    clear_cache()
+
+    def below_top(a: Any) -> bool:
+        return a.operator.name == "burn"
+
+    assert [a.key for a in grounding(dom, prob.objects, init, -1).actions][0] == ("burn", ("a", "a"))
+    found = irreversible_step(prob, below_top)
+    assert found is not None and found.action.key == ("burn", ("a", "b")) and found.atom == Atom("p", ("a",))
+    assert (found.action.key, found.atom) == _reference_irreversible(prob, below_top)
