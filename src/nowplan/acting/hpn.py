@@ -39,7 +39,7 @@ from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.operators import Action
 from nowplan.errors import ScenarioError
 from nowplan.planning.context import PlanningContext
-from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
+from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep, goal_text
 from nowplan.planning.regression import plan as regression_plan
 from nowplan.trace import Trace
 from nowplan.worlds.base import Observation, World
@@ -93,6 +93,7 @@ class Executive:
         self._last_status: PlanStatus | None = None
         self._last_failure = ""
         self._made: dict[int, dict[str, Any]] = {}  # plans made but not pushed yet
+        self._atom_text: dict[Any, tuple[tuple[str, str, str], str]] = {}  # Plan.to_json's, across plans
         self.mechanisms = strategy.mechanisms()
         self.on_action = on_action  # observers (e.g. a renderer); never change control flow
         # refinements of each step of each plan (by content, see refinement_key) since the last
@@ -169,8 +170,8 @@ class Executive:
         if meta is not None:
             self.trace.emit(
                 "plan", plan_id=fr.plan_id, parent=fr.parent, parent_step=fr.parent_step,
-                goal=[str(a) for a in plan.goal], levels=plan.levels.top,
-                cost=sum(fr.info["step_costs"]), steps=plan.to_json(), **meta,
+                goal=goal_text(plan.goal, self._atom_text), levels=plan.levels.top,
+                cost=sum(fr.info["step_costs"]), steps=plan.to_json(self._atom_text), **meta,
             )
         self.stack.append(fr)
         self.trace.emit("push", plan_id=fr.plan_id, depth=len(self.stack))

@@ -107,18 +107,33 @@ class Achievers:
         # the grounder's signature (objects and static facts) and when it was read: what the executive had
         # seen then (the belief and objects it held, failed actions, exogenous changes)
         self._signature: tuple[Hashable, Hashable] | None = None
+        # when (as above) and the concrete grounding's achievers index then (None: no grounding made)
+        self._concrete: tuple[Hashable, dict[Atom, list[Action]] | None] | None = None
 
     def lookup(self, ex: Executive) -> AtomAchievers:
         """The achievers of atoms for ``ex``'s objects and belief as they are now.
 
         The static facts are read again only after news (a failed action or an exogenous change, or
         another belief or other objects): an action that succeeds changes no static fact (no operator has one as an
-        effect), and reading them scans the whole belief (a sixth of logistics-40's direct refinements)."""
+        effect), and reading them scans the whole belief (a sixth of logistics-40's direct refinements).
+
+        Where the problem's concrete grounding is made already and covers the belief (``--criticality
+        auto`` makes it in its set-up and shares it with every level), the achievers are read from it
+        (:func:`nowplan.planning.task_grounding.adders_of`): its actions, bound once, instead of the
+        same instances grounded again from the operators, and only reachable ones (an action the relaxed
+        exploration from the belief does not reach never applies; the grounder's answers add nothing a
+        chain could execute).  It is asked once per news too."""
         from nowplan.planning.grounding import Grounder
+        from nowplan.planning.task_grounding import adders_of, cached_grounding
 
         if len(self.groups) > _GROUPS_KEPT:
             self.groups.clear()
         when = (id(ex.belief), id(ex.problem.objects), ex.metrics.failed_actions, ex.metrics.exogenous_changes)
+        if self._concrete is None or self._concrete[0] != when:
+            g = cached_grounding(ex.domain, ex.problem.objects, ex.belief, -1)
+            self._concrete = (when, adders_of(g) if g is not None else None)
+        if self._concrete[1] is not None:
+            return AtomAchievers(None, self.groups, self._concrete[1])
         known = self._signature[1] if self._signature is not None and self._signature[0] == when else None
         # (direct chains need a belief that lists its facts: forward_unsupported was asked)
         grounder = Grounder(ex.domain, ex.problem.objects, ex.belief, lists_facts=True, signature=known)
@@ -130,22 +145,31 @@ _GROUPS_KEPT = 4096
 
 
 class AtomAchievers:
-    """One direct refinement's view of the grounder: the achievers of an atom, grounded on demand."""
+    """One direct refinement's view of the achievers of an atom: a grounding's index (``adders``) or the
+    grounder's answers, grounded on demand."""
 
-    def __init__(self, grounder: Grounder,
-                 groups: dict[int, tuple[list[Action], list[tuple[Atom | None, int, list[Action]]]]]) -> None:
+    def __init__(self, grounder: Grounder | None,
+                 groups: dict[int, tuple[list[Action], list[tuple[Atom | None, int, list[Action]]]]],
+                 adders: dict[Atom, list[Action]] | None = None) -> None:
         self.grounder = grounder
         self._goal = Goal.of([])  # the domains refined by chains have no generators: the goal is never read
         self._groups = groups
+        self._adders = adders
 
     def of(self, u: Atom) -> list[Action]:
         """The ground actions one of whose effects is ``u`` (statically possible ones; kept per atom)."""
+        if self._adders is not None:
+            return self._adders.get(u, _NO_ACTIONS)
+        assert self.grounder is not None
         return self.grounder.achievers(u, self._goal)
 
     def one_of(self, need: list[Atom]) -> tuple[Atom, list[Action]]:
         """An atom of ``need`` with its achievers: of the atoms whose achievers are known already, the one
         with the fewest, else the first (grounding one atom only).  An action that adds every atom of
         ``need`` adds each of them, so whichever atom is taken, the same actions remain candidates."""
+        if self._adders is not None:  # every atom's achievers are known
+            return min(((u, self.of(u)) for u in need), key=lambda x: len(x[1]))
+        assert self.grounder is not None
         known = [(u, acts) for u in need if (acts := self.grounder.known(u)) is not None]
         if known:
             return min(known, key=lambda x: len(x[1]))
@@ -178,6 +202,8 @@ class AtomAchievers:
             out.extend(a for a in group if all(holds(p) for p in a.preconditions(levels.level(a))))
         return out
 
+
+_NO_ACTIONS: list[Action] = []  # (never changed: the answer for an atom no action adds)
 
 # the longest refinement made directly: ω with the actions before it that achieve what it exposes
 DIRECT_STEPS = 4

@@ -41,7 +41,7 @@ class FlatSteps:
 
     def __init__(self) -> None:
         self.steps: set[Hashable] = set()
-        self.visits: Counter[frozenset[Any]] = Counter()
+        self.visits: Counter[Hashable] = Counter()
 
     def __contains__(self, key: Hashable) -> bool:
         return key in self.steps
@@ -60,7 +60,8 @@ class FlatSteps:
             # left for a reason the plans did not know, so revisiting them is no cycle
             self.visits.clear()
             return
-        state = frozenset(ex.belief.atoms())
+        # the belief's state itself (hashed and compared by its fluents, no sorted atom list made)
+        state = ex.belief.state
         self.visits[state] += 1
         root = ex.stack[0]
         key = refinement_key(root)

@@ -353,6 +353,11 @@ def _sort_key(a: Atom) -> tuple[str, str, str]:
     return (a.predicate, repr(a.args), repr(a.value))
 
 
+def atom_order(a: Atom) -> tuple[str, str, str]:
+    """The key :meth:`Goal.__iter__` sorts a goal's atoms by (for callers that keep it per atom)."""
+    return _sort_key(a)
+
+
 TRUE = Goal()
 
 

@@ -15,12 +15,13 @@ from typing import Any
 from nowplan.core.atoms import Atom, Term
 
 Key = tuple[str, tuple[Term, ...]]
+_MASK = (1 << 64) - 1
 
 
 class State:
     """An immutable assignment of values to fluents (closed world for booleans)."""
 
-    __slots__ = ("_map", "_hash", "_by_pred", "_atoms")
+    __slots__ = ("_map", "_hash", "_sum", "_by_pred", "_atoms")
 
     def __init__(self, values: Mapping[Key, Any] | Iterable[Atom] = ()) -> None:
         if isinstance(values, Mapping):
@@ -29,6 +30,9 @@ class State:
             m = {a.key: a.value for a in values if a.value is not False}
         self._map: dict[Key, Any] = m
         self._hash: int | None = None
+        # the sum of the fluents' hashes (mod 2**64), once known: :meth:`apply` updates it per
+        # effect, so a run's states (hashed after every action) are not rehashed fluent by fluent
+        self._sum: int | None = None
         self._by_pred: dict[str, list[tuple[Term, ...]]] | None = None
         self._atoms: tuple[Atom, ...] | None = None
 
@@ -64,12 +68,24 @@ class State:
     # -- updates -------------------------------------------------------------
     def apply(self, effects: Iterable[Atom]) -> State:
         m = dict(self._map)
+        total = self._sum
         for e in effects:
+            key = e.key
+            if total is not None and key in m:
+                total -= hash((key, m[key]))
             if e.value is False:
-                m.pop(e.key, None)
+                m.pop(key, None)
             else:
-                m[e.key] = e.value
-        return State(m)
+                m[key] = e.value
+                if total is not None:
+                    total += hash((key, e.value))
+        out = State.__new__(State)  # (no False values in ``m``: the constructor's filter is not needed)
+        out._map = m
+        out._hash = None
+        out._sum = None if total is None else total & _MASK
+        out._by_pred = None
+        out._atoms = None
+        return out
 
     # -- protocol ------------------------------------------------------------
     def __eq__(self, other: object) -> bool:
@@ -77,7 +93,10 @@ class State:
 
     def __hash__(self) -> int:
         if self._hash is None:
-            self._hash = hash(frozenset(self._map.items()))
+            if self._sum is None:
+                # a sum of the fluents' hashes: the same for equal states, updated per effect by apply
+                self._sum = sum(map(hash, self._map.items())) & _MASK
+            self._hash = hash(self._sum)
         return self._hash
 
     def __len__(self) -> int:

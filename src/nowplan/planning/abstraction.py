@@ -70,6 +70,7 @@ from dataclasses import dataclass, replace
 from nowplan.core.atoms import Atom, Goal, Var
 from nowplan.core.domain import Domain, Problem
 from nowplan.core.operators import Action, Operator, Precondition
+from nowplan.core.state import State
 
 log = logging.getLogger(__name__)
 
@@ -391,6 +392,7 @@ def prepare_problem(problem: Problem) -> Problem:
 def _prepare(problem: Problem) -> Problem:
     from nowplan.planning.dead_ends import irreversible_step
     from nowplan.planning.reach_statics import add_reachability_statics
+    from nowplan.planning.task_grounding import cached_grounding
 
     domain = problem.domain
     hierarchy = derive_hierarchy(domain)
@@ -404,7 +406,13 @@ def _prepare(problem: Problem) -> Problem:
     def below_top(act: Action) -> bool:
         return below.get(act.operator.name, False)
 
-    dead = irreversible_step(problem, below_top)
+    # the reachability statics first: where their grounding is shared with every level (the exact case),
+    # the dead-end test reads that grounding too, and the achievers index it makes there is the one
+    # the executive's direct refinements read (acting/refine.py), made once per run
+    prepared = add_reachability_statics(problem)
+    shared = prepared is not problem and isinstance(prepared.init, State) and cached_grounding(
+        prepared.domain, prepared.objects, prepared.init, -1) is not None
+    dead = irreversible_step(prepared if shared else problem, below_top)
     if dead is not None:
         log.warning("%s: the automatic hierarchy is not used, planning flat: %s (an abstract plan "
                     "cannot see it, and executing its first steps could leave no plan)", problem.name, dead)
@@ -412,5 +420,4 @@ def _prepare(problem: Problem) -> Problem:
                      for op in problem.domain.operators)
         return replace(problem, domain=replace(problem.domain, operators=flat))
     stages = goal_stages(problem, hierarchy)
-    problem = add_reachability_statics(problem)
-    return replace(problem, stages=stages)
+    return replace(prepared, stages=stages)

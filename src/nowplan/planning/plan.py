@@ -13,7 +13,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
-from nowplan.core.atoms import Goal
+from nowplan.core.atoms import Goal, atom_order
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 
@@ -73,8 +73,18 @@ class Plan:
         a = self.steps[i].action
         return a is not None and self.levels.is_primitive(a)
 
-    def to_json(self) -> list[dict[str, Any]]:
+    def to_json(self, made: dict[Any, tuple[tuple[str, str, str], str]] | None = None) -> list[dict[str, Any]]:
+        """The plan's trace record (docs/trace-format.md).  ``made``: each atom's order key and text,
+        kept by the caller across plans (the executive's plans share most pre-image atoms)."""
         out: list[dict[str, Any]] = []
+        # consecutive preimages share most atoms: each atom's order key and text are made once per plan
+        # or per ``made`` (the order is Goal.__iter__'s, the text str(atom))
+        if made is None:
+            made = {}
+
+        def written(goal: Goal) -> list[str]:
+            return goal_text(goal, made)
+
         for i, s in enumerate(self.steps):
             a = s.action
             out.append(
@@ -84,10 +94,23 @@ class Plan:
                     "level": self.levels.level(a) if a is not None else None,
                     "primitive": bool(a is not None and self.levels.is_primitive(a)),
                     "hidden": self.levels.describe(a) if a is not None else 0,
-                    "preimage": [str(x) for x in s.goal],
+                    "preimage": written(s.goal),
                 }
             )
         return out
+
+
+def goal_text(goal: Goal, made: dict[Any, tuple[tuple[str, str, str], str]]) -> list[str]:
+    """``[str(a) for a in goal]`` (in :meth:`Goal.__iter__`'s order), each atom's order key and text
+    kept in ``made`` for the next goals (pre-images share most of their atoms)."""
+    rows = []
+    for x in goal.atoms:
+        t = made.get(x)
+        if t is None:
+            t = made[x] = (atom_order(x), str(x))
+        rows.append(t)
+    rows.sort()  # (the keys differ between a goal's atoms: one atom per fluent and value)
+    return [text for _, text in rows]
 
 
 @dataclass(frozen=True)

@@ -37,6 +37,32 @@ class Grounding:
     shared: bool = False
     # integer task structures built from these actions (nowplan.planning.task), by level map and "not" facts
     tasks: dict[Any, Any] = field(default_factory=dict, repr=False)
+    # effect atom -> the actions with that effect (made on the first ask, see adders_of)
+    adders: dict[Atom, list[Action]] | None = field(default=None, repr=False)
+
+
+def adders_of(g: Grounding) -> dict[Atom, list[Action]]:
+    """Each effect atom of ``g``'s actions -> those actions, in grounding order (made once per grounding:
+    the actions' effects are bound already, so this reads them and binds nothing)."""
+    if g.adders is None:
+        index: dict[Atom, list[Action]] = {}
+        for act in g.actions:
+            for e in act.effects():
+                index.setdefault(e, []).append(act)
+        g.adders = index
+    return g.adders
+
+
+def cached_grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any,
+                     level: int) -> Grounding | None:
+    """The cached grounding of every operator at ``level`` that covers ``belief`` (it reached every
+    fact true there), or None; never grounds (e.g. the one ``--criticality auto``'s set-up filed)."""
+    base = _key_of(domain, objects, belief, domain.static_predicates, level)
+    init = {a for a in belief.atoms() if a.value is True}
+    for (b, ops), g in reversed(_CACHE.items()):  # the latest first
+        if ops is None and b == base and init <= g.reached:
+            return g
+    return None
 
 
 _CACHE: dict[Any, Grounding] = {}
@@ -80,6 +106,11 @@ def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, le
     if prev is not None:
         operators = None if operators is None or prev.operators is None else operators | prev.operators
     return _file((base, operators), _ground(domain, objects, init, statics, level, operators, prev))
+
+
+def clear_cache() -> None:
+    """Forget every cached grounding (a benchmark starts each run cold, as a fresh process does)."""
+    _CACHE.clear()
 
 
 def _file(key: Any, g: Grounding) -> Grounding:
@@ -305,6 +336,20 @@ class _Join:
 _UNBOUND = object()
 
 
+def _extension(old: Operator, op: Operator | None) -> tuple[int, tuple[int | None, ...]] | None:
+    """How ``op`` extends ``old`` with preconditions only (see :func:`share_concrete`), or None."""
+    k = len(old.preconditions)
+    if (op is None or op.effects != old.effects or op.params != old.params
+            or op.preconditions[:k] != old.preconditions):
+        return None
+    sources: list[int | None] = []
+    for p in op.preconditions[k:]:
+        v = p.atom.value
+        j = next((i for i, q in enumerate(old.preconditions) if q.atom.args == p.atom.args), None)
+        sources.append(j if not isinstance(v, Var) else None)
+    return k, tuple(sources)
+
+
 def share_concrete(concrete: Grounding, domain: Domain, objects: Mapping[str, str | None], belief: Any,
                    levels: Iterable[int]) -> None:
     """File ``concrete`` (the grounding at level -1 of a domain that ``domain`` extends with static
@@ -324,21 +369,36 @@ def share_concrete(concrete: Grounding, domain: Domain, objects: Mapping[str, st
     ops = {op.name: op for op in domain.operators}
     statics = domain.static_predicates
     actions: list[Action] = []
+    # per operator, checked once: how each added precondition is made from the old bound ones (the
+    # index of an old precondition with the same argument terms, whose bound arguments it takes, as
+    # reachable-p(x) takes p(x)'s; else None: bound here)
+    plans: dict[str, tuple[int, tuple[int | None, ...]] | None] = {}
     for old in concrete.actions:
         op = ops.get(old.operator.name)
         if op is old.operator:  # an operator that gained no precondition: its actions are the same
             actions.append(old)
             continue
-        k = len(old.operator.preconditions)
-        if (op is None or op.effects != old.operator.effects or op.params != old.operator.params
-                or op.preconditions[:k] != old.operator.preconditions):
+        if old.operator.name not in plans:
+            plans[old.operator.name] = _extension(old.operator, op)
+        plan = plans[old.operator.name]
+        if plan is None or op is None:
             return  # not an extension of the concrete domain's operators: ground as usual
+        k, sources = plan
         act = Action(op, old.args)
-        # the same effects and the old preconditions, bound once; only the added ones are bound here
+        # the same effects and the old preconditions, bound once; only the added ones are made here
         act._ground["effects"] = old.effects()
-        if len(op.preconditions) > k:
-            b = act.bindings
-            act._ground[None] = (*old.preconditions(), *(p.atom.bind(b) for p in op.preconditions[k:]))
+        if sources:
+            pres = old.preconditions()
+            b: dict[Var, Any] | None = None
+            extra: list[Atom] = []
+            for p, j in zip(op.preconditions[k:], sources, strict=True):
+                if j is not None:
+                    extra.append(Atom(p.atom.predicate, pres[j].args, p.atom.value))
+                else:
+                    if b is None:
+                        b = act.bindings
+                    extra.append(p.atom.bind(b))
+            act._ground[None] = (*pres, *extra)
         else:
             act._ground[None] = old.preconditions()
         actions.append(act)
