@@ -75,3 +75,25 @@ def test_the_memo_is_shared_between_actions_on_a_marsupial_run() -> None:
         ep = episode("both", 6, 0)
         _, _, ok = timed_run(ep, "hpn+peephole", 0, 120.0)
     assert ok and memo and asked
+
+
+def test_peephole_trace_records_equal_fresh_ones() -> None:
+    """The peephole's rewritten-plan records reuse atom texts across rewrites: same records."""
+    from nowplan.domains.marsupial.flatcmp import timed_run
+    from nowplan.domains.marsupial.scenarios import episode
+    from nowplan.planning.plan import Plan
+
+    orig = Plan.to_json
+    compared: list[int] = []
+
+    def checked(self: Plan, made: Any = None) -> Any:
+        out = orig(self, made)
+        if made is not None:
+            assert out == orig(self)
+            compared.append(1)
+        return out
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(Plan, "to_json", checked)
+        _, _, ok = timed_run(episode("both", 5, 1), "hpn+peephole", 1, 120.0)
+    assert ok and compared
