@@ -560,17 +560,19 @@ def test_an_effort_bound_spares_the_second_steps_small_search():
     s2 = Subgoal((act("carry", "y", "yard"),), Goal())
     est = Estimator(TOY, OBJECTS, s, plain)
     full = arrange(s1, s2, s, domain=TOY, levels=lv, estimator=est)
-    assert full is not Arrange.SECOND and est.plan_calls == 2
+    # both steps' small plans asked (the second one answered by the first's search: the same
+    # unmet robot_at(yard), Estimator._by_goal)
+    assert full is not Arrange.SECOND and len(est._plans) == 2 and est.plan_calls == 1
     est = Estimator(TOY, OBJECTS, s, plain)
     assert est.effort_bound(act("carry", "y", "yard"), lv) == 3.0  # goto, the cheapest achiever of robot_at
     assert arrange(s1, s2, s, domain=TOY, levels=lv, estimator=est, want=Arrange.SECOND) is not Arrange.SECOND
-    assert est.plan_calls == 1  # only the first step's small plan (one goto: effort 3 = the bound)
+    assert len(est._plans) == 1  # only the first step's small plan (one goto: effort 3 = the bound)
     # with a lower bound than the first's effort, the second's small search is made as before
     cheap = replace(plain, effort_bound=lambda unmet, belief: 0.0)
     est = Estimator(TOY, OBJECTS, state(robot="hall", x="yard", y="yard"), cheap)
     est._cheapest["robot_at"] = 0.0  # as for a domain whose operators' costs are not known
     arrange(s1, s2, s, domain=TOY, levels=lv, estimator=est, model=cheap, want=Arrange.SECOND)
-    assert est.plan_calls == 2
+    assert len(est._plans) == 2
 
 
 def test_arrange_asked_for_second_skips_the_domains_test_when_it_cannot_matter():

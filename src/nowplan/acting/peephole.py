@@ -75,6 +75,9 @@ class Peephole(Mechanism):
         self._applicable: tuple[Any, Plan, int, int | None] | None = None
         # action keys of every combination whose joint planning failed in this run (``_fallout``)
         self._given_up: set[Any] = set()
+        # each pre-image atom's order key and text for the rewritten plans' trace records
+        # (``Plan.to_json``'s ``made``): consecutive rewrites share most atoms
+        self._atom_text: dict[Any, tuple[tuple[str, str, str], str]] = {}
 
     def _failed_now(self, ex: Executive) -> list[frozenset[Any]]:
         """The combinations that failed in the current belief (forgotten after each action)."""
@@ -172,7 +175,7 @@ class Peephole(Mechanism):
             ex.trace.emit(
                 "note", text="peephole: " + "; ".join(r.moves), plan_id=frame.plan_id,
                 peephole={"start": k, "order": frame.info["orig"], "combined": last + 1,
-                          "steps": frame.plan.to_json()},
+                          "steps": frame.plan.to_json(self._atom_text)},
             )
             log.info("peephole on plan %d: %s", frame.plan_id, "; ".join(r.moves))
         frame.i = k + 1 + last

@@ -132,6 +132,11 @@ class Estimator:
         )
         self._cache: dict[tuple[Any, int, int], Estimate] = {}
         self._plans: dict[tuple[Any, int], tuple[Action, ...] | None] = {}
+        # small plans by what the search is given (the unmet atoms in order, and the level map):
+        # steps of different actions with the same unmet preconditions (two loads into one truck
+        # waiting for it at the same place) share one search; the belief, domain, objects and
+        # search settings are this estimator's own
+        self._by_goal: dict[tuple[tuple[Atom, ...], LevelMap], tuple[Action, ...] | None] = {}
         self.plan_calls = 0
         self._cheapest: dict[str, float] = {}
 
@@ -237,11 +242,21 @@ class Estimator:
         unmet = self._unmet(action, crit)
         out: tuple[Action, ...] | None = ()
         if unmet:
-            goal = Goal.of(unmet, self.domain.rules)
-            self.plan_calls += 1
-            res = plan(self.domain, self.objects, self.belief, goal, levels, self.search)
-            out = res.plan.actions if res.solved and res.plan is not None else None
-            if out is None:
-                log.debug("no small plan for %s of %s: %s", goal, action, res.reason)
+            asked = (tuple(unmet), levels)
+            if asked in self._by_goal:
+                out = self._by_goal[asked]
+            else:
+                out = self.small_plan(unmet, levels)
+                self._by_goal[asked] = out
         self._plans[key] = out
+        return out
+
+    def small_plan(self, unmet: Sequence[Atom], levels: LevelMap) -> tuple[Action, ...] | None:
+        """A fresh limited search from the belief for ``unmet`` (not cached): its actions, or None."""
+        goal = Goal.of(unmet, self.domain.rules)
+        self.plan_calls += 1
+        res = plan(self.domain, self.objects, self.belief, goal, levels, self.search)
+        out = res.plan.actions if res.solved and res.plan is not None else None
+        if out is None:
+            log.debug("no small plan for %s: %s", goal, res.reason)
         return out
