@@ -163,18 +163,28 @@ class Reach:
                     pats.append((a.predicate, args))
         return (0.0 if cheapest == math.inf else cheapest), tuple(dict.fromkeys(pats))
 
-    def bound(self, f: int, unmet: Sequence[tuple[int, float]]) -> tuple[float, float]:
-        """``(c, b)`` for target ``f`` and the node's unmet ``(fact, explored cost)`` pairs."""
+    def bound(self, f: int, unmet: Sequence[tuple[int, float]], whole: float = 0.0) -> tuple[float, float]:
+        """``(c, b)`` for target ``f`` and the node's unmet ``(fact, explored cost)`` pairs.
+
+        ``whole`` is the node's estimate of all its unmet facts: where no achiever of ``f`` names
+        any of them, every child keeps them all, and ``b`` is at least ``whole``.
+        """
         c, pats = self(f)
         b = 0.0
         named = self._named
+        kept_all = True
         for u, v in unmet:
-            if v > b:
+            if v > b or kept_all:
                 hit = named.get((f, u))
                 if hit is None:
                     hit = named[(f, u)] = _named(self.atoms[u], pats)
                 if not hit:
-                    b = v
+                    if v > b:
+                        b = v
+                else:
+                    kept_all = False
+        if kept_all and whole > b and unmet:
+            b = whole
         return c, b
 
 

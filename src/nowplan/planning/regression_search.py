@@ -310,11 +310,14 @@ class _Search:
         Node = tuple[frozenset[int], int]
         start: Node = (root, focus0)
         h0 = self.h(root)
-        # entries (f, h, stamp, seq, node or Deferred): the stamp is eager generation's order (deferred)
+        # entries (f, h, r, stamp, seq, node or Deferred): r counts the pure rewrites of held facts on the
+        # path (ties of (f, h) go to fewer rewrites); the stamp is eager generation's order (deferred)
         first: Stamp = (-1, 0, 0)
-        frontier: list[tuple[float, float, Stamp, int, Node | Deferred | Postponed]] = [
-            (self.config.weight * h0, h0, first, next(counter), start)]
+        frontier: list[tuple[float, float, int, Stamp, int, Node | Deferred | Postponed]] = [
+            (self.config.weight * h0, h0, 0, first, next(counter), start)]
         best_g: dict[Node, float] = {start: 0.0}
+        # per node pushed: its estimate and its rewrites (a pure rewrite child has its parent's unmet facts)
+        meta: dict[Node, tuple[float, int]] = {start: (h0, 0)}
         born: dict[Node, Stamp] = {start: first}
         parent: dict[Node, tuple[Node, Action] | None] = {start: None}
         closed: set[Node] = set()
@@ -327,6 +330,7 @@ class _Search:
         regress_, forbidden, inf, push, fholds = regress, self.forbidden_first, math.inf, heapq.heappush, self.fholds
         no_rewrites = not self.config.held_rewrites
         pure_rewrite = self.pure_rewrite
+        inherit_h = not callable(self.domain_h)  # (a domain's own estimate may read more than the unmet facts)
 
         def make(node: Node, focus: int, gcost: float, index: NodeIndex, goal_of: Callable[[], Goal], legacy: bool,
                  act: Action, info: ActionFacts, cost: float, st: Stamp) -> None:
@@ -340,7 +344,8 @@ class _Search:
                 pre = None if g is None else T.ids_of(g.atoms)
             if pre is None:
                 return
-            if no_rewrites and cost == 0.0 and pure_rewrite(node[0], pre):
+            rewrite = cost == 0.0 and pure_rewrite(node[0], pre)
+            if rewrite and no_rewrites:
                 return  # a zero-cost rewrite of held facts into held facts (PlannerConfig.held_rewrites)
             if forbidden and act.key in forbidden and self.satisfied(pre):
                 return  # it would be the plan's first step: learnt not to be refinable from here
@@ -362,8 +367,13 @@ class _Search:
                 best_g[child] = ng
                 born[child] = st
                 parent[child] = (node, act)
-            self.generated += 1
-            if hvals is not None:
+                self.generated += 1  # (a path of equal cost that eager generation made first: no new node)
+            hp, r = meta[node]
+            if rewrite:
+                r += 1
+            if rewrite and inherit_h:
+                hh = hp  # the same unmet facts: the estimate of what they cost (see rewrites.py)
+            elif hvals is not None:
                 try:  # the kernel's values: every fact valued, 0 where it holds
                     hh = sum(map(hvals, pre))
                 except IndexError:
@@ -372,11 +382,12 @@ class _Search:
                 hh = self.h(pre)
             if hh == inf:
                 return  # an atom of the pre-image is unreachable
-            push(frontier, (ng + weight * hh, hh, st, next(counter), child))
+            meta[child] = (hh, r)
+            push(frontier, (ng + weight * hh, hh, r, st, next(counter), child))
 
         while frontier:
             top = heapq.heappop(frontier)
-            item = top[4]
+            item = top[5]
             if isinstance(item, Postponed):  # unmet facts' successors whose bound has come first
                 for act, info, cost, st in item.items:
                     make(item.node, item.focus, item.g, item.index, item.goal_of, False, act, info, cost, st)
@@ -414,6 +425,7 @@ class _Search:
             if self.now() > self.deadline:
                 return PlanStatus.TIME_LIMIT, None, f"time limit of {self.config.time_limit:g} s reached"
             gcost = best_g[node]
+            hnode, rnode = meta[node]
             if order_ids is not None and focus > 1:
                 cut = focus - 1
                 allowed = [f for f in T.sorted(fs) if pos_of(f, never) >= cut]
@@ -433,7 +445,7 @@ class _Search:
                     if unmet_ids is None:
                         assert relaxed is not None
                         unmet_ids = [(f, relaxed.known(f)) for f in self.unmet(fs)]
-                    c, b = reach.bound(target, unmet_ids)
+                    c, b = reach.bound(target, unmet_ids, hnode)
                     if b != inf:  # else every child keeps a fact proven unreachable
                         later.setdefault((c, b), []).append((ti, target))
                     continue
@@ -459,13 +471,13 @@ class _Search:
                             continue
                     make(node, focus, gcost, index, goal_of, legacy, act, info, cost, st)
             for (fb, b), items in postponed.items():
-                push(frontier, (fb, b, min(x[3] for x in items), next(counter),
+                push(frontier, (fb, b, rnode, min(x[3] for x in items), next(counter),
                                 Postponed(node, focus, gcost, index, goal_of, items)))
             if later:
                 if here is None:
                     here = Expansion(node, focus, gcost, index, goal_of, allowed, tried, exp)
                 for (c, b), targets in later.items():  # (g + c + w·b, b) is at most each child's (f, h)
-                    push(frontier, (gcost + c + weight * b, b, (exp, targets[0][0], 0), next(counter),
+                    push(frontier, (gcost + c + weight * b, b, rnode, (exp, targets[0][0], 0), next(counter),
                                     Deferred(here, targets)))
         return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
 
