@@ -164,17 +164,22 @@ class Reach:
         return (0.0 if cheapest == math.inf else cheapest), tuple(dict.fromkeys(pats))
 
     def bound(self, f: int, unmet: Sequence[tuple[int, float]], whole: float = 0.0) -> tuple[float, float]:
-        """``(c, b)`` for target ``f`` and the node's unmet ``(fact, explored cost)`` pairs.
+        """``(c, b)`` for target ``f`` and the node's unmet ``(fact, explored cost)`` pairs (see :meth:`bound_all`)."""
+        c, b, _ = self.bound_all(f, unmet, whole)
+        return c, b
 
-        ``whole`` is the node's estimate of all its unmet facts: where no achiever of ``f`` names
-        any of them, every child keeps them all, and ``b`` is at least ``whole``.
+    def bound_all(self, f: int, unmet: Sequence[tuple[int, float]], whole: float = 0.0) -> tuple[float, float, bool]:
+        """``(c, b, kept)``: ``kept`` when no achiever of ``f`` names an unmet fact of the node.
+
+        Then every child keeps all the unmet facts as they are (no child makes progress on one),
+        and ``b`` is at least ``whole``, the node's estimate of them all.
         """
         c, pats = self(f)
         b = 0.0
         named = self._named
-        kept_all = True
+        kept = True
         for u, v in unmet:
-            if v > b or kept_all:
+            if v > b or kept:
                 hit = named.get((f, u))
                 if hit is None:
                     hit = named[(f, u)] = _named(self.atoms[u], pats)
@@ -182,10 +187,10 @@ class Reach:
                     if v > b:
                         b = v
                 else:
-                    kept_all = False
-        if kept_all and whole > b and unmet:
+                    kept = False
+        if kept and whole > b and unmet:
             b = whole
-        return c, b
+        return c, b, kept
 
 
 def _named(a: Atom, pats: tuple[Pattern, ...]) -> bool:
