@@ -471,7 +471,7 @@ class _Search:
                             continue
                     make(node, focus, gcost, index, goal_of, legacy, act, info, cost, st)
             for (fb, b), items in postponed.items():
-                push(frontier, (fb, b, rnode, min(idle(index, x[1], fholds) for x in items), min(x[3] for x in items), next(counter),
+                push(frontier, (fb, b, rnode, 0, min(x[3] for x in items), next(counter),
                                 Postponed(node, focus, gcost, index, goal_of, items)))
             if later:
                 if here is None:
