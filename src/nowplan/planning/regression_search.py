@@ -319,6 +319,9 @@ class _Search:
         best_g: dict[Node, float] = {start: 0.0}
         # per node pushed: its estimate and its rewrites (a pure rewrite child has its parent's unmet facts)
         meta: dict[Node, tuple[float, int]] = {start: (h0, 0)}
+        # per node pushed: the least (r, idle, stamp) of its paths of its cost so far, its key's tail: the
+        # same in eager and deferred search (an entry that could give a lesser one comes first)
+        tails: dict[Node, tuple[int, int, Stamp]] = {start: (0, 0, first)}
         born: dict[Node, Stamp] = {start: first}
         parent: dict[Node, tuple[Node, Action] | None] = {start: None}
         closed: set[Node] = set()
@@ -354,36 +357,38 @@ class _Search:
             old = best_g.get(child, inf)
             if ng > old or ng == inf:  # (an infinite cost: never kept, as eager search's ng >= old)
                 return
-            if ng == old:  # eager generation keeps the path it made first
-                if st >= born[child]:
+            hp, r = meta[node]
+            if rewrite:
+                r += 1
+            tail = (r, idle(index, info, fholds), st)
+            if ng == old:  # eager generation keeps the path it made first, and the least (r, idle, stamp)
+                if st < born[child]:
+                    born[child] = st
+                    parent[child] = (node, act)
+                if child in closed or child not in tails or tail >= tails[child]:
                     return
-                born[child] = st
-                parent[child] = (node, act)
-                if child in closed:
-                    return
+                hh = meta[child][0]
             elif child in closed:
                 return
             else:
                 best_g[child] = ng
                 born[child] = st
                 parent[child] = (node, act)
-                self.generated += 1  # (a path of equal cost that eager generation made first: no new node)
-            hp, r = meta[node]
-            if rewrite:
-                r += 1
-            if rewrite and inherit_h:
-                hh = hp  # the same unmet facts: the estimate of what they cost (see rewrites.py)
-            elif hvals is not None:
-                try:  # the kernel's values: every fact valued, 0 where it holds
-                    hh = sum(map(hvals, pre))
-                except IndexError:
+                self.generated += 1
+                if rewrite and inherit_h:
+                    hh = hp  # the same unmet facts: the estimate of what they cost (see rewrites.py)
+                elif hvals is not None:
+                    try:  # the kernel's values: every fact valued, 0 where it holds
+                        hh = sum(map(hvals, pre))
+                    except IndexError:
+                        hh = self.h(pre)
+                else:
                     hh = self.h(pre)
-            else:
-                hh = self.h(pre)
-            if hh == inf:
-                return  # an atom of the pre-image is unreachable
+                if hh == inf:
+                    return  # an atom of the pre-image is unreachable
             meta[child] = (hh, r)
-            push(frontier, (ng + weight * hh, hh, r, idle(index, info, fholds), st, next(counter), child))
+            tails[child] = tail
+            push(frontier, (ng + weight * hh, hh, *tail, next(counter), child))
 
         while frontier:
             top = heapq.heappop(frontier)
