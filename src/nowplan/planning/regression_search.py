@@ -31,7 +31,7 @@ from nowplan.planning.heuristics import ground_task, relax_unsupported
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.preimage import preimage, static_drop
 from nowplan.planning.relaxed import LazyRelaxed, Supporter
-from nowplan.planning.rewrites import idle, pure_rewrite
+from nowplan.planning.rewrites import pure_rewrite
 from nowplan.planning.subgoals import ActionFacts, NodeIndex, GoalOf, action_facts, regress
 from nowplan.planning.successors import Successors
 
@@ -332,6 +332,7 @@ class _Search:
         reach = Reach(self.domain) if defer else None
         exp = 0
         regress_, forbidden, inf, push, fholds = regress, self.forbidden_first, math.inf, heapq.heappush, self.fholds
+        held = self._held  # (facts fholds found true)
         no_rewrites = not self.config.held_rewrites
         inherit_h = not callable(self.domain_h)  # (a domain's own estimate may read more than the unmet facts)
 
@@ -360,7 +361,14 @@ class _Search:
             hp, r = meta[node]
             if rewrite:
                 r += 1
-            tail = (r, idle(index, info, fholds), st)
+            idl = 1  # (rewrites.idle, inlined: once per child)
+            nf = index.by_fluent
+            for flu, _ in info.eff_fl:
+                o = nf.get(flu)
+                if o is not None and o not in held and not fholds(o):
+                    idl = 0
+                    break
+            tail = (r, idl, st)
             if ng == old:  # eager generation keeps the path it made first, and the least (r, idle, stamp)
                 if st < born[child]:
                     born[child] = st
