@@ -55,9 +55,10 @@ class PlannerConfig:
     cost_type: Literal["one", "plusone", "normal"] = "plusone"
     # regress facts that hold through zero-cost operators into other facts that hold (a "pure
     # rewrite": same cost, same unmet facts, e.g. a held same_city(p, v) into the at(p, l) it is
-    # inferred from).  Needed only by plans that undo such a fact and make it true again; without
-    # them A* meets every subset of the held facts rewritten (2^k copies of each subgoal).  False
-    # leaves them out (RCHPN's joint searches, acting/peephole.py)
+    # inferred from).  Needed only by plans that undo such a fact and make it true again.  They come
+    # last among equal (f, h) (planning/rewrites.py), yet below the optimal f (a weak estimate) A* still
+    # meets every subset of the held facts rewritten (2^k copies of each subgoal).  False leaves them
+    # out (RCHPN's joint searches, acting/peephole.py)
     held_rewrites: bool = True
     # expansions of one call over all its attempts (shortcuts and full search); 0: each attempt has
     # its own budget (shortcut_nodes, max_nodes) only.  RCHPN bounds the searches below a combined step

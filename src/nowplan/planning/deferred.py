@@ -163,19 +163,34 @@ class Reach:
                     pats.append((a.predicate, args))
         return (0.0 if cheapest == math.inf else cheapest), tuple(dict.fromkeys(pats))
 
-    def bound(self, f: int, unmet: Sequence[tuple[int, float]]) -> tuple[float, float]:
-        """``(c, b)`` for target ``f`` and the node's unmet ``(fact, explored cost)`` pairs."""
+    def bound(self, f: int, unmet: Sequence[tuple[int, float]], whole: float = 0.0) -> tuple[float, float]:
+        """``(c, b)`` for target ``f`` and the node's unmet ``(fact, explored cost)`` pairs (see :meth:`bound_all`)."""
+        c, b, _ = self.bound_all(f, unmet, whole)
+        return c, b
+
+    def bound_all(self, f: int, unmet: Sequence[tuple[int, float]], whole: float = 0.0) -> tuple[float, float, bool]:
+        """``(c, b, kept)``: ``kept`` when no achiever of ``f`` names an unmet fact of the node.
+
+        Then every child keeps all the unmet facts as they are (no child makes progress on one),
+        and ``b`` is at least ``whole``, the node's estimate of them all.
+        """
         c, pats = self(f)
         b = 0.0
         named = self._named
+        kept = True
         for u, v in unmet:
-            if v > b:
+            if v > b or kept:
                 hit = named.get((f, u))
                 if hit is None:
                     hit = named[(f, u)] = _named(self.atoms[u], pats)
                 if not hit:
-                    b = v
-        return c, b
+                    if v > b:
+                        b = v
+                else:
+                    kept = False
+        if kept and whole > b and unmet:
+            b = whole
+        return c, b, kept
 
 
 def _named(a: Atom, pats: tuple[Pattern, ...]) -> bool:

@@ -18,7 +18,6 @@ from typing import Any
 from nowplan.belief.protocols import GivesUp, ListsFacts
 from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
-from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.config import PlannerConfig, _clock
@@ -32,7 +31,8 @@ from nowplan.planning.heuristics import ground_task, relax_unsupported
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.preimage import preimage, static_drop
 from nowplan.planning.relaxed import LazyRelaxed, Supporter
-from nowplan.planning.subgoals import ActionFacts, NodeIndex, action_facts, regress
+from nowplan.planning.rewrites import pure_rewrite
+from nowplan.planning.subgoals import ActionFacts, NodeIndex, GoalOf, action_facts, regress
 from nowplan.planning.successors import Successors
 
 # the planner's logger: its fallbacks are reported where they always were
@@ -317,11 +317,18 @@ class _Search:
         Node = tuple[frozenset[int], int]
         start: Node = (root, focus0)
         h0 = self.h(root)
-        # entries (f, h, stamp, seq, node or Deferred): the stamp is eager generation's order (deferred)
+        # entries (f, h, r, idle, stamp, seq, node or Deferred), ties of (f, h) broken by (see rewrites.py):
+        # r, the pure rewrites of held facts on the path; idle, 1 if the step sets no unmet fact of its
+        # parent; the stamp, eager generation's order (deferred)
         first: Stamp = (-1, 0, 0)
-        frontier: list[tuple[float, float, Stamp, int, Node | Deferred | Postponed]] = [
-            (self.config.weight * h0, h0, first, next(counter), start)]
+        frontier: list[tuple[float, float, int, int, Stamp, int, Node | Deferred | Postponed]] = [
+            (self.config.weight * h0, h0, 0, 0, first, next(counter), start)]
         best_g: dict[Node, float] = {start: 0.0}
+        # per node pushed: its estimate and its rewrites (a pure rewrite child has its parent's unmet facts)
+        meta: dict[Node, tuple[float, int]] = {start: (h0, 0)}
+        # per node pushed: the least (r, idle, stamp) of its paths of its cost so far, its key's tail: the
+        # same in eager and deferred search (an entry that could give a lesser one comes first)
+        tails: dict[Node, tuple[int, int, Stamp]] = {start: (0, 0, first)}
         born: dict[Node, Stamp] = {start: first}
         parent: dict[Node, tuple[Node, Action] | None] = {start: None}
         closed: set[Node] = set()
@@ -332,8 +339,9 @@ class _Search:
         reach = Reach(self.domain) if defer else None
         exp = 0
         regress_, forbidden, inf, push, fholds = regress, self.forbidden_first, math.inf, heapq.heappush, self.fholds
+        held = self._held  # (facts fholds found true)
         no_rewrites = not self.config.held_rewrites
-        pure_rewrite = self.pure_rewrite
+        inherit_h = not callable(self.domain_h)  # (a domain's own estimate may read more than the unmet facts)
 
         def make(node: Node, focus: int, gcost: float, index: NodeIndex, goal_of: Callable[[], Goal], legacy: bool,
                  act: Action, info: ActionFacts, cost: float, st: Stamp) -> None:
@@ -347,7 +355,8 @@ class _Search:
                 pre = None if g is None else T.ids_of(g.atoms)
             if pre is None:
                 return
-            if no_rewrites and cost == 0.0 and pure_rewrite(node[0], pre):
+            rewrite = cost == 0.0 and pure_rewrite(node[0], pre, fholds)
+            if rewrite and no_rewrites:
                 return  # a zero-cost rewrite of held facts into held facts (PlannerConfig.held_rewrites)
             if forbidden and act.key in forbidden and self.satisfied(pre):
                 return  # it would be the plan's first step: learnt not to be refinable from here
@@ -356,34 +365,49 @@ class _Search:
             old = best_g.get(child, inf)
             if ng > old or ng == inf:  # (an infinite cost: never kept, as eager search's ng >= old)
                 return
-            if ng == old:  # eager generation keeps the path it made first
-                if st >= born[child]:
+            hp, r = meta[node]
+            if rewrite:
+                r += 1
+            idl = 1  # (rewrites.idle, inlined: once per child)
+            nf = index.by_fluent
+            for flu, _ in info.eff_fl:
+                o = nf.get(flu)
+                if o is not None and o not in held and not fholds(o):
+                    idl = 0
+                    break
+            tail = (r, idl, st)
+            if ng == old:  # eager generation keeps the path it made first, and the least (r, idle, stamp)
+                if st < born[child]:
+                    born[child] = st
+                    parent[child] = (node, act)
+                if child in closed or child not in tails or tail >= tails[child]:
                     return
-                born[child] = st
-                parent[child] = (node, act)
-                if child in closed:
-                    return
+                hh = meta[child][0]
             elif child in closed:
                 return
             else:
                 best_g[child] = ng
                 born[child] = st
                 parent[child] = (node, act)
-            self.generated += 1
-            if hvals is not None:
-                try:  # the kernel's values: every fact valued, 0 where it holds
-                    hh = sum(map(hvals, pre))
-                except IndexError:
+                self.generated += 1
+                if rewrite and inherit_h:
+                    hh = hp  # the same unmet facts: the estimate of what they cost (see rewrites.py)
+                elif hvals is not None:
+                    try:  # the kernel's values: every fact valued, 0 where it holds
+                        hh = sum(map(hvals, pre))
+                    except IndexError:
+                        hh = self.h(pre)
+                else:
                     hh = self.h(pre)
-            else:
-                hh = self.h(pre)
-            if hh == inf:
-                return  # an atom of the pre-image is unreachable
-            push(frontier, (ng + weight * hh, hh, st, next(counter), child))
+                if hh == inf:
+                    return  # an atom of the pre-image is unreachable
+            meta[child] = (hh, r)
+            tails[child] = tail
+            push(frontier, (ng + weight * hh, hh, *tail, next(counter), child))
 
         while frontier:
             top = heapq.heappop(frontier)
-            item = top[4]
+            item = top[6]
             if isinstance(item, Postponed):  # unmet facts' successors whose bound has come first
                 for act, info, cost, st in item.items:
                     make(item.node, item.focus, item.g, item.index, item.goal_of, False, act, info, cost, st)
@@ -421,17 +445,18 @@ class _Search:
             if self.now() > self.deadline:
                 return PlanStatus.TIME_LIMIT, None, f"time limit of {self.config.time_limit:g} s reached"
             gcost = best_g[node]
+            hnode, rnode = meta[node]
             if order_ids is not None and focus > 1:
                 cut = focus - 1
                 allowed = [f for f in T.sorted(fs) if pos_of(f, never) >= cut]
             else:
                 allowed = T.sorted(fs)
             index = NodeIndex(T, fs)
-            goal_of = _GoalOf(T, fs)
+            goal_of = GoalOf(T, fs)
             legacy = not root_ok and fs == root
             tried: set[int] = set()  # by identity: the grounder makes one object per instance
             here: Expansion | None = None
-            later: dict[tuple[float, float], list[tuple[int, int]]] = {}  # held targets by their bound
+            later: dict[tuple[float, float, int], list[tuple[int, int]]] = {}  # held targets by their bound
             unmet_ids: list[tuple[int, float]] | None = None  # the node's unmet facts with their explored costs
             postponed: dict[tuple[float, float], list[tuple[Action, ActionFacts, float, Stamp]]] = {}
             postpone = self.postpone_unmet and reach is not None and not legacy
@@ -440,9 +465,9 @@ class _Search:
                     if unmet_ids is None:
                         assert relaxed is not None
                         unmet_ids = [(f, relaxed.known(f)) for f in self.unmet(fs)]
-                    c, b = reach.bound(target, unmet_ids)
+                    c, b, kept = reach.bound_all(target, unmet_ids, hnode)
                     if b != inf:  # else every child keeps a fact proven unreachable
-                        later.setdefault((c, b), []).append((ti, target))
+                        later.setdefault((c, b, int(kept)), []).append((ti, target))
                     continue
                 for j, (act, info, cost) in enumerate(self._successors(target, goal_of)):
                     if id(act) in tried:
@@ -466,28 +491,19 @@ class _Search:
                             continue
                     make(node, focus, gcost, index, goal_of, legacy, act, info, cost, st)
             for (fb, b), items in postponed.items():
-                push(frontier, (fb, b, min(x[3] for x in items), next(counter),
+                push(frontier, (fb, b, rnode, 0, min(x[3] for x in items), next(counter),
                                 Postponed(node, focus, gcost, index, goal_of, items)))
             if later:
                 if here is None:
                     here = Expansion(node, focus, gcost, index, goal_of, allowed, tried, exp)
-                for (c, b), targets in later.items():  # (g + c + w·b, b) is at most each child's (f, h)
-                    push(frontier, (gcost + c + weight * b, b, (exp, targets[0][0], 0), next(counter),
+                for (c, b, kept_all), targets in later.items():  # (g + c + w·b, b, r, idle) is at most each child's key
+                    push(frontier, (gcost + c + weight * b, b, rnode, kept_all, (exp, targets[0][0], 0), next(counter),
                                     Deferred(here, targets)))
         return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"
 
     def pure_rewrite(self, fs: frozenset[int], pre: frozenset[int]) -> bool:
-        """Whether ``pre`` only trades facts of ``fs`` that hold for new facts that hold.
-
-        Through a zero-cost operator such a child has its parent's cost and unmet facts, and asks
-        more of the belief (it names facts the parent does not); a child that only drops held
-        facts (``pre`` a subset of ``fs``) is weaker than its parent and is not a pure rewrite.
-        """
-        new = pre - fs
-        if not new:
-            return False
-        fholds = self.fholds
-        return all(fholds(f) for f in new) and all(fholds(f) for f in fs - pre)
+        """Whether ``pre`` only trades facts of ``fs`` that hold for new facts that hold (:func:`rewrites.pure_rewrite`)."""
+        return pure_rewrite(fs, pre, self.fholds)
 
     def _listed_before(self, x: Expansion, act: Action, info: ActionFacts, ti: int) -> tuple[int, int] | None:
         """``(target, achiever)`` where ``act`` comes first among the held targets before ``x.allowed[ti]``."""
@@ -525,20 +541,3 @@ class _Search:
             steps.append((act, T.goal(prev[0])))
             cur = prev
         return steps
-
-
-class _GoalOf:
-    """A node's subgoal as a :class:`Goal`, made on the first call (for generators)."""
-
-    __slots__ = ("table", "fs", "goal")
-
-    def __init__(self, table: FactTable, fs: frozenset[int]) -> None:
-        self.table = table
-        self.fs = fs
-        self.goal: Goal | None = None
-
-    def __call__(self) -> Goal:
-        if self.goal is None:
-            self.goal = self.table.goal(self.fs)
-        return self.goal
-

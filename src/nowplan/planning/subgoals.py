@@ -27,6 +27,7 @@ from __future__ import annotations
 from collections.abc import Hashable
 from typing import TYPE_CHECKING
 
+from nowplan.core.atoms import Goal
 from nowplan.core.facts import FactTable
 from nowplan.core.operators import Action
 
@@ -179,3 +180,20 @@ def regress(table: FactTable, node: NodeIndex, info: ActionFacts) -> frozenset[i
                     if table.plain_conflict(n, b):
                         return None
     return (fs.difference(removed) if removed else fs).union(new.values())
+
+
+class GoalOf:
+    """A node's subgoal as a :class:`Goal`, made on the first call (for generators)."""
+
+    __slots__ = ("table", "fs", "goal")
+
+    def __init__(self, table: FactTable, fs: frozenset[int]) -> None:
+        self.table = table
+        self.fs = fs
+        self.goal: Goal | None = None
+
+    def __call__(self) -> Goal:
+        if self.goal is None:
+            self.goal = self.table.goal(self.fs)
+        return self.goal
+
