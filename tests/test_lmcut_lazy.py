@@ -81,9 +81,9 @@ def test_dominated_achievers_leave_the_graph_and_the_value_stays():
     assert lmcut_part(r, goal) == lmcut_part(r, goal, prune=False) == 6.0
 
 
-def test_a_dominated_achiever_comes_back_when_its_other_target_is_needed():
-    """drop(i1) also makes near(i1) here; with near(i1) in the graph it is no longer covered by drop(i0)."""
-    dom = Domain(
+def free2_domain() -> Domain:
+    """FREE with drop2(v): it frees the hands (dominated by drop(i0)) and brings v near, which both(v) needs."""
+    return Domain(
         "free2", FREE.predicates,
         (*FREE.operators[:1],
          Operator("drop2", (v,), (Precondition(Atom("far", (v,)), 1),), (Atom("free", ()), Atom("near", (v,))),
@@ -91,6 +91,11 @@ def test_a_dominated_achiever_comes_back_when_its_other_target_is_needed():
          Operator("both", (v,), (Precondition(Atom("free", ()), 1), Precondition(Atom("near", (v,)), 1)),
                   (Atom("done", ()),), cost=1.0)),
     )
+
+
+def test_a_dominated_achiever_comes_back_when_its_other_target_is_needed():
+    """drop(i1) also makes near(i1) here; with near(i1) in the graph it is no longer covered by drop(i0)."""
+    dom = free2_domain()
     init = State([Atom("mine", ("i0",)), Atom("far", ("i1",))])
     srch = _Search(dom, {"i0": None, "i1": None}, init, flat_levels(),
                    PlannerConfig(heuristic="lmcut", lazy_relaxation=True, engine="regression"), None)

@@ -12,12 +12,11 @@ from hypothesis import strategies as st
 from nowplan.core.atoms import Atom
 from nowplan.core.domain import Domain
 from nowplan.core.levels import flat_levels
-from nowplan.core.operators import Operator, Precondition
 from nowplan.core.state import State
 from nowplan.planning.regression import PlannerConfig, plan
 from nowplan.planning.regression_search import _Search
 from nowplan.planning.relaxed import LazyRelaxed
-from tests.test_lmcut_lazy import FREE, v
+from tests.test_lmcut_lazy import FREE, free2_domain, v
 from tests.test_planner_property import FAMILIES, QUICK, level_maps
 
 CFG = PlannerConfig(heuristic="lmcut", lazy_relaxation=True, engine="regression")
@@ -44,14 +43,7 @@ def test_dominated_achievers_are_not_explored_and_the_value_stays():
 
 def test_a_parked_achiever_is_registered_once_another_fact_needs_it():
     """drop2(i1) frees the hands (dominated by drop(i0)) and brings i1 near, which ``both`` needs."""
-    dom = Domain(
-        "free2", FREE.predicates,
-        (*FREE.operators[:1],
-         Operator("drop2", (v,), (Precondition(Atom("far", (v,)), 1),), (Atom("free", ()), Atom("near", (v,))),
-                  cost=5.0),
-         Operator("both", (v,), (Precondition(Atom("free", ()), 1), Precondition(Atom("near", (v,)), 1)),
-                  (Atom("done", ()),), cost=1.0)),
-    )
+    dom = free2_domain()
     init = State([Atom("mine", ("i0",)), Atom("far", ("i1",))])
     on, off = _search(dom, ["i0", "i1"], init, True), _search(dom, ["i0", "i1"], init, False)
     done = [Atom("done", ())]
