@@ -45,13 +45,18 @@ def _all_operators(p: Problem, level: int) -> None:
     task_grounding.grounding(p.domain, p.objects, p.init, level)
 
 
-def test_a_kept_structure_gives_the_task_a_fresh_build_gives() -> None:
+def _logistics_top() -> tuple[Problem, int, Task]:
+    """Logistics p02 with its criticalities, every top-level operator grounded, and the task at the top level."""
     p = load_pddl(DATA / "logistics" / "domain.pddl", DATA / "logistics" / "p02.pddl",
                   DATA / "logistics" / "logistics.crit")
     top = p.domain.top_level
     task_grounding._CACHE.clear()
     _all_operators(p, top)
-    first = build_task(p.domain, p.objects, p.init, p.goal, LevelMap(top), lambda a: 1.0)
+    return p, top, build_task(p.domain, p.objects, p.init, p.goal, LevelMap(top), lambda a: 1.0)
+
+
+def test_a_kept_structure_gives_the_task_a_fresh_build_gives() -> None:
+    p, top, first = _logistics_top()
     # a level map that moves two actions down: only their rows change
     moved = [a for a in first.actions if not a.is_primitive(top)][:2]
     assert moved, "the test needs abstract actions at the top level"
@@ -135,12 +140,7 @@ def test_a_belief_reading_cost_is_not_state_free() -> None:
 def test_a_floored_map_moves_the_rows_of_the_floored_operator_only() -> None:
     # a floor (acting/refine.py's swaps) lowers every instance of an operator: the structure of the map
     # without it is kept and those rows are made anew, as if each instance were overridden to its level
-    p = load_pddl(DATA / "logistics" / "domain.pddl", DATA / "logistics" / "p02.pddl",
-                  DATA / "logistics" / "logistics.crit")
-    top = p.domain.top_level
-    task_grounding._CACHE.clear()
-    _all_operators(p, top)
-    plain = build_task(p.domain, p.objects, p.init, p.goal, LevelMap(top), lambda a: 1.0)
+    p, top, plain = _logistics_top()
     name = next(a.name for a in plain.actions if not a.is_primitive(top))
     floored = LevelMap(top, floors=frozenset({(name, -1)}))
     kept = build_task(p.domain, p.objects, p.init, p.goal, floored, lambda a: 1.0)
