@@ -25,6 +25,7 @@ from typing import Any
 
 from nowplan.errors import NowplanError, ScenarioError
 from nowplan.experiments.records import RunConfig
+from nowplan.experiments.runner import default_start_method, die_with_parent
 
 log = logging.getLogger(__name__)
 
@@ -61,6 +62,7 @@ def refusal(configs: list[RunConfig]) -> str | None:
 
 
 def _worker(conn: Connection, configs: list[dict[str, Any]]) -> None:
+    die_with_parent()  # as the runs' workers: a killed sweep leaves no check behind
     try:
         conn.send(refusal([RunConfig.from_dict(c) for c in configs]))
     finally:
@@ -75,8 +77,7 @@ def check_runs(configs: list[RunConfig], timeout: float, start_method: str | Non
     """
     if not configs:
         return
-    methods = mp.get_all_start_methods()
-    ctx: Any = mp.get_context(start_method or ("fork" if "fork" in methods else "spawn"))
+    ctx: Any = mp.get_context(start_method or default_start_method())
     reader, writer = ctx.Pipe(duplex=False)
     proc = ctx.Process(target=_worker, args=(writer, [c.to_dict() for c in configs]), daemon=True,
                        name=f"nowplan-precheck-{os.getpid()}")

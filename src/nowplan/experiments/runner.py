@@ -89,7 +89,12 @@ def execute_dict(config: dict[str, Any]) -> dict[str, Any]:
 # -- local worker processes -------------------------------------------------------------
 
 
-def _die_with_parent() -> None:
+def default_start_method() -> str:
+    """fork where there is one: cheap, and workers see domains registered at run time (tests, notebooks)."""
+    return "fork" if "fork" in mp.get_all_start_methods() else "spawn"
+
+
+def die_with_parent() -> None:
     """Linux: have the kernel kill this worker if the sweep process dies (even by SIGKILL)."""
     if not sys.platform.startswith("linux"):
         return
@@ -104,7 +109,7 @@ def _die_with_parent() -> None:
 
 
 def _worker(conn: Connection, config: dict[str, Any], parent_pid: int) -> None:
-    _die_with_parent()
+    die_with_parent()
     if os.getppid() != parent_pid:  # the parent died before prctl took effect
         os._exit(1)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides what an interrupt means
@@ -130,9 +135,7 @@ class LocalBackend:
     def __init__(self, jobs: int | None = None, start_method: str | None = None, grace: float = GRACE_S) -> None:
         self.jobs = max(1, jobs or os.cpu_count() or 1)
         self.grace = grace
-        methods = mp.get_all_start_methods()
-        # fork is cheap and lets workers see domains registered at run time (tests, notebooks)
-        self.start_method = start_method or ("fork" if "fork" in methods else "spawn")
+        self.start_method = start_method or default_start_method()
 
     def run(self, configs: Sequence[RunConfig], on_record: OnRecord) -> None:
         ctx: Any = mp.get_context(self.start_method)
