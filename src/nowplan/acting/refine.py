@@ -287,9 +287,11 @@ def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Pla
 def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet: list[Atom], forbidden: frozenset[Any],
            holds: Any, depth: int) -> list[Action] | None:
     """The cheapest shortest chain ``[b, …, a]`` (at most ``depth`` actions) after which ``g``'s
-    unmet atoms hold: ``a`` adds them all and destroys no atom of ``g``, and each action's
-    preconditions hold now or are all added by the action before it; the first needs only what
-    holds now and may not be ``forbidden``."""
+    unmet atoms hold: each atom an action needs (its preconditions not holding now, and what its
+    successor needs and it does not add) is added by one of the actions before it and destroyed by
+    none in between; ``a`` destroys no atom of ``g``; the first needs only what holds now and may not
+    be ``forbidden``.  (Satellite: ``take_image`` needs its instrument calibrated and powered on;
+    ``calibrate`` adds the one and needs the other, which ``switch_on`` adds before it.)"""
     refined_ops = {key[0] for key, _ in levels.overrides}
     rows: dict[Any, tuple[frozenset[Atom], tuple[Atom, ...]]] = {}
 
@@ -302,25 +304,54 @@ def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet
             r = rows[a.key] = (effects, a.preconditions(levels.level(a)))
         return r
 
-    def candidate(a: Action, need: list[Atom], table: dict[Any, Atom]) -> list[Atom] | None:
-        """``a``'s preconditions not holding now, if ``a`` adds all of ``need`` and destroys none of
-        ``table``'s atoms; else None."""
+    def candidate(a: Action, need: list[Atom], table: dict[Any, Atom], carry: bool) -> list[Atom] | None:
+        """What must hold before ``a``: its preconditions not holding now and, with ``carry``, the atoms
+        of ``need`` it does not add (left to the actions before it; it must not destroy them or need
+        their opposites); None if ``a`` adds none of ``need`` (all of it without ``carry``) or destroys
+        one of ``table``'s atoms."""
         effects, pre = row(a)
-        for u in need:
-            if u not in effects:
-                return None
+        missing = [u for u in need if u not in effects]
+        if missing and (not carry or len(missing) == len(need)):
+            return None
         for e in effects:
             want = table.get(e.key)
             if want is not None and want.value != e.value:
                 return None
         if a.key[0] in refined_ops and levels.floored([a]) is not levels:
             return None  # a swap (refine_without_swaps)
-        return [p for p in pre if not holds(p)]
+        out = [p for p in pre if not holds(p)]
+        if missing:
+            mine = {p.key: p for p in pre}
+            for u in missing:
+                other = mine.get(u.key)
+                if other is None:
+                    out.append(u)
+                elif other.value != u.value:
+                    return None  # a needs the opposite of what it must leave as it found it
+        return out
+
+    hidden: dict[Any, list[Atom]] = {}
+
+    def hidden_now(a: Action) -> list[Atom]:
+        """``a``'s preconditions hidden at its level that hold now: an action put before it must not
+        destroy them (gripper: no move away before a pick that is still abstract)."""
+        h = hidden.get(a.key)
+        if h is None:
+            kept = set(row(a)[1])
+            h = hidden[a.key] = [p for p in a.preconditions(None) if p not in kept and holds(p)]
+        return h
 
     applicable: dict[Atom, list[Action]] = {}
 
     def achievers(need: list[Atom], start: bool) -> list[Action]:
-        """The actions adding one of ``need`` (see :meth:`AtomAchievers.one_of`), applicable now if ``start``."""
+        """The actions adding one of ``need`` (see :meth:`AtomAchievers.one_of`), applicable now if
+        ``start``; else (a step that may leave atoms to the steps before it) those adding any of them."""
+        if not start and len(need) > 1:
+            out: dict[Any, Action] = {}
+            for v in need:
+                for a in index.of(v):
+                    out.setdefault(a.key, a)
+            return list(out.values())
         u, acts = index.one_of(need)
         if not start:
             return acts
@@ -332,7 +363,7 @@ def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet
     table = g.by_key()
     layer: list[tuple[float, list[Action], list[Atom]]] = []  # (cost, chain, what its first action needs)
     for a in achievers(unmet, depth == 1):
-        c = candidate(a, unmet, table)
+        c = candidate(a, unmet, table, depth > 1)
         if c is not None:
             layer.append((a.cost(ex.belief), [a], c))
     for k in range(depth):
@@ -346,8 +377,12 @@ def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet
             if not need:
                 continue  # a forbidden start: longer chains before it are no shorter way round
             pre_table = {p.key: p for p in row(ch[0])[1]}
-            for b in achievers(need, k + 2 == depth):
-                c = candidate(b, need, pre_table)
+            pre_table.update((u.key, u) for u in need)  # atoms carried past ch[0] too
+            for a in ch:  # and what the chain's abstract steps need at lower levels and have now
+                pre_table.update((h.key, h) for h in hidden_now(a) if h.key not in pre_table)
+            start = k + 2 == depth
+            for b in achievers(need, start):
+                c = candidate(b, need, pre_table, not start)
                 if c is not None:
                     nxt.append((cost + b.cost(ex.belief), [b, *ch], c))
         layer = nxt

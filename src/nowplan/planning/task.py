@@ -121,7 +121,7 @@ def pre_rows(task: Task) -> list[Sequence[int]]:
     if rows is None:
         by_pre = task.by_pre
         rows = task.memo["pre_rows"] = [by_pre.get(f, ()) for f in range(len(task.facts))]
-    return rows  # type: ignore[no-any-return]
+    return rows
 
 
 @dataclass
