@@ -278,6 +278,9 @@ def main(argv: list[str] | None = None) -> int:
                     help="the planner's engine at every level (default forward; 'auto' is the executive's "
                          "default: forward for concrete calls, regression for abstract ones)")
     ap.add_argument("--out", type=Path, default=OUT)
+    ap.add_argument("--tables-from", type=Path, nargs="+", default=[], metavar="CSV",
+                    help="run nothing: write the tables of these CSVs (parts of one measurement, e.g. split "
+                         "by domain to keep each command short) into --out")
     args = ap.parse_args(argv)
     domains = [d for d in args.domains.split(",") if d]
     args.larger = args.larger or args.larger_only
@@ -285,8 +288,12 @@ def main(argv: list[str] | None = None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     rows: list[dict[str, Any]] = []
     t_start = time.perf_counter()
+    for part in args.tables_from:
+        with part.open() as fh:
+            rows += list(csv.DictReader(fh))
     with tempfile.TemporaryDirectory() as tmp:
-        for suite, d, inst, dom, prob, crit in cases(domains, args.larger, Path(tmp), args.largest):
+        todo = [] if args.tables_from else cases(domains, args.larger, Path(tmp), args.largest)
+        for suite, d, inst, dom, prob, crit in todo:
             only = [t for t, flag in (("larger", args.larger_only), ("largest", args.largest_only)) if flag]
             if only and tier(inst) not in only:
                 continue
@@ -313,9 +320,9 @@ def main(argv: list[str] | None = None) -> int:
           f"{time.perf_counter() - t_start:.0f} s in all (2-core shared VM; compare ratios within this run).",
           "Sums of planning CPU, wall and cost are over the instances that every setting of the domain solved.",
           "", summarize(rows), "", "## Whole runs per tier", "", whole_run_counts(rows), ""]
-    if args.larger:
+    if args.larger or any(tier(r["instance"]) == "larger" for r in rows):
         md += ["## Larger instances, one by one", "", larger_table(rows), ""]
-    if args.largest:
+    if args.largest or any(tier(r["instance"]) == "largest" for r in rows):
         md += ["## Largest instances, one by one", "", larger_table(rows, "largest-"), ""]
     (args.out / "criticality_auto.md").write_text("\n".join(md))
     print("\n".join(md))
