@@ -3,7 +3,8 @@
 Runs the executive (``nowplan run``'s code, in process, deterministic world)
 on every shipped PDDL problem (src/nowplan/data/pddl) and on the classical
 benchmark domains (benchmarks/classical: the checked-in p01-p05 and, with
-``--larger``, a few larger generated instances), under three settings:
+``--larger``, a few larger generated instances; with ``--largest``, instances on which flat planning's
+whole run takes at least 1 s), under three settings:
 
 * ``flat``: strategy ``flat`` (one concrete plan, then execution);
 * ``auto``: strategy ``hpn+refine-flat`` with ``--criticality auto``;
@@ -23,7 +24,8 @@ as a fresh ``nowplan run`` process does), wall time, execution cost,
 plans made, planner failures, and the number of levels of the automatic hierarchy.  Writes ``criticality_auto.csv`` and
 ``criticality_auto.md`` (per-domain summary computed from the CSV) into --out.
 
-    PYTHONPATH=src .venv/bin/python benchmarks/criticality_auto.py [--larger | --larger-only] [--time-limit 20]
+    PYTHONPATH=src .venv/bin/python benchmarks/criticality_auto.py [--larger | --larger-only] [--largest | --largest-only]
+        [--time-limit 20]
         [--domains gripper,logistics] [--out benchmarks/results/criticality_auto]
 """
 
@@ -74,6 +76,21 @@ LARGER: dict[str, list[tuple[dict[str, int], int]]] = {
                   ({"drivers": 4, "trucks": 4, "packages": 16, "locations": 14}, 7)],
     "satellite": [({"satellites": 3, "instruments": 2, "modes": 3, "stars": 4, "targets": 8, "images": 8}, 7)],
 }
+# the largest instances (--largest): sized by the rule "flat planning's whole run takes >= 1 s CPU", with
+# flat planning only, before any auto-HPN run on them (benchmarks/results/criticality_auto_sizing)
+LARGEST: dict[str, list[tuple[dict[str, int], int]]] = {
+    "gripper": [({"balls": 250}, 0), ({"balls": 300}, 0)],
+    "logistics": [({"cities": 8, "places": 5, "airplanes": 4, "packages": 40}, 7),
+                  ({"cities": 10, "places": 4, "airplanes": 4, "packages": 45}, 7)],
+    "miconic": [({"passengers": 150, "floors": 150}, 10), ({"passengers": 200, "floors": 200}, 10)],
+    "zenotravel": [({"aircraft": 8, "persons": 50, "cities": 15}, 7), ({"aircraft": 10, "persons": 80, "cities": 20}, 7)],
+    "depots": [({"depots": 4, "distributors": 4, "trucks": 4, "crates": 12}, 7),
+               ({"depots": 5, "distributors": 5, "trucks": 5, "crates": 15}, 7)],
+    "driverlog": [({"drivers": 6, "trucks": 6, "packages": 30, "locations": 20}, 7),
+                  ({"drivers": 7, "trucks": 7, "packages": 40, "locations": 25}, 7)],
+    "satellite": [({"satellites": 8, "instruments": 3, "modes": 4, "stars": 8, "targets": 50, "images": 50}, 7),
+                  ({"satellites": 10, "instruments": 3, "modes": 4, "stars": 10, "targets": 80, "images": 80}, 7)],
+}
 
 
 def run_one(domain: Path, problem: Path, criticality: str | None, strategy: str, limit: float,
@@ -107,7 +124,8 @@ def run_one(domain: Path, problem: Path, criticality: str | None, strategy: str,
     }
 
 
-def cases(domains: list[str], larger: bool, tmp: Path) -> list[tuple[str, str, str, Path, Path, Path | None]]:
+def cases(domains: list[str], larger: bool, tmp: Path,
+          largest: bool = False) -> list[tuple[str, str, str, Path, Path, Path | None]]:
     out: list[tuple[str, str, str, Path, Path, Path | None]] = []
     for d in sorted(p.name for p in SHIPPED.iterdir() if p.is_dir()):
         if domains and d not in domains:
@@ -125,6 +143,12 @@ def cases(domains: list[str], larger: bool, tmp: Path) -> list[tuple[str, str, s
                 path = tmp / f"{d}-large{k}.pddl"
                 path.write_text(generate(d, params, seed))
                 name = "large-" + "-".join(f"{v}" for v in params.values())
+                out.append(("classical", d, name, domain_file(d), path, None))
+        if largest:
+            for k, (params, seed) in enumerate(LARGEST.get(d, []), start=1):
+                path = tmp / f"{d}-largest{k}.pddl"
+                path.write_text(generate(d, params, seed))
+                name = "largest-" + "-".join(f"{v}" for v in params.values())
                 out.append(("classical", d, name, domain_file(d), path, None))
     return out
 
@@ -155,7 +179,44 @@ def summarize(rows: list[dict[str, Any]]) -> str:
     return "\n".join(lines)
 
 
-def larger_table(rows: list[dict[str, Any]]) -> str:
+def tier(instance: str) -> str:
+    """The tier of an instance name: ``largest``, ``larger`` or ``base`` (shipped and checked-in problems)."""
+    return ("largest" if instance.startswith("largest-") else "larger" if instance.startswith("large-")
+            else "base")
+
+
+def whole_run_counts(rows: list[dict[str, Any]]) -> str:
+    """Per tier: on how many instances auto-HPN's whole run (parse to goal) takes less CPU than flat
+    planning's (or reaches the goal where flat planning fails), and how many it reaches where flat does."""
+    lines = ["| tier | instances | auto reaches where flat does | auto whole run below flat | "
+             "hand whole run below flat |", "|---|---|---|---|---|"]
+    for t in ("base", "larger", "largest"):
+        n = ok = below = 0
+        hand_n = hand_below = 0
+        for r in rows:
+            if r["setting"] != "flat" or tier(r["instance"]) != t:
+                continue
+            same = [x for x in rows if x["domain"] == r["domain"] and x["instance"] == r["instance"]
+                    and x["suite"] == r["suite"]]
+            a = next((x for x in same if x["setting"] == "auto"), None)
+            if a is None:
+                continue
+            n += 1
+            flat_ok = r["outcome"] == "reached"
+            ok += a["outcome"] == "reached" or not flat_ok
+            below += a["outcome"] == "reached" and (not flat_ok or float(a["total_cpu_s"]) < float(r["total_cpu_s"]))
+            h = next((x for x in same if x["setting"] == "hand"), None)
+            if h is not None:
+                hand_n += 1
+                hand_below += h["outcome"] == "reached" and (
+                    not flat_ok or float(h["total_cpu_s"]) < float(r["total_cpu_s"]))
+        if n:
+            lines.append(f"| {t} | {n} | {ok} of {n} | {below} of {n} | "
+                         f"{f'{hand_below} of {hand_n}' if hand_n else '–'} |")
+    return "\n".join(lines)
+
+
+def larger_table(rows: list[dict[str, Any]], prefix: str = "large-") -> str:
     """Issue 18's target on the larger instances: auto-HPN's planning CPU against flat's, instance by
     instance, without and with the CPU of ``prepare_problem`` (the run's set-up under ``--criticality
     auto``; flat planning runs no such set-up: its one planner call grounds the problem itself), and
@@ -166,7 +227,7 @@ def larger_table(rows: list[dict[str, Any]]) -> str:
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     n = lower = lower_prep = lower_whole = 0
     for r in rows:
-        if r["setting"] != "flat" or not r["instance"].startswith("large-"):
+        if r["setting"] != "flat" or not r["instance"].startswith(prefix):
             continue
         a = next((x for x in rows if x["setting"] == "auto" and x["domain"] == r["domain"]
                   and x["instance"] == r["instance"] and x["suite"] == r["suite"]), None)
@@ -199,7 +260,7 @@ def larger_table(rows: list[dict[str, Any]]) -> str:
     lines += ["", f"auto-HPN reaches the goal with less planning CPU than flat planning (or where flat fails) "
                   f"on {lower} of {n} larger instances, on {lower_prep} of {n} counting its set-up "
                   f"(prepare_problem) too, and with less CPU for the whole run (parse to goal, both "
-                  f"settings) on {lower_whole} of {n}; the target (issue 18) asks for all of them."]
+                  f"settings) on {lower_whole} of {n} ({prefix}* instances); the target (issue 18) asks for all of them."]
     return "\n".join(lines)
 
 
@@ -209,20 +270,32 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--larger", action="store_true", help="add the larger generated instances (LARGER)")
     ap.add_argument("--larger-only", action="store_true",
                     help="only the larger generated instances (implies --larger)")
+    ap.add_argument("--largest", action="store_true",
+                    help="add the largest generated instances (LARGEST: flat planning takes >= 1 s)")
+    ap.add_argument("--largest-only", action="store_true", help="only the largest generated instances")
     ap.add_argument("--time-limit", type=float, default=20.0, help="wall-clock limit per run (s)")
     ap.add_argument("--engine", choices=("auto", "forward", "regression"), default="forward",
                     help="the planner's engine at every level (default forward; 'auto' is the executive's "
                          "default: forward for concrete calls, regression for abstract ones)")
     ap.add_argument("--out", type=Path, default=OUT)
+    ap.add_argument("--tables-from", type=Path, nargs="+", default=[], metavar="CSV",
+                    help="run nothing: write the tables of these CSVs (parts of one measurement, e.g. split "
+                         "by domain to keep each command short) into --out")
     args = ap.parse_args(argv)
     domains = [d for d in args.domains.split(",") if d]
     args.larger = args.larger or args.larger_only
+    args.largest = args.largest or args.largest_only
     args.out.mkdir(parents=True, exist_ok=True)
     rows: list[dict[str, Any]] = []
     t_start = time.perf_counter()
+    for part in args.tables_from:
+        with part.open() as fh:
+            rows += list(csv.DictReader(fh))
     with tempfile.TemporaryDirectory() as tmp:
-        for suite, d, inst, dom, prob, crit in cases(domains, args.larger, Path(tmp)):
-            if args.larger_only and not inst.startswith("large-"):
+        todo = [] if args.tables_from else cases(domains, args.larger, Path(tmp), args.largest)
+        for suite, d, inst, dom, prob, crit in todo:
+            only = [t for t, flag in (("larger", args.larger_only), ("largest", args.largest_only)) if flag]
+            if only and tier(inst) not in only:
                 continue
             settings: list[tuple[str, str | None, str]] = [("flat", None, "flat"),
                                                            ("auto", "auto", "hpn+refine-flat")]
@@ -246,9 +319,11 @@ def main(argv: list[str] | None = None) -> int:
           f"`{cmd.strip()}` at {commit}, {datetime.date.today()}, "
           f"{time.perf_counter() - t_start:.0f} s in all (2-core shared VM; compare ratios within this run).",
           "Sums of planning CPU, wall and cost are over the instances that every setting of the domain solved.",
-          "", summarize(rows), ""]
-    if args.larger:
+          "", summarize(rows), "", "## Whole runs per tier", "", whole_run_counts(rows), ""]
+    if args.larger or any(tier(r["instance"]) == "larger" for r in rows):
         md += ["## Larger instances, one by one", "", larger_table(rows), ""]
+    if args.largest or any(tier(r["instance"]) == "largest" for r in rows):
+        md += ["## Largest instances, one by one", "", larger_table(rows, "largest-"), ""]
     (args.out / "criticality_auto.md").write_text("\n".join(md))
     print("\n".join(md))
     return 0

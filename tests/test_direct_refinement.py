@@ -89,13 +89,44 @@ def test_a_drop_in_the_other_room_moves_the_robot_first() -> None:
     assert plan.steps[-1].goal == goal
 
 
-def test_no_chain_when_one_action_cannot_supply_what_the_step_exposes() -> None:
-    # the ball still lies in room a: drop needs carry (pick) and at-robby roomb (move), two achievers
+def test_what_the_step_needs_may_come_from_two_actions() -> None:
+    # the ball still lies in room a: drop needs carry (pick) and at-robby roomb (move), two achievers;
+    # move adds the one and leaves the other to pick before it
     prob = gripper()
     drop = act(prob, "drop", "ball1", "roomb", "left")
     levels = LevelMap(prob.domain.top_level).next_level(drop)
     facts = [atom("at-robby", "rooma"), atom("free", "left"), atom("free", "right"),
              atom("at", "ball1", "rooma"), atom("at", "ball2", "rooma")]
+    ex = executive(prob, facts)
+    goal = Goal.of([atom("at", "ball1", "roomb")])
+    plan = direct_refinement(ex, goal, levels, drop)
+    assert plan is not None
+    assert [s.action.pddl() for s in plan.steps if s.action is not None] == [
+        "(pick ball1 rooma left)", "(move rooma roomb)", "(drop ball1 roomb left)"]
+    assert ex.domain.satisfies(ex.belief, plan.preimage(0))
+    assert plan.steps[-1].goal == goal
+
+
+def test_no_action_before_an_abstract_step_destroys_what_it_needs_later() -> None:
+    # the chain [move, pick, drop] is as cheap as [pick, move, drop] and valid at these levels (pick's
+    # at-robby is hidden), but the move would undo what the abstract pick needs once refined
+    prob = gripper()
+    drop = act(prob, "drop", "ball1", "roomb", "left")
+    levels = LevelMap(prob.domain.top_level).next_level(drop)
+    facts = [atom("at-robby", "rooma"), atom("free", "left"), atom("free", "right"),
+             atom("at", "ball1", "rooma")]
+    plan = direct_refinement(executive(prob, facts), Goal.of([atom("at", "ball1", "roomb")]), levels, drop)
+    assert plan is not None
+    steps = [s.action.pddl() for s in plan.steps if s.action is not None]
+    assert steps.index("(pick ball1 rooma left)") < steps.index("(move rooma roomb)")
+
+
+def test_a_chain_never_starts_with_an_action_that_does_not_apply_now() -> None:
+    # nothing adds carry(ball1, left) from here (the ball is nowhere): no chain
+    prob = gripper()
+    drop = act(prob, "drop", "ball1", "roomb", "left")
+    levels = LevelMap(prob.domain.top_level).next_level(drop)
+    facts = [atom("at-robby", "rooma"), atom("free", "left"), atom("free", "right")]
     assert direct_refinement(executive(prob, facts), Goal.of([atom("at", "ball1", "roomb")]), levels, drop) is None
 
 

@@ -1,9 +1,11 @@
 from __future__ import annotations
 
+import gc
 import json
 
 import pytest
 
+from nowplan.acting.hpn import Executive
 from nowplan.acting.metrics import Outcome
 from nowplan.acting.run import run_episode
 from nowplan.acting.strategy import parse_strategy
@@ -112,3 +114,39 @@ def test_exogenous_changes_move_only_packages():
             ep.world.state = ep.world.state.apply(ep.world.exogenous(ep.world.state, ep.world.rng))
         after = {a for a in ep.world.state.atoms() if a.args and a.args[0] in vehicles}
         assert before == after
+
+
+def test_run_freezes_the_heap_it_starts_with_and_unfreezes_it_after(monkeypatch):
+    """The objects alive when the run starts are out of the collector's generations during the run
+    (acting/run.py), and back after it, also when the run raises."""
+    seen: list[int] = []
+    run = Executive.run
+
+    def spy(self):
+        seen.append(gc.get_freeze_count())
+        return run(self)
+
+    monkeypatch.setattr(Executive, "run", spy)
+    assert gc.get_freeze_count() == 0
+    m = run_episode(episode("small", 1), parse_strategy("hpn"), seed=1)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert seen and seen[0] > 0
+    assert gc.get_freeze_count() == 0
+
+    def boom(self):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(Executive, "run", boom)
+    with pytest.raises(RuntimeError):
+        run_episode(episode("small", 1), parse_strategy("hpn"), seed=1)
+    assert gc.get_freeze_count() == 0
+
+
+def test_run_leaves_a_callers_freeze_as_it_is():
+    gc.freeze()
+    try:
+        m = run_episode(episode("small", 1), parse_strategy("hpn"), seed=1)
+        assert m.outcome is Outcome.REACHED, m.reason
+        assert gc.get_freeze_count() > 0  # not unfrozen (frozen objects freed meanwhile leave the count)
+    finally:
+        gc.unfreeze()

@@ -93,7 +93,7 @@ class Executive:
         self._last_status: PlanStatus | None = None
         self._last_failure = ""
         self._made: dict[int, dict[str, Any]] = {}  # plans made but not pushed yet
-        self._atom_text: dict[Any, tuple[tuple[str, str, str], str]] = {}  # Plan.to_json's, across plans
+        self._atom_text: dict[Any, Any] = {}  # Plan.to_json's, across plans
         self.mechanisms = strategy.mechanisms()
         self.on_action = on_action  # observers (e.g. a renderer); never change control flow
         # refinements of each step of each plan (by content, see refinement_key) since the last

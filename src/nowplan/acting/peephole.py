@@ -77,7 +77,7 @@ class Peephole(Mechanism):
         self._given_up: set[Any] = set()
         # each pre-image atom's order key and text for the rewritten plans' trace records
         # (``Plan.to_json``'s ``made``): consecutive rewrites share most atoms
-        self._atom_text: dict[Any, tuple[tuple[str, str, str], str]] = {}
+        self._atom_text: dict[Any, Any] = {}
 
     def _failed_now(self, ex: Executive) -> list[frozenset[Any]]:
         """The combinations that failed in the current belief (forgotten after each action)."""

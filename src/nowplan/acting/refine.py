@@ -207,6 +207,7 @@ _NO_ACTIONS: list[Action] = []  # (never changed: the answer for an atom no acti
 
 # the longest refinement made directly: ω with the actions before it that achieve what it exposes
 DIRECT_STEPS = 4
+CARRY_STEPS = 3  # chains whose steps leave atoms to earlier ones: at most CARRY_STEPS - 1 before the refined step
 
 
 def direct_refinement(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Plan | None:
@@ -264,8 +265,15 @@ def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Pla
             return None
         found = None
         index = ex.achievers.lookup(ex)
-        for depth in range(1, DIRECT_STEPS):  # iterative deepening: only a chain's start must hold now
-            found = _chain(ex, index, levels, g1, unmet, forbidden, holds, depth)
+        # iterative deepening (only a chain's start must hold now), first over chains whose every step
+        # adds all its successor needs, then over those of two steps before the refined one that may
+        # leave atoms to the step before them (more candidates per step: tried only where the first kind
+        # has no chain, and not deeper: on driverlog, deeper ones cost 3x the chain search for no chain)
+        for carry in (False, True):
+            for depth in (range(2, CARRY_STEPS) if carry else range(1, DIRECT_STEPS)):
+                found = _chain(ex, index, levels, g1, unmet, forbidden, holds, depth, carry)
+                if found is not None:
+                    break
             if found is not None:
                 break
         if found is None:
@@ -285,11 +293,14 @@ def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Pla
 
 
 def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet: list[Atom], forbidden: frozenset[Any],
-           holds: Any, depth: int) -> list[Action] | None:
+           holds: Any, depth: int, carry: bool = False) -> list[Action] | None:
     """The cheapest shortest chain ``[b, …, a]`` (at most ``depth`` actions) after which ``g``'s
-    unmet atoms hold: ``a`` adds them all and destroys no atom of ``g``, and each action's
-    preconditions hold now or are all added by the action before it; the first needs only what
-    holds now and may not be ``forbidden``."""
+    unmet atoms hold: each action's preconditions hold now or are all added by the action before it
+    (with ``carry``: each atom an action needs, its preconditions not holding now and what its
+    successor needs and it does not add, is added by one of the actions before it and destroyed by
+    none in between); ``a`` destroys no atom of ``g``; the first needs only what holds now and may not
+    be ``forbidden``.  (Satellite: ``take_image`` needs its instrument calibrated and powered on;
+    ``calibrate`` adds the one and needs the other, which ``switch_on`` adds before it.)"""
     refined_ops = {key[0] for key, _ in levels.overrides}
     rows: dict[Any, tuple[frozenset[Atom], tuple[Atom, ...]]] = {}
 
@@ -302,25 +313,54 @@ def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet
             r = rows[a.key] = (effects, a.preconditions(levels.level(a)))
         return r
 
-    def candidate(a: Action, need: list[Atom], table: dict[Any, Atom]) -> list[Atom] | None:
-        """``a``'s preconditions not holding now, if ``a`` adds all of ``need`` and destroys none of
-        ``table``'s atoms; else None."""
+    def candidate(a: Action, need: list[Atom], table: dict[Any, Atom], carry: bool) -> list[Atom] | None:
+        """What must hold before ``a``: its preconditions not holding now and, with ``carry``, the atoms
+        of ``need`` it does not add (left to the actions before it; it must not destroy them or need
+        their opposites); None if ``a`` adds none of ``need`` (all of it without ``carry``) or destroys
+        one of ``table``'s atoms."""
         effects, pre = row(a)
-        for u in need:
-            if u not in effects:
-                return None
+        missing = [u for u in need if u not in effects]
+        if missing and (not carry or len(missing) == len(need)):
+            return None
         for e in effects:
             want = table.get(e.key)
             if want is not None and want.value != e.value:
                 return None
         if a.key[0] in refined_ops and levels.floored([a]) is not levels:
             return None  # a swap (refine_without_swaps)
-        return [p for p in pre if not holds(p)]
+        out = [p for p in pre if not holds(p)]
+        if missing:
+            mine = {p.key: p for p in pre}
+            for u in missing:
+                other = mine.get(u.key)
+                if other is None:
+                    out.append(u)
+                elif other.value != u.value:
+                    return None  # a needs the opposite of what it must leave as it found it
+        return out
+
+    hidden: dict[Any, list[Atom]] = {}
+
+    def hidden_now(a: Action) -> list[Atom]:
+        """``a``'s preconditions hidden at its level that hold now: an action put before it must not
+        destroy them (gripper: no move away before a pick that is still abstract)."""
+        h = hidden.get(a.key)
+        if h is None:
+            kept = set(row(a)[1])
+            h = hidden[a.key] = [p for p in a.preconditions(None) if p not in kept and holds(p)]
+        return h
 
     applicable: dict[Atom, list[Action]] = {}
 
     def achievers(need: list[Atom], start: bool) -> list[Action]:
-        """The actions adding one of ``need`` (see :meth:`AtomAchievers.one_of`), applicable now if ``start``."""
+        """The actions adding one of ``need`` (see :meth:`AtomAchievers.one_of`), applicable now if
+        ``start``; else (a step that may leave atoms to the steps before it) those adding any of them."""
+        if carry and not start and len(need) > 1:
+            out: dict[Any, Action] = {}
+            for v in need:
+                for a in index.of(v):
+                    out.setdefault(a.key, a)
+            return list(out.values())
         u, acts = index.one_of(need)
         if not start:
             return acts
@@ -332,7 +372,7 @@ def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet
     table = g.by_key()
     layer: list[tuple[float, list[Action], list[Atom]]] = []  # (cost, chain, what its first action needs)
     for a in achievers(unmet, depth == 1):
-        c = candidate(a, unmet, table)
+        c = candidate(a, unmet, table, carry and depth > 1)
         if c is not None:
             layer.append((a.cost(ex.belief), [a], c))
     for k in range(depth):
@@ -346,8 +386,13 @@ def _chain(ex: Executive, index: AtomAchievers, levels: LevelMap, g: Goal, unmet
             if not need:
                 continue  # a forbidden start: longer chains before it are no shorter way round
             pre_table = {p.key: p for p in row(ch[0])[1]}
-            for b in achievers(need, k + 2 == depth):
-                c = candidate(b, need, pre_table)
+            pre_table.update((u.key, u) for u in need)  # atoms carried past ch[0] too
+            if carry:  # and what the chain's abstract steps need at lower levels and have now
+                for a in ch:
+                    pre_table.update((h.key, h) for h in hidden_now(a) if h.key not in pre_table)
+            start = k + 2 == depth
+            for b in achievers(need, start):
+                c = candidate(b, need, pre_table, carry and not start)
                 if c is not None:
                     nxt.append((cost + b.cost(ex.belief), [b, *ch], c))
         layer = nxt

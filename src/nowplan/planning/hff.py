@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Literal
 
 from nowplan.planning.axioms import kernel_axioms, relaxed_task, rule_costs
 from nowplan.planning.native import kernel_class
-from nowplan.planning.task import Task
+from nowplan.planning.task import Task, pre_rows
 
 if TYPE_CHECKING:
     from nowplan.planning._kernel import Kernel
@@ -65,7 +65,7 @@ class RelaxedHeuristic:
         nactions, axioms = kernel_axioms(task)
         self.native: Kernel | None = None if cls is None else cls(
             self.nfacts, relaxed.pre, relaxed.add, relaxed.dele, self.acost, task.goal,
-            [relaxed.by_pre.get(f, ()) for f in range(self.nfacts)], relaxed.no_pre, kind,
+            pre_rows(relaxed), relaxed.no_pre, kind,
             nactions=nactions, axioms=axioms)
 
     def evaluate(self, state: frozenset[int]) -> tuple[float, list[int]]:

@@ -73,9 +73,10 @@ class Plan:
         a = self.steps[i].action
         return a is not None and self.levels.is_primitive(a)
 
-    def to_json(self, made: dict[Any, tuple[tuple[str, str, str], str]] | None = None) -> list[dict[str, Any]]:
-        """The plan's trace record (docs/trace-format.md).  ``made``: each atom's order key and text,
-        kept by the caller across plans (the executive's plans share most pre-image atoms)."""
+    def to_json(self, made: dict[Any, Any] | None = None) -> list[dict[str, Any]]:
+        """The plan's trace record (docs/trace-format.md).  ``made``: each atom's order key and text and
+        each goal's text (:func:`goal_text`), kept by the caller across plans (the executive's plans
+        share most pre-image atoms, and a refinement's last pre-image is its parent step's)."""
         out: list[dict[str, Any]] = []
         # consecutive preimages share most atoms: each atom's order key and text are made once per plan
         # or per ``made`` (the order is Goal.__iter__'s, the text str(atom))
@@ -100,9 +101,15 @@ class Plan:
         return out
 
 
-def goal_text(goal: Goal, made: dict[Any, tuple[tuple[str, str, str], str]]) -> list[str]:
+def goal_text(goal: Goal, made: dict[Any, Any]) -> list[str]:
     """``[str(a) for a in goal]`` (in :meth:`Goal.__iter__`'s order), each atom's order key and text
-    kept in ``made`` for the next goals (pre-images share most of their atoms)."""
+    kept in ``made`` for the next goals (pre-images share most of their atoms), and each goal's list
+    too: a refinement's last pre-image is the goal of the step it refines, already written (gripper,
+    250 balls, --criticality auto: 2501 goals written, 2.3 s of a 20.9 s profile).  The list is
+    shared between the records that show the goal: not to be changed."""
+    hit = made.get(goal)
+    if hit is not None:
+        return hit  # type: ignore[no-any-return]
     rows = []
     for x in goal.atoms:
         t = made.get(x)
@@ -110,7 +117,8 @@ def goal_text(goal: Goal, made: dict[Any, tuple[tuple[str, str, str], str]]) -> 
             t = made[x] = (atom_order(x), str(x))
         rows.append(t)
     rows.sort()  # (the keys differ between a goal's atoms: one atom per fluent and value)
-    return [text for _, text in rows]
+    out = made[goal] = [text for _, text in rows]
+    return out
 
 
 @dataclass(frozen=True)

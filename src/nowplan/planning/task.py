@@ -22,7 +22,7 @@ re-exported here (``__all__``).
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -112,6 +112,18 @@ class Task:
                 self.by_pre.setdefault(f, []).append(k)
 
 
+def pre_rows(task: Task) -> list[Sequence[int]]:
+    """Per fact id, the actions that need it (``by_pre`` as a list; what the compiled heuristics take),
+    made once per task, and once per shared structure for the tasks whose rows it serves
+    (satellite, 50 images, --criticality auto: 152 planner calls spent 0.85 s of 11.9 profiled making
+    it again)."""
+    rows = task.memo.get("pre_rows")
+    if rows is None:
+        by_pre = task.by_pre
+        rows = task.memo["pre_rows"] = [by_pre.get(f, ()) for f in range(len(task.facts))]
+    return rows
+
+
 @dataclass
 class _Structure:
     """What the tasks of one grounding, level map and set of "not" facts share across calls."""
@@ -132,6 +144,7 @@ class _Structure:
     costs: list[float] | None = None  # each action's cost, where every cost is state-free
     adders: dict[int, list[int]] | None = None  # fact -> the actions whose row adds it, ascending
     by_operator: dict[str, list[int]] | None = None  # operator name -> its actions' ids (floors move them)
+    pre_rows: list[Sequence[int]] | None = None  # pre_rows of the tasks whose by_pre is this structure's
 
 
 _STRUCTURES_PER_GROUNDING = 12
@@ -194,6 +207,10 @@ def build_task(
             st.costs = cost
     task = Task(st.facts, st.index, st.actions, pre, add, dele, cost, init, (),
                 by_pre=by_pre, no_pre=no_pre, axioms=st.axioms)
+    if by_pre is st.by_pre:  # no row moved: the structure's fact -> actions rows serve this task
+        if st.pre_rows is None:
+            st.pre_rows = pre_rows(task)
+        task.memo["pre_rows"] = st.pre_rows
     if st.axioms is not None:
         from nowplan.planning.axioms import evaluator
 
