@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 FIELDS = ["domain", "instance", "planner", "solved", "wall_s", "cost", "expansions", "method", "status",
-          "planning_s", "valid"]
+          "planning_s", "valid", "cpu_s"]
 OURS, FD = "nowplan", "fd-lama-first"
 WALL_FACTOR, COST_FACTOR, EXPANSIONS, FAST_S = 2.0, 1.10, 1000, 1.0
 
@@ -54,6 +54,7 @@ def read_csv(path: Path) -> list[Row]:
                 "cost": _num(r["cost"], float),
                 "expansions": _num(r["expansions"], int),
                 "planning_s": _num(r.get("planning_s", ""), float),
+                "cpu_s": _num(r.get("cpu_s", ""), float),
             })
     return rows
 
@@ -96,7 +97,9 @@ def markdown(rows: Sequence[Row], meta: Mapping[str, Any]) -> str:
     if meta:
         out += [f"`{meta.get('command', '')}` — time limit {meta.get('time_limit', '?')} s per planner and "
                 f"instance, commit {meta.get('commit', '?')}, {meta.get('machine', '')}, "
-                f"{meta.get('date', '')}; the whole run took {_fmt(meta.get('elapsed_s'), 0, ' s')}.", ""]
+                f"{meta.get('date', '')}; the whole run took {_fmt(meta.get('elapsed_s'), 0, ' s')}"
+                + (f"; load average (1/5/15 min) {meta['load_before']} before, {meta.get('load_after')} after"
+                   if meta.get("load_before") else "") + ".", ""]
     out += [f"Our engine: {', '.join(methods) or 'no solved instance'} (the `method` of `nowplan plan --json`). "
             "Wall times include each planner's process start; costs are replayed in nowplan's core model, "
             "where every plan is checked (invalid plans count as unsolved).", ""]
@@ -133,15 +136,16 @@ def markdown(rows: Sequence[Row], meta: Mapping[str, Any]) -> str:
                f"{len(fast)} of them with a planning time under {FAST_S:g} s — "
                f"**{'met' if easy and len(fast) == len(easy) else 'not met'}** on these instances.")
     out += ["", "## Per instance", "",
-            "| domain | instance | nowplan | wall s | cost | expanded | lama-first | wall s | cost | expanded |",
-            "|---|---|---|---|---|---|---|---|---|---|"]
+            "| domain | instance | nowplan | wall s | CPU s | cost | expanded | lama-first | wall s | CPU s | cost "
+            "| expanded |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for d, i, o, f in pairs:
         cells = []
         for r in (o, f):
             if r is None:
-                cells += ["not run", "–", "–", "–"]
+                cells += ["not run", "–", "–", "–", "–"]
             else:
-                cells += ["solved" if r["solved"] else r["status"], _fmt(r["wall_s"]),
+                cells += ["solved" if r["solved"] else r["status"], _fmt(r["wall_s"]), _fmt(r.get("cpu_s")),
                           _fmt(r["cost"], 0) if r["solved"] else "–", str(r["expansions"] if r["expansions"]
                                                                       is not None else "–")]
         out.append(f"| {d} | {i} | " + " | ".join(cells) + " |")
