@@ -292,28 +292,40 @@ class _Join:
         self.free = [(i, op.param_types[i] if op.param_types else None)
                      for i, v in enumerate(op.params) if v not in bound]
         self.typed = [(i, t) for i, t in enumerate(op.param_types) if t is not None] if op.param_types else []
+        self.slot_type: dict[int, str] = dict(self.typed)
 
     def bindings(self, index: _Index, by_type: Mapping[str | None, list[str]],
                  type_sets: Mapping[str | None, frozenset[str]]) -> Iterator[tuple[Any, ...]]:
         n = len(self.op.params)
         steps = self.steps
         objects = type_sets[None]
+        # a slot's type is checked as soon as a fact binds it (a value that is not an object, e.g. a
+        # number, passes, as in the final check below): a condition shared by several types (logistics'
+        # ``at`` of packages and vehicles) then prunes the join early instead of multiplying its partial
+        # bindings by the facts of the other types
+        wrong = {sl: objects - type_sets.get(t, frozenset()) for sl, t in self.slot_type.items()}
+        checks = [tuple((pos, sl, wrong.get(sl)) for pos, sl in binds) for *_, binds in steps]
 
         def join(k: int, cur: list[Any]) -> Iterator[list[Any]]:
             if k == len(steps):
                 yield cur
                 return
-            pred, arity, positions, keyparts, binds = steps[k]
+            pred, arity, positions, keyparts, _binds = steps[k]
             table = index.lookup(pred, positions, arity)
             key = tuple(cur[v] if is_slot else v for is_slot, v in keyparts)
+            check = checks[k]
             for args in table.get(key, ()):
                 nxt = list(cur)
                 ok = True
-                for pos, sl in binds:
+                for pos, sl, bad in check:
                     have = nxt[sl]
+                    v = args[pos]
                     if have is _UNBOUND:
-                        nxt[sl] = args[pos]
-                    elif have != args[pos]:
+                        if bad and v in bad:
+                            ok = False
+                            break
+                        nxt[sl] = v
+                    elif have != v:
                         ok = False
                         break
                 if ok:
