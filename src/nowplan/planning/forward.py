@@ -411,7 +411,9 @@ def plan_forward(
     res, steps = forward_plan(
         domain, objects, belief, goal, levels, cost_of,
         method=config.search, heuristic=config.forward_heuristic, cost_type=config.cost_type,
-        weight=config.weight, max_nodes=config.max_nodes, out_of_time=lambda: now() > deadline,
+        weight=config.weight,
+        max_nodes=config.max_nodes if config.forward_max_nodes is None else config.forward_max_nodes,
+        out_of_time=lambda: now() > deadline,
         improve=config.improve, cache_costs=True, relevant_to=config.relevant_to,
     )
     method = f"forward:{config.search}"
