@@ -10,12 +10,17 @@ Each try replays only the suffix after the removed step: the states the
 current plan passes through are kept (the prefix before the step is
 unchanged), and a replay whose state meets the current plan's state again
 at the same step stops there, since the rest applies as before and reaches
-the goal.  The result is the same as replaying every try from the initial
-state; on a 199-step logistics plan (benchmarks/classical.py --scale) the
-whole pass fell from 0.20 s to a few hundredths under cProfile.
+the goal.  Without axioms, states are bit masks over fact ids (Python
+ints: an action applies when ``state & pre == pre``).  The result is the
+same as replaying every try from the initial state (a hypothesis test checks
+it); on logistics scale s05 (~190-step plans, 967 tries over the first plan
+and the anytime improvement's) the passes fell from 0.59 s to 0.11 s under
+cProfile.
 """
 
 from __future__ import annotations
+
+from collections.abc import Iterable
 
 from nowplan.planning.axioms import AxiomEvaluator, evaluator
 from nowplan.planning.task import Task
@@ -60,10 +65,60 @@ def _run(task: Task, plan: list[int], skip: int, states: list[frozenset[int]] | 
     return kept if all(g in state for g in task.goal) else None
 
 
+def _mask(facts: Iterable[int]) -> int:
+    m = 0
+    for f in facts:
+        m |= 1 << f
+    return m
+
+
+def _masks(task: Task) -> tuple[list[int], list[int], list[int], int, int]:
+    """Preconditions, adds and kept facts (the complement of the deletes) of every action as bit masks
+    over fact ids (made once per task), the goal's mask and the initial state's."""
+    hit = task.memo.get("bitmasks")
+    if hit is None:
+        full = (1 << len(task.facts)) - 1
+        hit = task.memo["bitmasks"] = ([_mask(p) for p in task.pre], [_mask(a) for a in task.add],
+                                       [full & ~_mask(d) for d in task.dele])
+    pre, add, keep = hit
+    return pre, add, keep, _mask(task.goal), _mask(task.init)
+
+
+def _run_bits(task: Task, plan: list[int], skip: int, states: list[int]) -> list[int] | None:
+    """:func:`_run` over bit-mask states (a task without axioms): the same result."""
+    pre, add, keep, goal, _ = _masks(task)
+    state = states[skip]
+    kept = plan[:skip]
+    for i in range(skip + 1, len(plan)):
+        if state == states[i]:
+            return kept + plan[i:]
+        a = plan[i]
+        p = pre[a]
+        if state & p == p:
+            state = state & keep[a] | add[a]
+            kept.append(a)
+    return kept if state & goal == goal else None
+
+
+def _states_bits(task: Task, plan: list[int]) -> list[int] | None:
+    pre, add, keep, goal, state = _masks(task)
+    out = [state]
+    for a in plan:
+        if state & pre[a] != pre[a]:
+            return None
+        state = state & keep[a] | add[a]
+        out.append(state)
+    return out if state & goal == goal else None
+
+
 def eliminate_actions(task: Task, plan: list[int]) -> list[int]:
     """The plan with unneeded actions removed (greedy action elimination)."""
     cost = task.cost
     ev = evaluator(task)
+    if ev is None:  # states as bit masks: the same tries, several times faster than sets of fact ids
+        bits = _states_bits(task, plan)
+        if bits is not None:
+            return _eliminate_bits(task, plan, bits)
     states = _states(task, ev, plan)
     i = 0
     while i < len(plan):
@@ -73,6 +128,23 @@ def eliminate_actions(task: Task, plan: list[int]) -> list[int]:
                                     sum(cost[a] for a in shorter) <= sum(cost[a] for a in plan)):
             plan = shorter  # re-examine from the same position
             states = _states(task, ev, plan)
+        else:
+            i += 1
+    return plan
+
+
+def _eliminate_bits(task: Task, plan: list[int], states: list[int]) -> list[int]:
+    cost = task.cost
+    i = 0
+    while i < len(plan):  # each try removes an action or moves on: bounded by the plan's length
+        shorter = _run_bits(task, plan, i, states)
+        if shorter is not None and (sum(cost[a] for a in shorter) < sum(cost[a] for a in plan) or
+                                    len(shorter) < len(plan) and
+                                    sum(cost[a] for a in shorter) <= sum(cost[a] for a in plan)):
+            plan = shorter
+            again = _states_bits(task, plan)
+            assert again is not None  # a plan _run_bits returns applies and reaches the goal
+            states = again
         else:
             i += 1
     return plan
