@@ -66,27 +66,26 @@ def _run(task: Task, plan: list[int], skip: int, states: list[frozenset[int]] | 
 
 
 def _mask(facts: Iterable[int]) -> int:
-    m = 0
+    bits = bytearray((max(facts, default=-1) >> 3) + 1)  # one pass: ``m |= 1 << f`` per fact is quadratic
     for f in facts:
-        m |= 1 << f
-    return m
+        bits[f >> 3] |= 1 << (f & 7)
+    return int.from_bytes(bits, "little")
 
 
-def _masks(task: Task) -> tuple[list[int], list[int], list[int], int, int]:
+def _masks(task: Task) -> tuple[list[int], list[int], list[int]]:
     """Preconditions, adds and kept facts (the complement of the deletes) of every action as bit masks
-    over fact ids (made once per task), the goal's mask and the initial state's."""
+    over fact ids (made once per task)."""
     hit = task.memo.get("bitmasks")
     if hit is None:
         full = (1 << len(task.facts)) - 1
         hit = task.memo["bitmasks"] = ([_mask(p) for p in task.pre], [_mask(a) for a in task.add],
                                        [full & ~_mask(d) for d in task.dele])
-    pre, add, keep = hit
-    return pre, add, keep, _mask(task.goal), _mask(task.init)
+    return hit
 
 
-def _run_bits(task: Task, plan: list[int], skip: int, states: list[int]) -> list[int] | None:
+def _run_bits(task: Task, plan: list[int], skip: int, states: list[int], goal: int) -> list[int] | None:
     """:func:`_run` over bit-mask states (a task without axioms): the same result."""
-    pre, add, keep, goal, _ = _masks(task)
+    pre, add, keep = _masks(task)
     state = states[skip]
     kept = plan[:skip]
     for i in range(skip + 1, len(plan)):
@@ -100,8 +99,9 @@ def _run_bits(task: Task, plan: list[int], skip: int, states: list[int]) -> list
     return kept if state & goal == goal else None
 
 
-def _states_bits(task: Task, plan: list[int]) -> list[int] | None:
-    pre, add, keep, goal, state = _masks(task)
+def _states_bits(task: Task, plan: list[int], goal: int) -> list[int] | None:
+    pre, add, keep = _masks(task)
+    state = _mask(task.init)
     out = [state]
     for a in plan:
         if state & pre[a] != pre[a]:
@@ -116,9 +116,10 @@ def eliminate_actions(task: Task, plan: list[int]) -> list[int]:
     cost = task.cost
     ev = evaluator(task)
     if ev is None:  # states as bit masks: the same tries, several times faster than sets of fact ids
-        bits = _states_bits(task, plan)
+        goal = _mask(task.goal)
+        bits = _states_bits(task, plan, goal)
         if bits is not None:
-            return _eliminate_bits(task, plan, bits)
+            return _eliminate_bits(task, plan, bits, goal)
     states = _states(task, ev, plan)
     i = 0
     while i < len(plan):
@@ -133,16 +134,16 @@ def eliminate_actions(task: Task, plan: list[int]) -> list[int]:
     return plan
 
 
-def _eliminate_bits(task: Task, plan: list[int], states: list[int]) -> list[int]:
+def _eliminate_bits(task: Task, plan: list[int], states: list[int], goal: int) -> list[int]:
     cost = task.cost
     i = 0
     while i < len(plan):  # each try removes an action or moves on: bounded by the plan's length
-        shorter = _run_bits(task, plan, i, states)
+        shorter = _run_bits(task, plan, i, states, goal)
         if shorter is not None and (sum(cost[a] for a in shorter) < sum(cost[a] for a in plan) or
                                     len(shorter) < len(plan) and
                                     sum(cost[a] for a in shorter) <= sum(cost[a] for a in plan)):
             plan = shorter
-            again = _states_bits(task, plan)
+            again = _states_bits(task, plan, goal)
             assert again is not None  # a plan _run_bits returns applies and reaches the goal
             states = again
         else:
