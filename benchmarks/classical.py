@@ -115,6 +115,35 @@ def run_all(tasks: list[tuple[str, Path]], limit: float, memory_mb: int | None, 
     return rows
 
 
+def _merge(dirs: list[Path], out: Path) -> int:
+    rows: list[dict[str, Any]] = []
+    metas: list[dict[str, Any]] = []
+    for d in dirs:
+        if not (d / "classical.csv").is_file():
+            raise SystemExit(f"classical: no stored runs at {d / 'classical.csv'}")
+        rows += read_csv(d / "classical.csv")
+        if (d / "classical_meta.json").is_file():
+            metas.append(json.loads((d / "classical_meta.json").read_text()))
+    meta: dict[str, Any] = dict(metas[0]) if metas else {}
+    if metas:
+        meta["command"] = " ; ".join(m.get("command", "") for m in metas)
+        meta["commit"] = ", ".join(sorted({str(m.get("commit")) for m in metas}))
+        meta["elapsed_s"] = round(sum(float(m.get("elapsed_s") or 0) for m in metas), 1)
+        meta["date"] = f"{metas[0].get('date', '')} to {metas[-1].get('date', '')}"
+        loads = [x for m in metas for k in ("load_before", "load_after") if m.get(k) for x in m[k][:1]]
+        meta.pop("load_before", None)
+        meta.pop("load_after", None)
+        meta["load_range"] = [min(loads), max(loads)] if loads else None
+        meta["parts"] = metas
+    out.mkdir(parents=True, exist_ok=True)
+    write_csv(rows, out / "classical.csv")
+    (out / "classical_meta.json").write_text(json.dumps(meta, indent=2) + "\n")
+    text = markdown(read_csv(out / "classical.csv"), meta)
+    (out / "classical.md").write_text(text)
+    print(text)
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     ap.add_argument("--domains", default=",".join(DOMAINS), help=f"comma-separated, of {', '.join(DOMAINS)}")
@@ -129,9 +158,14 @@ def main(argv: list[str] | None = None) -> int:
                     help="run the scale-up set (generate.SCALE, IPC mid-range sizes, s01-s05) instead of the "
                          "checked-in p01-p05; generated into --scale-dir or a temporary directory")
     ap.add_argument("--scale-dir", type=Path, default=None, help="where --scale writes its instances")
+    ap.add_argument("--merge", type=Path, nargs="+", metavar="DIR",
+                    help="combine the stored runs of these --out directories (e.g. one per domain, each "
+                         "command under 10 minutes) into --out: one CSV, their metadata listed")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
     csv_path, meta_path, md_path = (args.out / n for n in ("classical.csv", "classical_meta.json", "classical.md"))
+    if args.merge:
+        return _merge(args.merge, args.out)
     if args.summarize:
         if not csv_path.is_file():
             raise SystemExit(f"classical: no stored runs at {csv_path}; run the benchmark first")

@@ -99,7 +99,9 @@ def markdown(rows: Sequence[Row], meta: Mapping[str, Any]) -> str:
                 f"instance, commit {meta.get('commit', '?')}, {meta.get('machine', '')}, "
                 f"{meta.get('date', '')}; the whole run took {_fmt(meta.get('elapsed_s'), 0, ' s')}"
                 + (f"; load average (1/5/15 min) {meta['load_before']} before, {meta.get('load_after')} after"
-                   if meta.get("load_before") else "") + ".", ""]
+                   if meta.get("load_before") else "")
+                + (f"; 1-min load average {meta['load_range'][0]}–{meta['load_range'][1]} at the starts and ends "
+                   "of its parts" if meta.get("load_range") else "") + ".", ""]
     out += [f"Our engine: {', '.join(methods) or 'no solved instance'} (the `method` of `nowplan plan --json`). "
             "Wall times include each planner's process start; costs are replayed in nowplan's core model, "
             "where every plan is checked (invalid plans count as unsolved).", ""]
