@@ -79,3 +79,22 @@ def test_suffix_replay_gives_the_same_plan_as_full_replays(name: str, seed: int,
     t, plan = _task(name)
     padded = _padded(t, plan, random.Random(seed), detours)
     assert eliminate_actions(t, padded) == _reference(t, padded)
+
+
+def test_a_capped_pass_keeps_a_valid_plan_no_costlier(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """Past MAX_REPLAY_STEPS the pass stops with the plan it has: still valid, never costlier, and with
+    no cap reached the same as the reference."""
+    from nowplan.planning import postprocess
+
+    t, plan = _task("logistics")
+
+    def valid(p: list[int]) -> bool:
+        return _reference_run(t, p, -1) == p  # every step applies (none skipped) and the goal holds
+
+    padded = next(p for p in (_padded(t, plan, random.Random(s), 6) for s in range(200)) if valid(p) and p != plan)
+    full = eliminate_actions(t, padded)
+    monkeypatch.setattr(postprocess, "MAX_REPLAY_STEPS", len(padded) * 2)
+    capped = eliminate_actions(t, padded)
+    assert valid(capped)
+    assert sum(t.cost[a] for a in full) <= sum(t.cost[a] for a in capped) <= sum(t.cost[a] for a in padded)
+    assert capped != full  # the cap stopped it early (else this test checks nothing)

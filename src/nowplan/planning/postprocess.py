@@ -134,10 +134,20 @@ def eliminate_actions(task: Task, plan: list[int]) -> list[int]:
     return plan
 
 
+# steps replayed by one bit-mask pass at most (~1 s here): the tries are quadratic in the plan's length, so a
+# plan of thousands of steps (visit-all 50x50: 3,218) would spend far longer here than its search did; the
+# pass then keeps the plan it has (valid, never costlier).  Plans of a few hundred steps need ~10^5.
+MAX_REPLAY_STEPS = 1_000_000
+
+
 def _eliminate_bits(task: Task, plan: list[int], states: list[int], goal: int) -> list[int]:
     cost = task.cost
     i = 0
+    work = 0
     while i < len(plan):  # each try removes an action or moves on: bounded by the plan's length
+        work += len(plan) - i
+        if work > MAX_REPLAY_STEPS:
+            break
         shorter = _run_bits(task, plan, i, states, goal)
         if shorter is not None and (sum(cost[a] for a in shorter) < sum(cost[a] for a in plan) or
                                     len(shorter) < len(plan) and
