@@ -28,6 +28,7 @@ import platform
 import shlex
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -37,7 +38,7 @@ for _p in (ROOT, ROOT / "src"):  # this checkout's nowplan and benchmarks packag
     if str(_p) not in sys.path:
         sys.path.insert(0, str(_p))
 
-from benchmarks.classical.generate import DOMAINS, domain_file, instance_files  # noqa: E402
+from benchmarks.classical.generate import DOMAINS, domain_file, instance_files, write_instances  # noqa: E402
 from benchmarks.classical.harness import Run, check_plan, fd_driver, run_fd, run_nowplan  # noqa: E402
 from benchmarks.classical.summary import FD, OURS, markdown, read_csv, write_csv  # noqa: E402
 from nowplan.experiments import progress  # noqa: E402
@@ -82,7 +83,7 @@ def _row(domain: str, problem: Path, run: Run) -> dict[str, Any]:
                         run.cost, cost)
     return {"domain": domain, "instance": problem.stem, "planner": run.planner, "solved": solved,
             "wall_s": round(run.wall_s, 4), "cost": cost, "expansions": run.expansions, "method": run.method,
-            "status": status, "planning_s": run.planning_s, "valid": valid}
+            "status": status, "planning_s": run.planning_s, "valid": valid, "cpu_s": run.cpu_s}
 
 
 def _describe(r: dict[str, Any]) -> str:
@@ -114,6 +115,35 @@ def run_all(tasks: list[tuple[str, Path]], limit: float, memory_mb: int | None, 
     return rows
 
 
+def _merge(dirs: list[Path], out: Path) -> int:
+    rows: list[dict[str, Any]] = []
+    metas: list[dict[str, Any]] = []
+    for d in dirs:
+        if not (d / "classical.csv").is_file():
+            raise SystemExit(f"classical: no stored runs at {d / 'classical.csv'}")
+        rows += read_csv(d / "classical.csv")
+        if (d / "classical_meta.json").is_file():
+            metas.append(json.loads((d / "classical_meta.json").read_text()))
+    meta: dict[str, Any] = dict(metas[0]) if metas else {}
+    if metas:
+        meta["command"] = " ; ".join(m.get("command", "") for m in metas)
+        meta["commit"] = ", ".join(sorted({str(m.get("commit")) for m in metas}))
+        meta["elapsed_s"] = round(sum(float(m.get("elapsed_s") or 0) for m in metas), 1)
+        meta["date"] = f"{metas[0].get('date', '')} to {metas[-1].get('date', '')}"
+        loads = [x for m in metas for k in ("load_before", "load_after") if m.get(k) for x in m[k][:1]]
+        meta.pop("load_before", None)
+        meta.pop("load_after", None)
+        meta["load_range"] = [min(loads), max(loads)] if loads else None
+        meta["parts"] = metas
+    out.mkdir(parents=True, exist_ok=True)
+    write_csv(rows, out / "classical.csv")
+    (out / "classical_meta.json").write_text(json.dumps(meta, indent=2) + "\n")
+    text = markdown(read_csv(out / "classical.csv"), meta)
+    (out / "classical.md").write_text(text)
+    print(text)
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     ap.add_argument("--domains", default=",".join(DOMAINS), help=f"comma-separated, of {', '.join(DOMAINS)}")
@@ -124,9 +154,18 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--nowplan-args", default="", help="extra arguments for `nowplan plan`, one string")
     ap.add_argument("--out", type=Path, default=OUT, help=f"output directory (default {OUT.relative_to(ROOT)})")
     ap.add_argument("--summarize", action="store_true", help="only rewrite classical.md from the stored CSV")
+    ap.add_argument("--scale", action="store_true",
+                    help="run the scale-up set (generate.SCALE, IPC mid-range sizes, s01-s05) instead of the "
+                         "checked-in p01-p05; generated into --scale-dir or a temporary directory")
+    ap.add_argument("--scale-dir", type=Path, default=None, help="where --scale writes its instances")
+    ap.add_argument("--merge", type=Path, nargs="+", metavar="DIR",
+                    help="combine the stored runs of these --out directories (e.g. one per domain, each "
+                         "command under 10 minutes) into --out: one CSV, their metadata listed")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
     csv_path, meta_path, md_path = (args.out / n for n in ("classical.csv", "classical_meta.json", "classical.md"))
+    if args.merge:
+        return _merge(args.merge, args.out)
     if args.summarize:
         if not csv_path.is_file():
             raise SystemExit(f"classical: no stored runs at {csv_path}; run the benchmark first")
@@ -142,13 +181,20 @@ def main(argv: list[str] | None = None) -> int:
     if fd_driver() is None:
         raise SystemExit("classical: Fast Downward not found (pip install up-fast-downward)")
     wanted = set(_numbers(args.instances)) if args.instances else None
-    tasks = [(d, p) for d in domains for p in instance_files(d) if wanted is None or int(p.stem[1:]) in wanted]
+    root, prefix = None, "p"
+    if args.scale:
+        root = args.scale_dir or Path(tempfile.mkdtemp(prefix="nowplan-scale-"))
+        write_instances(domains, root, scale=True)
+        prefix = "s"
+    tasks = [(d, p) for d in domains for p in (instance_files(d, root, prefix) if root else instance_files(d))
+             if wanted is None or int(p.stem[1:]) in wanted]
     if not tasks:
         raise SystemExit("classical: no instance matches --domains/--instances")
     # nowplan runs from this checkout's sources: compile their bytecode once, as `pip install` does for an
     # installed package (the Fast Downward driver's is), else with PYTHONDONTWRITEBYTECODE set every
     # process compiles every module again (~0.1 s of its wall time)
     compileall.compile_dir(str(ROOT / "src" / "nowplan"), quiet=1)
+    load0 = [round(x, 2) for x in os.getloadavg()]
     t0 = time.perf_counter()
     rows = run_all(tasks, args.time_limit, args.memory_limit or None, shlex.split(args.nowplan_args))
     meta = {
@@ -156,6 +202,7 @@ def main(argv: list[str] | None = None) -> int:
         "time_limit": args.time_limit, "memory_limit_mb": args.memory_limit, "commit": _commit(),
         "machine": f"{platform.machine()} {os.cpu_count()} cores, python {platform.python_version()}",
         "date": datetime.datetime.now().isoformat(timespec="seconds"),
+        "load_before": load0, "load_after": [round(x, 2) for x in os.getloadavg()],
         "elapsed_s": round(time.perf_counter() - t0, 1), "planners": [OURS, FD],
     }
     args.out.mkdir(parents=True, exist_ok=True)

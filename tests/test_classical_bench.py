@@ -126,3 +126,34 @@ def test_summary_is_computed_from_the_rows(tmp_path: Path) -> None:
     assert "at most 2× lama-first's on 1 (worst 4.00×, geometric mean 2.00×) — **not met**" in text
     assert "within 10 % of lama-first's on 1 of 2" in text
     assert "fewer than 1,000 states on 2 instances; nowplan solves 1 of them" in text
+
+
+def test_the_scale_set_is_generated_outside_the_checked_in_set(tmp_path: Path) -> None:
+    """``generate.py --scale DIR`` (and ``classical.py --scale``): five sNN problems per domain, larger than
+    p05, each parsed by nowplan; the checked-in pNN files are not touched."""
+    from benchmarks.classical.generate import SCALE, write_instances
+
+    before = {p: p.read_text() for d in DOMAINS for p in instance_files(d)}
+    paths = write_instances(DOMAINS, tmp_path, scale=True)
+    assert len(paths) == 5 * len(DOMAINS) and set(SCALE) == set(DOMAINS)
+    assert {p: p.read_text() for d in DOMAINS for p in instance_files(d)} == before
+    for d in DOMAINS:
+        files = instance_files(d, tmp_path, "s")
+        assert [f.stem for f in files] == ["s01", "s02", "s03", "s04", "s05"]
+        assert instance_files(d, tmp_path) == []  # no pNN written there
+        assert len(files[-1].read_text()) > len(instance_files(d)[-1].read_text())  # s05 larger than p05
+        load_pddl(domain_file(d), files[-1])
+
+
+def test_merged_runs_keep_every_row(tmp_path: Path) -> None:
+    rows_a = [_row("s01", OURS, True, 1.0, 10, 5), _row("s01", FD, True, 0.5, 10, 4)]
+    rows_b = [{**r, "domain": "other"} for r in rows_a]
+    for name, rows in (("a", rows_a), ("b", rows_b)):
+        (tmp_path / name).mkdir()
+        write_csv(rows, tmp_path / name / "classical.csv")
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1] / "src")}
+    subprocess.run([sys.executable, str(Path(__file__).resolve().parents[1] / "benchmarks" / "classical.py"),
+                    "--merge", str(tmp_path / "a"), str(tmp_path / "b"), "--out", str(tmp_path / "m")],
+                   check=True, capture_output=True, env=env)
+    merged = read_csv(tmp_path / "m" / "classical.csv")
+    assert [(r["domain"], r["planner"]) for r in merged] == [(r["domain"], r["planner"]) for r in rows_a + rows_b]

@@ -192,3 +192,18 @@ def test_a_landmark_left_behind_is_not_required_again() -> None:
     h1, preferred = lc.evaluate(s1, lc.accept(acc0, s1))
     assert (h0, h1) == (2, 1)
     assert [t.actions[a].name for a in preferred] == ["drop"]
+
+
+def test_forward_max_nodes_is_the_forward_search_budget() -> None:
+    """``forward_max_nodes`` bounds the forward search (``nowplan plan`` sets it far above the regression
+    search's ``max_nodes``, so that its time limit ends a long forward search); None: ``max_nodes``."""
+    p = load_pddl(DATA / "logistics" / "domain.pddl", DATA / "logistics" / "p03.pddl")
+    tight = plan(p.domain, p.objects, p.init, p.goal, flat_levels(), PlannerConfig(engine="forward", max_nodes=2))
+    assert tight.status is PlanStatus.NODE_LIMIT
+    roomy = plan(p.domain, p.objects, p.init, p.goal, flat_levels(),
+                 PlannerConfig(engine="forward", max_nodes=2, forward_max_nodes=100_000))
+    assert roomy.solved and roomy.plan is not None
+    replay(p.domain, p.init, roomy.plan)
+    capped = plan(p.domain, p.objects, p.init, p.goal, flat_levels(),
+                  PlannerConfig(engine="forward", max_nodes=100_000, forward_max_nodes=2))
+    assert capped.status is PlanStatus.NODE_LIMIT

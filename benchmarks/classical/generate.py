@@ -7,6 +7,7 @@ first IPC instances of each domain).  Usage:
 
     python benchmarks/classical/generate.py                # rewrite every checked-in instance
     python benchmarks/classical/generate.py --domains gripper,rovers
+    python benchmarks/classical/generate.py --scale /tmp/scale    # the scale-up set (SCALE), not checked in
     python benchmarks/classical/generate.py --domain logistics --seed 7 cities=3 packages=6   # to stdout
 """
 
@@ -95,6 +96,42 @@ INSTANCES: dict[str, list[tuple[Params, int]]] = {
 }
 
 
+# (parameters, seed) of the scale-up set s01, s02, ... per domain: sizes like the IPC mid-range problems
+# (issue 19 / the held-out competition files), written outside the checked-in set (`--scale DIR`); seeds
+# 101, 102, ... so that no scale instance repeats a checked-in one
+SCALE: dict[str, list[tuple[Params, int]]] = {
+    "blocksworld": [({"blocks": n}, 100 + k) for k, n in enumerate((10, 12, 14, 15, 17), start=1)],
+    "logistics": [({"cities": c, "places": p, "airplanes": a, "packages": n}, 100 + k)
+                  for k, (c, p, a, n) in enumerate(((4, 3, 2, 12), (5, 3, 2, 16), (5, 4, 3, 20), (6, 3, 3, 25),
+                                                     (6, 4, 3, 30)), start=1)],
+    "depots": [({"depots": d, "distributors": s, "trucks": t, "crates": n}, 100 + k)
+               for k, (d, s, t, n) in enumerate(((1, 2, 2, 8), (2, 2, 2, 10), (2, 3, 2, 12), (2, 3, 3, 15),
+                                                  (3, 3, 3, 18)), start=1)],
+    "driverlog": [({"drivers": d, "trucks": t, "packages": p, "locations": n}, 100 + k)
+                  for k, (d, t, p, n) in enumerate(((3, 3, 6, 8), (3, 3, 7, 10), (3, 4, 8, 12), (4, 4, 9, 14),
+                                                     (4, 4, 10, 15)), start=1)],
+    "gripper": [({"balls": n}, 0) for n in (16, 22, 30, 36, 42)],
+    "rovers": [({"rovers": r, "waypoints": w, "objectives": o, "soil": a, "rock": b, "images": i}, 100 + k)
+               for k, (r, w, o, a, b, i) in enumerate(((3, 10, 4, 4, 3, 3), (3, 12, 4, 5, 4, 4),
+                                                        (4, 14, 5, 6, 5, 4), (4, 16, 5, 7, 6, 5),
+                                                        (5, 18, 6, 8, 7, 6)), start=1)],
+    "satellite": [({"satellites": s, "instruments": i, "modes": m, "stars": st, "targets": t, "images": g}, 100 + k)
+                  for k, (s, i, m, st, t, g) in enumerate(((3, 2, 3, 4, 8, 8), (4, 3, 3, 5, 10, 10),
+                                                           (4, 3, 4, 5, 12, 12), (5, 3, 4, 6, 15, 14),
+                                                           (6, 3, 5, 6, 18, 16)), start=1)],
+    "zenotravel": [({"aircraft": a, "persons": p, "cities": c}, 100 + k)
+                   for k, (a, p, c) in enumerate(((3, 7, 6), (3, 8, 7), (4, 10, 8), (5, 12, 9), (5, 15, 10)),
+                                                 start=1)],
+    "miconic": [({"passengers": n, "floors": 2 * n}, 100 + n) for n in (10, 14, 18, 22, 26)],
+    "barman": [({"shots": g + 1, "cocktails": c, "goals": g}, 100 + k)
+               for k, (c, g) in enumerate(((4, 5), (4, 6), (5, 7), (5, 8), (6, 10)), start=1)],
+    "nomystery": [({"locations": n, "packages": p}, 100 + k)
+                  for k, (n, p) in enumerate(((8, 7), (9, 8), (10, 9), (11, 10), (12, 12)), start=1)],
+    "visitall": [({"width": n, "height": n}, 100 + n) for n in (8, 10, 12, 14, 16)],
+    "floortile": [({"rows": r, "columns": c, "robots": k}, 100 + i)
+                  for i, (r, c, k) in enumerate(((4, 4, 2), (5, 3, 2), (5, 4, 2), (5, 4, 3), (6, 4, 3)), start=1)],
+}
+
 def generate(domain: str, params: Params, seed: int) -> str:
     """Problem text of ``domain`` with ``params`` and ``seed``."""
     if domain not in GENERATORS:
@@ -106,17 +143,18 @@ def domain_file(domain: str, root: Path = HERE) -> Path:
     return root / domain / "domain.pddl"
 
 
-def instance_files(domain: str, root: Path = HERE) -> list[Path]:
-    """The checked-in problems of ``domain``, in order."""
-    return sorted((root / domain).glob("p[0-9][0-9].pddl"))
+def instance_files(domain: str, root: Path = HERE, prefix: str = "p") -> list[Path]:
+    """The problems ``<root>/<domain>/<prefix>NN.pddl`` (the checked-in ones by default), in order."""
+    return sorted((root / domain).glob(f"{prefix}[0-9][0-9].pddl"))
 
 
-def write_instances(domains: Sequence[str] = DOMAINS, root: Path = HERE) -> list[Path]:
-    """Write ``<root>/<domain>/pNN.pddl`` for the listed domains; returns the paths."""
+def write_instances(domains: Sequence[str] = DOMAINS, root: Path = HERE, *, scale: bool = False) -> list[Path]:
+    """Write ``<root>/<domain>/pNN.pddl`` (``sNN.pddl`` of :data:`SCALE` with ``scale``); returns the paths."""
+    table, prefix = (SCALE, "s") if scale else (INSTANCES, "p")
     out = []
     for d in domains:
-        for k, (params, seed) in enumerate(INSTANCES[d], start=1):
-            path = root / d / f"p{k:02d}.pddl"
+        for k, (params, seed) in enumerate(table[d], start=1):
+            path = root / d / f"{prefix}{k:02d}.pddl"
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_text(generate(d, params, seed))
             out.append(path)
@@ -139,6 +177,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
     ap.add_argument("--domains", default=",".join(DOMAINS), help="rewrite the checked-in instances of these")
     ap.add_argument("--domain", help="print one problem of this domain instead")
+    ap.add_argument("--scale", type=Path, metavar="DIR",
+                    help="write the scale-up set (SCALE: sNN.pddl, IPC mid-range sizes) under DIR instead")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("params", nargs="*", metavar="NAME=INT", help="generator parameters (with --domain)")
     args = ap.parse_args(argv)
@@ -152,6 +192,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     bad = [d for d in domains if d not in GENERATORS]
     if bad:
         raise SystemExit(f"generate: unknown domain(s) {', '.join(bad)}; known: {', '.join(DOMAINS)}")
+    if args.scale is not None:
+        for p in write_instances(domains, args.scale, scale=True):
+            print(p)
+        return 0
     for p in write_instances(domains):
         print(p.relative_to(HERE))
     return 0

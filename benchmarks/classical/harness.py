@@ -56,6 +56,7 @@ class Run:
     expansions: int | None = None
     method: str = ""
     planning_s: float | None = None  # the planner's own time, without process start, if it reports one
+    cpu_s: float | None = None  # user + system CPU of the process and the children it waited for
 
 
 def fd_driver() -> Path | None:
@@ -78,9 +79,22 @@ def _limit_memory(mb: int | None) -> Callable[[], None] | None:
     return set_limit
 
 
+def _children_cpu() -> float:
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
+_last_cpu: list[float] = [0.0]  # CPU seconds of the last process _timed ran (reaped children's rusage delta)
+
+
 def _timed(cmd: Sequence[str], limit: float, *, cwd: Path | None = None, env: dict[str, str] | None = None,
            memory_mb: int | None = None) -> tuple[int | None, str, str, float]:
-    """``(exit code or None if killed at the limit, stdout, stderr, wall seconds)``."""
+    """``(exit code or None if killed at the limit, stdout, stderr, wall seconds)``.
+
+    The process's CPU time (its own and that of the children it waited for, as
+    ``getrusage(RUSAGE_CHILDREN)`` counts them) is left in ``_last_cpu[0]``.
+    """
+    c0 = _children_cpu()
     t0 = time.perf_counter()
     proc = subprocess.Popen(list(cmd), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=cwd,
                             env=env, start_new_session=True, preexec_fn=_limit_memory(memory_mb))
@@ -92,7 +106,9 @@ def _timed(cmd: Sequence[str], limit: float, *, cwd: Path | None = None, env: di
             os.killpg(proc.pid, signal.SIGKILL)  # the group this call started: driver and children
         out, err = proc.communicate()
         code = None
-    return code, out, err, time.perf_counter() - t0
+    wall = time.perf_counter() - t0
+    _last_cpu[0] = round(_children_cpu() - c0, 4)
+    return code, out, err, wall
 
 
 def _env() -> dict[str, str]:
@@ -107,19 +123,21 @@ def run_nowplan(domain: Path, problem: Path, time_limit: float, *, extra: Sequen
     cmd = [sys.executable, "-m", "nowplan.cli", "plan", str(domain), str(problem), "--json",
            "--time-limit", f"{time_limit:g}", *extra]
     code, out, err, wall = _timed(cmd, time_limit, env=_env(), memory_mb=memory_mb)
+    cpu = _last_cpu[0]
     if code is None:
-        return Run("nowplan", False, "time_limit (killed)", wall)
+        return Run("nowplan", False, "time_limit (killed)", wall, cpu_s=cpu)
     try:
         doc: dict[str, Any] = json.loads(out)
     except json.JSONDecodeError:
         last = (err.strip().splitlines() or ["no output"])[-1]
-        return Run("nowplan", False, f"error (exit {code}): {last[:200]}", wall)
+        return Run("nowplan", False, f"error (exit {code}): {last[:200]}", wall, cpu_s=cpu)
     plan = [str(a) for a in doc.get("plan") or []]
     solved = doc.get("status") == "solved"
     cost, took = doc.get("cost"), doc.get("planning_time_s")
     return Run("nowplan", solved, str(doc.get("status", "")), wall, plan,
                float(cost) if cost is not None else None, doc.get("expanded"),
-               str(doc.get("method") or doc.get("engine") or ""), float(took) if took is not None else None)
+               str(doc.get("method") or doc.get("engine") or ""), float(took) if took is not None else None,
+               cpu)
 
 
 def read_fd_plan(path: Path) -> tuple[list[str], float | None]:
@@ -157,18 +175,19 @@ def run_fd(domain: Path, problem: Path, time_limit: float, *, alias: str = "lama
             cmd += ["--overall-memory-limit", f"{memory_mb}M"]
         cmd += ["--plan-file", str(plan_file), "--alias", alias, str(domain.resolve()), str(problem.resolve())]
         code, out, _err, wall = _timed(cmd, time_limit, cwd=Path(tmp))
+        cpu = _last_cpu[0]
         actions, cost = read_fd_plan(plan_file)
     expansions = fd_expansions(out)
     took = _PLANNER_TIME.findall(out)
     planning_s = float(took[-1]) if took else None
     if code is None:
-        return Run(name, False, "time_limit (killed)", wall, expansions=expansions, method=alias)
+        return Run(name, False, "time_limit (killed)", wall, expansions=expansions, method=alias, cpu_s=cpu)
     if not actions and code != 0:
         status = {11: "unsolvable", 12: "unsolved (incomplete search)", 22: "memory_limit", 23: "time_limit",
                   24: "time_limit"}.get(code, f"no plan (exit {code})")
-        return Run(name, False, status, wall, expansions=expansions, method=alias)
+        return Run(name, False, status, wall, expansions=expansions, method=alias, cpu_s=cpu)
     return Run(name, True, "solved", wall, actions, cost if cost is not None else float(len(actions)),
-               expansions, alias, planning_s)
+               expansions, alias, planning_s, cpu)
 
 
 def parse_action(text: str) -> tuple[str, list[str]]:

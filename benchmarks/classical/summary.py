@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 FIELDS = ["domain", "instance", "planner", "solved", "wall_s", "cost", "expansions", "method", "status",
-          "planning_s", "valid"]
+          "planning_s", "valid", "cpu_s"]
 OURS, FD = "nowplan", "fd-lama-first"
 WALL_FACTOR, COST_FACTOR, EXPANSIONS, FAST_S = 2.0, 1.10, 1000, 1.0
 
@@ -54,6 +54,7 @@ def read_csv(path: Path) -> list[Row]:
                 "cost": _num(r["cost"], float),
                 "expansions": _num(r["expansions"], int),
                 "planning_s": _num(r.get("planning_s", ""), float),
+                "cpu_s": _num(r.get("cpu_s", ""), float),
             })
     return rows
 
@@ -79,10 +80,11 @@ def domain_stats(pairs: Sequence[tuple[str, str, Row | None, Row | None]]) -> di
     fd = [f for _, _, _, f in pairs if f is not None and f["solved"]]
     both = [(o, f) for _, _, o, f in pairs if o is not None and f is not None and o["solved"] and f["solved"]]
     wall = [o["wall_s"] / f["wall_s"] for o, f in both if f["wall_s"] > 0]
+    cpu = [o["cpu_s"] / f["cpu_s"] for o, f in both if o.get("cpu_s") and f.get("cpu_s")]
     cost = [o["cost"] / f["cost"] for o, f in both if f["cost"] and o["cost"] is not None]
     return {
         "instances": len(pairs), "ours": len(ours), "fd": len(fd), "both": len(both),
-        "wall": wall, "cost": cost,
+        "wall": wall, "cost": cost, "cpu_geo": _geomean(cpu) if cpu else None, "cpu_max": max(cpu) if cpu else None,
         "wall_geo": _geomean(wall) if wall else None, "wall_max": max(wall) if wall else None,
         "cost_mean": sum(cost) / len(cost) if cost else None, "cost_max": max(cost) if cost else None,
     }
@@ -96,20 +98,27 @@ def markdown(rows: Sequence[Row], meta: Mapping[str, Any]) -> str:
     if meta:
         out += [f"`{meta.get('command', '')}` — time limit {meta.get('time_limit', '?')} s per planner and "
                 f"instance, commit {meta.get('commit', '?')}, {meta.get('machine', '')}, "
-                f"{meta.get('date', '')}; the whole run took {_fmt(meta.get('elapsed_s'), 0, ' s')}.", ""]
+                f"{meta.get('date', '')}; the whole run took {_fmt(meta.get('elapsed_s'), 0, ' s')}"
+                + (f"; load average (1/5/15 min) {meta['load_before']} before, {meta.get('load_after')} after"
+                   if meta.get("load_before") else "")
+                + (f"; 1-min load average {meta['load_range'][0]}–{meta['load_range'][1]} at the starts and ends "
+                   "of its parts" if meta.get("load_range") else "") + ".", ""]
     out += [f"Our engine: {', '.join(methods) or 'no solved instance'} (the `method` of `nowplan plan --json`). "
             "Wall times include each planner's process start; costs are replayed in nowplan's core model, "
             "where every plan is checked (invalid plans count as unsolved).", ""]
+    with_cpu = any(r.get("cpu_s") is not None for r in rows)  # runs stored before CPU was recorded: none
     out += ["| domain | instances | nowplan solved | lama-first solved | both | wall ours/FD (geo. mean) "
-            "| worst wall ratio | cost ours/FD (mean) | worst cost ratio |",
-            "|---|---|---|---|---|---|---|---|---|"]
+            "| worst wall ratio | cost ours/FD (mean) | worst cost ratio |"
+            + (" CPU ours/FD (geo. mean) | worst CPU ratio |" if with_cpu else ""),
+            "|---|---|---|---|---|---|---|---|---|" + ("---|---|" if with_cpu else "")]
     for d in [*domains, None]:
         sub = [p for p in pairs if d is None or p[0] == d]
         s = domain_stats(sub)
         name = "**all**" if d is None else d
         out.append(f"| {name} | {s['instances']} | {s['ours']} | {s['fd']} | {s['both']} | "
                    f"{_fmt(s['wall_geo'], 2, '×')} | {_fmt(s['wall_max'], 2, '×')} | "
-                   f"{_fmt(s['cost_mean'], 3)} | {_fmt(s['cost_max'], 3)} |")
+                   f"{_fmt(s['cost_mean'], 3)} | {_fmt(s['cost_max'], 3)} |"
+                   + (f" {_fmt(s['cpu_geo'], 2, '×')} | {_fmt(s['cpu_max'], 2, '×')} |" if with_cpu else ""))
     s = domain_stats(pairs)
     out += ["", "## Targets (issue 19)", ""]
     out.append(f"* Target 1, coverage: nowplan solves {s['ours']} of {s['instances']}, lama-first "
@@ -133,15 +142,16 @@ def markdown(rows: Sequence[Row], meta: Mapping[str, Any]) -> str:
                f"{len(fast)} of them with a planning time under {FAST_S:g} s — "
                f"**{'met' if easy and len(fast) == len(easy) else 'not met'}** on these instances.")
     out += ["", "## Per instance", "",
-            "| domain | instance | nowplan | wall s | cost | expanded | lama-first | wall s | cost | expanded |",
-            "|---|---|---|---|---|---|---|---|---|---|"]
+            "| domain | instance | nowplan | wall s | CPU s | cost | expanded | lama-first | wall s | CPU s | cost "
+            "| expanded |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for d, i, o, f in pairs:
         cells = []
         for r in (o, f):
             if r is None:
-                cells += ["not run", "–", "–", "–"]
+                cells += ["not run", "–", "–", "–", "–"]
             else:
-                cells += ["solved" if r["solved"] else r["status"], _fmt(r["wall_s"]),
+                cells += ["solved" if r["solved"] else r["status"], _fmt(r["wall_s"]), _fmt(r.get("cpu_s")),
                           _fmt(r["cost"], 0) if r["solved"] else "–", str(r["expansions"] if r["expansions"]
                                                                       is not None else "–")]
         out.append(f"| {d} | {i} | " + " | ".join(cells) + " |")

@@ -25,6 +25,9 @@ from nowplan.errors import UsageError
 log = logging.getLogger(__name__)
 
 ENGINES = ("nowplan", "forward", "regression", "fd")
+# default expansion budgets: the forward search's is far beyond what a time limit of minutes allows (it
+# expands ~10^5 states/s at most here; ~140 bytes a state), so that the time limit ends it, as FD's does
+REGRESSION_NODES, FORWARD_NODES = 500_000, 20_000_000
 SEARCHES = {
     "forward:gbfs": "lazy greedy best-first search, h_FF with preferred operators",
     "forward:astar": "weighted A* forward, h_FF",
@@ -75,8 +78,10 @@ def register(subparsers: Any) -> None:
     p.add_argument("--seed", type=int, default=0, help="seed for the planner's random choices (default 0)")
     p.add_argument("--time-limit", type=positive_float, default=60.0, metavar="S",
                    help="wall-clock limit in seconds (default 60)")
-    p.add_argument("--max-nodes", type=positive_int, default=500_000, metavar="N",
-                   help="node expansions allowed to the regression search (default 500000)")
+    p.add_argument("--max-nodes", type=positive_int, default=None, metavar="N",
+                   help=f"node expansions allowed to the search (default: {REGRESSION_NODES} for the "
+                        f"regression search; {FORWARD_NODES} for the forward search, which the time limit "
+                        "ends first)")
     p.add_argument("--weight", type=positive_float, default=2.0, metavar="W",
                    help="weighted A*: f = g + W*h (regression engine and --search astar; default 2, 1 = A*)")
     p.add_argument("--shortcuts", action="store_true",
@@ -119,7 +124,8 @@ def run(args: argparse.Namespace) -> int:
             search=args.search,
             forward_heuristic=args.heuristic,
             improve=args.improve,
-            max_nodes=args.max_nodes,
+            max_nodes=REGRESSION_NODES if args.max_nodes is None else args.max_nodes,
+            forward_max_nodes=FORWARD_NODES if args.max_nodes is None else args.max_nodes,
             time_limit=args.time_limit,
             weight=args.weight,
             serialization=args.shortcuts,

@@ -19,6 +19,9 @@ class PlannerConfig:
     """Settings of the regression planner (budgets, heuristic, search options)."""
 
     max_nodes: int = 50_000  # expansions for the full search
+    # expansions of the forward search (None: ``max_nodes``); ``nowplan plan`` sets a far larger one, so
+    # that its time limit, not the regression search's node budget, ends a forward search
+    forward_max_nodes: int | None = None
     time_limit: float = 60.0  # seconds for one call (all methods), on ``clock``
     # "wall" (elapsed time) or "cpu" (this process's CPU time: the same searches end on a loaded
     # machine as on a quiet one, for experiments)

@@ -285,7 +285,8 @@ def regress_actions(
     ``None`` if an action destroys a pre-image atom or the belief does not
     satisfy ``g0`` (the sequence is then not a plan at these levels).
     """
-    from nowplan.planning.preimage import regress_through, static_drop
+    from nowplan.planning.preimage import static_drop
+    from nowplan.planning.preimage_chain import regress_chain
 
     drop = static_drop(domain, belief)
     if domain.axioms:
@@ -294,7 +295,7 @@ def regress_actions(
             return None
         goals = found
     else:
-        goals, failed = regress_through(goal, actions, levels, domain, drop)
+        goals, failed = regress_chain(goal, actions, levels, domain, drop)
         if failed is not None:
             return None
     if not domain.satisfies(belief, [a for a in goals[0].atoms if a.predicate not in domain.derived]):
@@ -411,7 +412,9 @@ def plan_forward(
     res, steps = forward_plan(
         domain, objects, belief, goal, levels, cost_of,
         method=config.search, heuristic=config.forward_heuristic, cost_type=config.cost_type,
-        weight=config.weight, max_nodes=config.max_nodes, out_of_time=lambda: now() > deadline,
+        weight=config.weight,
+        max_nodes=config.max_nodes if config.forward_max_nodes is None else config.forward_max_nodes,
+        out_of_time=lambda: now() > deadline,
         improve=config.improve, cache_costs=True, relevant_to=config.relevant_to,
     )
     method = f"forward:{config.search}"
