@@ -114,3 +114,16 @@ def test_bad_options(capsys: pytest.CaptureFixture[str], argv: list[str]) -> Non
     assert info.value.code == 2
     err = capsys.readouterr().err
     assert "error:" in err and err.count("\n") == 1
+
+
+def test_out_of_memory_is_one_line(capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    """A search that outgrows the machine ends with one line naming the bounds, exit 1, no traceback."""
+    import nowplan.commands.plan as plan_cmd
+
+    def exhausted(args: object) -> int:
+        raise MemoryError
+
+    monkeypatch.setattr(plan_cmd, "run", exhausted)
+    code, out, err = run(capsys, str(LOG / "domain.pddl"), str(LOG / "p01.pddl"))
+    assert code == 1 and out == ""
+    assert err.count("\n") == 1 and "out of memory" in err and "--max-nodes" in err

@@ -113,6 +113,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"nowplan {args.command}: error: {where}{err.strerror or err}; give another path "
               f"(see 'nowplan {args.command} --help' for what each path names)", file=sys.stderr)
         return 2
+    except MemoryError:  # a search that outgrew the machine: say so in one line, not a traceback
+        print(f"nowplan {args.command}: error: out of memory; bound the search (--max-nodes N or a "
+              f"smaller --time-limit, where the command has them) or give a smaller problem", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print("nowplan: interrupted", file=sys.stderr)
         return 130
