@@ -226,6 +226,13 @@ class Monitor(MonitorPlanning, Mechanism):
                 f"(seed 003), but domain {ex.domain.name}'s belief is a {type(ex.belief).__name__}, "
                 "not a point state; drop the monitor switch from the strategy"
             ) from err
+        tested = sorted(p.name for p in ex.domain.predicates.values() if p.test is not None)
+        if tested:
+            raise ScenarioError(
+                "the monitor strategies plan over symbolic world models (States), but domain "
+                f"{ex.domain.name}'s predicate(s) {', '.join(tested)} are tested on the belief "
+                "(Predicate(test=...)), which a State cannot answer; drop the monitor switch from the strategy"
+            )
         self.support = support_for(ex.domain)
         self._goal_key = goal_key(ex.problem.goal)
         if self.config.library_path is not None:

@@ -266,6 +266,10 @@ class OnlinePolicy:
                 timed = res.status is PlanStatus.TIME_LIMIT
                 outcome = Outcome.LIMIT if timed else Outcome.FAILED
                 reason = f"no plan for the goal ({res.status.value}: {res.reason})"
+                if timed and self.clock() - t0 >= self.strategy.time_limit - 0.05:
+                    # the planner's limit was what remained of the run's: say so, not the clamped figure
+                    reason = (f"time limit of {self.strategy.time_limit:g} s for the run reached while planning "
+                              f"({self.metrics.world_summary()})")
                 break
             cost = res.plan.cost(self.belief)
             if not cost <= self.c_star:
