@@ -40,14 +40,8 @@ class SearchWorld(SymbolicWorld):
                          exogenous_prob=exogenous_prob)
         self.miss = miss
 
-    def refuse(self, action: Action) -> str | None:
-        here = self.state.facts("robot_at")[0][0]
-        if action.name == "look":
-            return None if here == action.args[1] else "the robot is not at the place it looks at"
-        return super().refuse(action)
-
     def apply(self, action: Action) -> None:
-        if action.name != "look":
+        if action.name != "look":  # the model's effect of a look, at(o, l), is what it hopes to learn
             super().apply(action)
 
     def observe(self, action: Action, success: bool) -> Any:
