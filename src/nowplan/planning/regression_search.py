@@ -44,11 +44,16 @@ _RELAXED = {"hadd": "add", "hmax": "max", "hff": "ff", "lmcut": "lmcut"}
 _FALLBACKS_LOGGED: set[tuple[str, str, str]] = set()
 
 
-def _log_fallback(domain: str, heuristic: str, why: str) -> None:
-    """Say once per (domain, heuristic, reason) that the planner counts unmet atoms instead."""
-    key = (domain, heuristic, why)
+def _log_fallback(domain: str, heuristic: str, why: str, *, lazy: bool = False) -> None:
+    """Say once per (domain, heuristic, reason) that the planner counts unmet atoms instead
+    (``lazy``: that it relaxes lazily over the achievers it finds instead of the ground task)."""
+    key = (domain, heuristic, why + " lazy" * lazy)
     if key not in _FALLBACKS_LOGGED:
         _FALLBACKS_LOGGED.add(key)
+        if lazy:
+            log.info("domain %s: heuristic %s relaxes lazily (over the achievers found from each subgoal, "
+                     "not the ground task): %s", domain, heuristic, why)
+            return
         log.info(
             "domain %s: heuristic %s falls back to counting unmet atoms: %s "
             "(PlannerConfig(lazy_relaxation=True) keeps a relaxed estimate with tests and generators)",
@@ -146,7 +151,10 @@ class _Search:
         # a domain whose only obstacle to the ground relaxation is a tested predicate (a user's belief
         # test such as "the item may be there") is relaxed lazily rather than estimated by counting
         # unmet atoms, which left a blind search (a held-out search domain: 38k nodes for a 10-step plan)
-        lazy = self.config.lazy_relaxation or (not self._can_relax and tests_only(self.grounder.domain))
+        lazy = self.config.lazy_relaxation
+        if not lazy and not self._can_relax and tests_only(self.grounder.domain):
+            lazy = True
+            _log_fallback(self.grounder.domain.name, name, str(self._no_relax), lazy=True)
         if lazy or (kind != "add" and self._can_relax):
             additive = kind in ("add", "ff")
             r = self._relaxers.get(additive)
