@@ -217,7 +217,8 @@ class Monitor(MonitorPlanning, Mechanism):
         return order, repairs, dm1
 
     # -- set-up and the library ----------------------------------------------------------
-    def _setup(self, ex: Executive) -> None:
+    def check(self, ex: Executive) -> None:
+        """Refused before the run: a belief that is not a point state, or predicates tested on the belief."""
         try:
             state_of(ex.belief)
         except ModelError as err:
@@ -233,6 +234,8 @@ class Monitor(MonitorPlanning, Mechanism):
                 f"{ex.domain.name}'s predicate(s) {', '.join(tested)} are tested on the belief "
                 "(Predicate(test=...)), which a State cannot answer; drop the monitor switch from the strategy"
             )
+
+    def _setup(self, ex: Executive) -> None:
         self.support = support_for(ex.domain)
         self._goal_key = goal_key(ex.problem.goal)
         if self.config.library_path is not None:
