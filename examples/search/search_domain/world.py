@@ -89,5 +89,5 @@ class SearchBelief(ParticleBelief):
                 if where == seen.robot:
                     p *= (1.0 - self.miss) if x in seen.found else self.miss
                 elif x in seen.found:
-                    return 0.0
+                    p *= 0.01  # not believed there, yet seen: someone moved it (all-zero weights learn nothing)
         return p

@@ -82,7 +82,12 @@ class ParticleBelief:
                 log.info("particle belief: no particle explains the observation after %s; reset to it", action)
                 moved, w = [observation.data], [1.0]
             else:
-                log.info("particle belief: no particle explains the observation after %s; weights reset", action)
+                # the observation is then lost on the belief: repeated, the same action learns nothing,
+                # and the progress guard sees a loop (a held-out search domain: a sock moved by someone
+                # into view made every look there unexplainable, and the robot looked there forever)
+                log.warning("particle belief: no particle explains the observation after %s; weights reset, "
+                            "so the belief learns nothing from it (give surprising observations a small "
+                            "likelihood, or let predict() model what may change unseen)", action)
                 w = [1.0] * len(moved)
             total = sum(w)
         self.particles = moved
