@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import logging
 import signal
 import sys
 import time
@@ -101,6 +102,22 @@ def table(rows: list[dict[str, Any]]) -> str:
     return "\n".join(out)
 
 
+def summary(rows: list[dict[str, Any]]) -> str:
+    """Per fault level, over every strategy that was not refused: reached %, crashes, hangs, livelocks."""
+    out = ["| level | runs (not refused) | reached % | mean actions | crashes | hangs | livelocks | other failures | refused |",
+           "|---|---|---|---|---|---|---|---|---|"]
+    for level in sorted({r["level"] for r in rows}):
+        rs = [r for r in rows if r["level"] == level]
+        run = [r for r in rs if r["outcome"] != "refused"]
+        ok = [r for r in run if r["outcome"] == "reached"]
+        n = Counter(r["outcome"] for r in run)
+        other = len(run) - len(ok) - n["crash"] - n["hang"] - n["livelock"]
+        acts = sum(r["actions"] for r in ok) / len(ok) if ok else float("nan")
+        out.append(f"| {level} | {len(run)} | {100 * len(ok) / max(len(run), 1):.1f} | {acts:.1f} | {n['crash']} | "
+                   f"{n['hang']} | {n['livelock']} | {other} | {len(rs) - len(run)} |")
+    return "\n".join(out)
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--levels", default=",".join(LEVELS))
@@ -112,6 +129,7 @@ def main() -> int:
     ap.add_argument("--table", action="store_true", help="only print the table of --out")
     a = ap.parse_args()
     signal.signal(signal.SIGALRM, _alarm)
+    logging.getLogger("nowplan").setLevel(logging.ERROR)  # the runs' warnings are not the table's
     done: list[dict[str, Any]] = []
     if a.out and a.out.exists():
         done = [json.loads(x) for x in a.out.read_text().splitlines() if x.strip()]
@@ -130,7 +148,7 @@ def main() -> int:
                     if row["outcome"] != "reached":
                         print(f"{level} {strategy} s{seed}: {row['outcome']}: {row['reason'][:160]}",
                               file=sys.stderr, flush=True)
-    print(table(done))
+    print(summary(done) + "\n\n" + table(done))
     return 0
 
 
