@@ -153,3 +153,13 @@ def test_online_progress_between_cycles_restarts_their_count(lab: DomainSpec) ->
     m = run_episode(ep, parse_strategy("online", max_actions=300, time_limit=60.0), seed=12)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.cycles >= 3
+
+
+@pytest.mark.parametrize("name", ["lab", "search"])
+def test_the_examples_are_plugins_with_entry_points(monkeypatch: pytest.MonkeyPatch, name: str) -> None:
+    import tomllib  # noqa: PLC0415
+
+    meta = tomllib.loads((EXAMPLES / name / "pyproject.toml").read_text())
+    assert meta["project"]["entry-points"][registry.ENTRY_POINT_GROUP] == {name: f"{name}_domain:SPEC"}
+    spec = _spec(monkeypatch, name)
+    assert spec.name == name and spec.matrix_scenario in spec.scenarios and spec.model is not None

@@ -36,12 +36,12 @@ def problem(seed: int, samples: int = 1) -> Problem:
     facts += [atom("on_floor", s, fl) for s, fl in spots.items()]
     facts += [atom("robot_at", rng.choice(["dock0", "lift0", "rack0"])),
               atom("at", "scanner", rng.choice(["rack0", "corridor2", "store1c"]))]
-    names = [f"sample{i}" for i in range(samples)]
-    for n in names:
+    wanted = [f"sample{i}" for i in range(samples)]
+    for n in wanted:
         facts.append(atom("at", n, rng.choice(FLOORS["f1"])))
     objects = {**{s: "spot" for s in spots}, "f0": "floor", "f1": "floor", "f2": "floor", "d_lab": "door",
-               "scanner": "thing", **{n: "thing" for n in names}}
-    goal = Goal.of([g for n in names for g in (atom("scanned", n), atom("at", n, "bench2"))], DOMAIN.rules)
+               "scanner": "thing", **{n: "thing" for n in wanted}}
+    goal = Goal.of([g for n in wanted for g in (atom("scanned", n), atom("at", n, "bench2"))], DOMAIN.rules)
     return Problem(DOMAIN, objects, State(facts), goal, f"lab-s{seed}")
 
 

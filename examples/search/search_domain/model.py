@@ -13,7 +13,8 @@ MAYBE = 0.02  # a place is worth a look when the item is there with at least thi
 
 def maybe(belief: Any, args: tuple[Any, ...], value: Any) -> bool:
     """``maybe(o, l)``: the belief gives the item a chance of MAYBE or more to lie at the place."""
-    return (belief.probability(atom("at", args[0], args[1])) >= MAYBE) == bool(value)
+    p: float = belief.probability(atom("at", args[0], args[1]))
+    return (p >= MAYBE) == bool(value)
 
 
 def look_cost(bindings: Any, belief: Any) -> float:
