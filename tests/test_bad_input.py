@@ -7,8 +7,6 @@ from pathlib import Path
 import pytest
 
 from nowplan.cli import main
-from nowplan.experiments.records import RunStatus
-from nowplan.experiments.store import Store
 
 LOG = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl" / "logistics"
 
@@ -57,20 +55,15 @@ def test_a_sweep_with_a_refused_strategy_is_refused_before_it_runs(
     assert not (tmp_path / "runs.sqlite").exists()
 
 
-def test_a_strategy_refused_only_when_its_run_starts_is_stored_as_an_error(
+def test_a_monitor_refusal_is_found_before_the_sweep_runs(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    # the monitor finds NAMO's belief is not a point state when the run pushes its first plan: that
-    # refusal is per run (the pre-check builds the executive but does not run it), the runs are stored
-    # as errors with the reason, and the sweep exits 1
+    # the monitor refuses NAMO's belief (not a point state) when the executive is built
+    # (Mechanism.check), so the sweep's pre-check finds it: one line, exit 2, nothing stored
     store = tmp_path / "runs.sqlite"
-    code = main(["sweep", "--domain", "namo", "--scenario", "simple", "--strategies", "hpn+monitor",
-                 "--seeds", "0-1", "--store", str(store), "--no-progress", "--jobs", "1"])
-    out = capsys.readouterr().out
-    assert code == 1 and "not a point state" in out and "drop the monitor switch" in out
-    with Store(store) as st:
-        recs = st.records()
-    assert len(recs) == 2 and {r.status for r in recs} == {RunStatus.CRASHED}
-    assert all("ScenarioError" in r.reason for r in recs)
+    err = _err(capsys, "sweep", "--domain", "namo", "--scenario", "simple", "--strategies", "hpn+monitor",
+               "--seeds", "0-1", "--store", str(store), "--no-progress", "--jobs", "1")
+    assert "not a point state" in err and "drop the monitor switch" in err
+    assert not store.exists()
 
 
 def test_an_action_defined_twice(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -249,4 +249,11 @@ def test_heuristic_fallback_says_why(caplog: pytest.LogCaptureFixture) -> None:
     caplog.set_level(logging.INFO, logger="nowplan.planning.regression")
     res = plan(dom, {}, SymbolicBelief(State()), Goal.of([atom("p")]), flat_levels(), PlannerConfig())
     assert res.solved
-    assert "heuristic hadd falls back to counting unmet atoms: predicate q has a test" in caplog.text
+    # a test is all that keeps the ground relaxation away: the planner relaxes lazily, and says so
+    assert "heuristic hadd relaxes lazily" in caplog.text and "predicate q has a test" in caplog.text
+    # a non-boolean predicate too: it counts unmet atoms, and says why
+    preds = {**preds, "v": Predicate("v", 0, boolean=False)}
+    dom = Domain("tested2", preds, (Operator("make", (), (), (atom("p"),)),))
+    res = plan(dom, {}, SymbolicBelief(State()), Goal.of([atom("p")]), flat_levels(), PlannerConfig())
+    assert res.solved
+    assert "tested2: heuristic hadd falls back to counting unmet atoms" in caplog.text

@@ -60,6 +60,25 @@ def test_livelock_after_max_cycles():
         CycleDetector(max_cycles=0)
 
 
+def test_a_change_of_the_worlds_restarts_the_count_of_cycles():
+    """Cycles each begun after the world undid the agent's work (a door shut as soon as it was
+    opened) are not one loop of the agent's: the count restarts at every exogenous change."""
+    d = CycleDetector(max_cycles=3)
+    d.start("s")
+    counts = []
+    for _ in range(4):
+        d.observe("s", succeeded=True, exogenous=True)  # opened the door; the world shut it
+        d.observe("held", succeeded=True, exogenous=False)  # picked the sample up again
+        c = d.observe("s", succeeded=True, exogenous=False)  # and set it down: a clean cycle
+        counts.append(c.count if c is not None else 0)
+    assert counts == [1, 1, 1, 1] and not d.livelocked
+    # three clean cycles with no change of the world's in between are a livelock, as before
+    for _ in range(2):
+        d.observe("held", succeeded=True, exogenous=False)
+        d.observe("s", succeeded=True, exogenous=False)
+    assert d.livelocked
+
+
 def test_fingerprints():
     st = State([atom("p")])
     assert belief_fingerprint(st) == st

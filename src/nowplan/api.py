@@ -39,8 +39,8 @@ what it uses.
   capabilities, each a ``Protocol`` checked once when a run starts:
   :class:`HasValues`, :class:`ListsFacts`, :class:`HasState`,
   :class:`Reobserves`, :class:`HasStreams`, :class:`HasHeuristic`,
-  :class:`AfterAction`.  Bases: :class:`SymbolicBelief` (an observed
-  symbolic state that lists its facts) and :class:`ParticleBelief`
+  :class:`AfterAction`, :class:`Fingerprinted` (the progress guard's "same
+  situation").  Bases: :class:`SymbolicBelief` (an observed symbolic state that lists its facts) and :class:`ParticleBelief`
   (weighted sampled states).
 
 **The plugin**
@@ -61,6 +61,7 @@ what it uses.
 from __future__ import annotations
 
 from nowplan.acting.metrics import Metrics, Outcome
+from nowplan.acting.progress import Fingerprinted
 from nowplan.acting.monitor_support import MonitorSupport
 from nowplan.acting.resources import ResourceModel
 from nowplan.acting.run import run_episode
@@ -121,7 +122,7 @@ __all__ = [
     # the world and the belief
     "World", "SimulatedWorld", "SymbolicWorld", "FaultInjection", "Observation",
     "Belief", "SymbolicBelief", "ParticleBelief", "HasValues", "ListsFacts", "HasState", "Reobserves",
-    "HasStreams", "HasHeuristic", "AfterAction", "capabilities", "check_belief",
+    "HasStreams", "HasHeuristic", "AfterAction", "Fingerprinted", "capabilities", "check_belief",
     # the plugin
     "DomainSpec", "Episode", "ScenarioFn", "ResourceModel", "MonitorSupport",
     # running

@@ -114,6 +114,8 @@ class Executive:
         self.achievers = Achievers()  # ground actions by effect, for refinements made directly
         check_supported(self.domain, strategy)
         check_belief(self.domain, belief)
+        for m in self.mechanisms:
+            m.check(self)
         if strategy.domain_planner and self.domain.planner is None:
             raise ScenarioError(
                 f"domain {self.domain.name} has no planner of its own; "

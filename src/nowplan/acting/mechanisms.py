@@ -26,6 +26,10 @@ class Mechanism:
 
     name = "mechanism"
 
+    def check(self, ex: Executive) -> None:
+        """Refuse, when the executive is built and before anything runs, a domain or belief this
+        mechanism cannot work with (raise :class:`~nowplan.errors.ScenarioError` with the fix)."""
+
     def applicable(self, ex: Executive, frame: Frame) -> bool | None:
         """Decide whether the top plan is still applicable (None: use the rigid test)."""
         return None

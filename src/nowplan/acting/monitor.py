@@ -88,6 +88,25 @@ def monitor_settings(config: MonitorConfig) -> Iterator[MonitorConfig]:
         _ACTIVE = old
 
 
+
+def _tests_not_on_states(ex: Executive) -> list[str]:
+    """The tested predicates whose test cannot answer on a :class:`State` (it reads something only the
+    belief has, e.g. a particle belief's odds): tried once on the belief's state, with the first
+    objects of the argument types.  A test that reads the state's facts (marsupial's ``same_city``) works."""
+    state = state_of(ex.belief)
+    objects = list(ex.problem.objects.items())
+    out: list[str] = []
+    for p in ex.domain.predicates.values():
+        if p.test is None:
+            continue
+        args = tuple(next((o for o, t in objects if t == want), objects[0][0] if objects else None)
+                     for want in (p.arg_types or (None,) * p.arity)[:p.arity])
+        try:
+            p.test(state, args, True)
+        except Exception:  # noqa: BLE001 - any error means the test needs more than a State
+            out.append(p.name)
+    return sorted(out)
+
 class Monitor(MonitorPlanning, Mechanism):
     name = "monitor"
 
@@ -217,7 +236,8 @@ class Monitor(MonitorPlanning, Mechanism):
         return order, repairs, dm1
 
     # -- set-up and the library ----------------------------------------------------------
-    def _setup(self, ex: Executive) -> None:
+    def check(self, ex: Executive) -> None:
+        """Refused before the run: a belief that is not a point state, or predicates tested on the belief."""
         try:
             state_of(ex.belief)
         except ModelError as err:
@@ -226,6 +246,15 @@ class Monitor(MonitorPlanning, Mechanism):
                 f"(seed 003), but domain {ex.domain.name}'s belief is a {type(ex.belief).__name__}, "
                 "not a point state; drop the monitor switch from the strategy"
             ) from err
+        tested = _tests_not_on_states(ex)
+        if tested:
+            raise ScenarioError(
+                "the monitor strategies plan over symbolic world models (States), but domain "
+                f"{ex.domain.name}'s predicate(s) {', '.join(tested)} are tested on the belief "
+                "(Predicate(test=...)), which a State cannot answer; drop the monitor switch from the strategy"
+            )
+
+    def _setup(self, ex: Executive) -> None:
         self.support = support_for(ex.domain)
         self._goal_key = goal_key(ex.problem.goal)
         if self.config.library_path is not None:

@@ -117,6 +117,11 @@ class OnlinePolicy:
         self.streams = belief.streams if isinstance(belief, HasStreams) else None
         self.levels = flat_levels()
         self._tail: list[Action] = []  # after a cycle: the rest of the plan committed to
+        # progress ends a commitment's count of cycles: a situation never held before, reached while
+        # committed (as the plan-stack executive does); without it, cycles made before and after a
+        # long stretch of progress added up to a livelock (a held-out lab domain, online, seed 12)
+        self._seen: set[Any] = set()
+        self._committed = False
         self._last_failed: tuple[Action, Observation] | None = None  # the last action that failed
         self.planning_s = 0.0  # time (on :attr:`clock`) spent planning and binding streams
         self.constrained_ok = 0
@@ -185,6 +190,12 @@ class OnlinePolicy:
         now = self._situation()
         if now is None:
             return None
+        if now not in self._seen:
+            self._seen.add(now)
+            if self._committed:
+                self._committed = False
+                progress.forget(cycles=True)
+                self.trace.emit("note", text="progress: a belief not held before; the count of cycles restarts")
         cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
         if progress.stalled >= self.strategy.max_stalls:
             return Outcome.FAILED, stall_reason(progress.stalled, plan[0], obs)
@@ -199,6 +210,7 @@ class OnlinePolicy:
             return Outcome.LIVELOCK, (f"livelock: cycle {cyc.count} of at most {progress.max_cycles}: "
                                       f"{cyc.describe()}, although the policy had committed to its plan")
         self._tail = plan[1:] if obs.success else plan
+        self._committed = True
         progress.forget(keep=now)
         self.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plan "
                         f"({len(self._tail)} action(s)) instead of replanning after every action")
@@ -234,6 +246,7 @@ class OnlinePolicy:
         start = self._situation()
         if start is not None:
             progress.start(start)
+            self._seen.add(start)
         while True:
             if self.domain.satisfies(self.belief, self.problem.goal):
                 outcome, reason = Outcome.REACHED, ""
@@ -266,6 +279,10 @@ class OnlinePolicy:
                 timed = res.status is PlanStatus.TIME_LIMIT
                 outcome = Outcome.LIMIT if timed else Outcome.FAILED
                 reason = f"no plan for the goal ({res.status.value}: {res.reason})"
+                if timed and self.clock() - t0 >= self.strategy.time_limit - 0.05:
+                    # the planner's limit was what remained of the run's: say so, not the clamped figure
+                    reason = (f"time limit of {self.strategy.time_limit:g} s for the run reached while planning "
+                              f"({self.metrics.world_summary()})")
                 break
             cost = res.plan.cost(self.belief)
             if not cost <= self.c_star:

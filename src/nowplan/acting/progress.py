@@ -27,7 +27,7 @@ that it makes progress; the online policy executes the rest of its last plan).  
 situations seen before the commitment are forgotten: retracing them under the committed
 plans is not a new cycle, but a cycle made while committed is, and the run ends with
 :attr:`~nowplan.acting.metrics.Outcome.LIVELOCK` and the cycle's description when cycles
-with no failed action reach ``max_cycles`` (default 3) without progress in between.
+with no failed action reach ``max_cycles`` (default 3) without progress or an exogenous change in between.
 
 A loop can also stand still: an action that fails again and again and leaves the
 situation as it was (a door the belief thinks open, in a world that reports outcomes
@@ -121,6 +121,10 @@ class CycleDetector:
             self._last_failure = self._t
         if exogenous:
             self._last_exogenous = self._t
+            # the world changed by itself: the cycles counted so far are not one loop of the agent's
+            # any more (a lab door the world shut each time the robot opened it made the robot redo
+            # its set-down three times: three cycles, each after the world's change, not a livelock)
+            self.cycles = 0
         self.stalled = self.stalled + 1 if (not succeeded and situation == self._prev) else 0
         self._prev = situation
         prev = self._last_visit.get(situation)

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import logging
 import random
-from collections.abc import Iterator, Sequence
+from collections.abc import Hashable, Iterator, Sequence
 from typing import Any
 
 from nowplan.core.atoms import Atom, Term
@@ -82,7 +82,12 @@ class ParticleBelief:
                 log.info("particle belief: no particle explains the observation after %s; reset to it", action)
                 moved, w = [observation.data], [1.0]
             else:
-                log.info("particle belief: no particle explains the observation after %s; weights reset", action)
+                # the observation is then lost on the belief: repeated, the same action learns nothing,
+                # and the progress guard sees a loop (a held-out search domain: a sock moved by someone
+                # into view made every look there unexplainable, and the robot looked there forever)
+                log.warning("particle belief: no particle explains the observation after %s; weights reset, "
+                            "so the belief learns nothing from it (give surprising observations a small "
+                            "likelihood, or let predict() model what may change unseen)", action)
                 w = [1.0] * len(moved)
             total = sum(w)
         self.particles = moved
@@ -111,7 +116,16 @@ class ParticleBelief:
         for s, w in zip(self.particles, self.weights, strict=True):
             for a in s.atoms():
                 mass[(a.key, a.value)] = mass.get((a.key, a.value), 0.0) + w
+        # the uncertain fluent values with their probabilities (rounded): what the believed state hides
+        self._uncertain = frozenset((k, v, round(m, 3)) for (k, v), m in mass.items() if m < 1.0 - 1e-9)
         return State({k: v for (k, v), m in mass.items() if m >= self.threshold - 1e-12})
+
+    def fingerprint(self) -> Hashable:
+        """Which situation the belief is in, for the progress guard: the believed state and the
+        probabilities of the uncertain fluent values (to 3 decimals).  Two beliefs with the same
+        believed state but different odds (a look that missed) are different situations, so
+        looking again is not a cycle; returning to the same odds is."""
+        return (self._believed, self._uncertain)
 
     # -- what the planner reads ------------------------------------------------------------
     def probability(self, a: Atom) -> float:

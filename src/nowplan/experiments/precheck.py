@@ -11,8 +11,9 @@ configuration and the fix (exit 2 in ``nowplan sweep``), and nothing is stored.
 
 The check runs in a worker process, as the runs do, with the runs' hard time limit: a scenario that
 hangs or crashes is not the sweep's to refuse (its runs are recorded as killed or crashed, and the sweep
-exits 1); a refusal that only a running strategy finds (e.g. the monitor switches on a belief that is
-not a point state) is recorded per run as before.
+exits 1).  Mechanisms refuse what they cannot work with when the executive is built
+(``Mechanism.check``: the monitor switches on a belief that is not a point state, or on predicates
+tested on the belief), so those refusals are caught here too.
 """
 
 from __future__ import annotations

@@ -57,6 +57,14 @@ def relax_unsupported(grounder: Grounder, belief: Any) -> str | None:
     return why
 
 
+def tests_only(domain: Any) -> bool:
+    """Whether tested predicates are all that keeps the ground relaxation from a domain (no
+    generators, every predicate boolean): the lazy relaxation then estimates in its place."""
+    return (not any(op.generators for op in domain.operators)
+            and all(p.boolean for p in domain.predicates.values())
+            and any(p.test is not None for p in domain.predicates.values()))
+
+
 def can_relax(grounder: Grounder, belief: Any) -> bool:
     return relax_unsupported(grounder, belief) is None
 

@@ -56,7 +56,12 @@ class SymbolicWorld(SimulatedWorld):
         return self.state
 
     def applicable(self, action: Action) -> bool:
-        return all(self.domain.holds(p, self.state) for p in action.preconditions(None))
+        """Whether the action's preconditions hold in the true state.  A precondition on a tested
+        predicate (``Predicate(test=...)``, a function of the agent's belief, e.g. "the item may be
+        there") is a condition on what the agent knows, not on the world: the world skips it."""
+        preds = self.domain.predicates
+        return all(self.domain.holds(p, self.state) for p in action.preconditions(None)
+                   if (pr := preds.get(p.predicate)) is None or pr.test is None)
 
     def refuse(self, action: Action) -> str | None:
         return None if self.applicable(action) else "preconditions false in the world"
