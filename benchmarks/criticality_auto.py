@@ -51,6 +51,7 @@ for _p in (ROOT, ROOT / "src"):  # this checkout's nowplan and benchmarks packag
 from benchmarks.classical.generate import DOMAINS, domain_file, generate, instance_files  # noqa: E402
 from nowplan.acting.run import run_episode  # noqa: E402
 from nowplan.acting.strategy import parse_strategy  # noqa: E402
+from nowplan.commands.run import pddl_action_budget  # noqa: E402
 from nowplan.belief.symbolic import SymbolicBelief  # noqa: E402
 from nowplan.domains.registry import Episode  # noqa: E402
 from nowplan.io.pddl_read import load_pddl  # noqa: E402
@@ -104,7 +105,8 @@ def run_one(domain: Path, problem: Path, criticality: str | None, strategy: str,
         prob = prepare_problem(prob)  # what `nowplan run --criticality auto` does
     prep = time.process_time() - t_prep  # the hierarchy, reachability statics and dead-end test
     strat = parse_strategy(strategy)
-    strat = replace(strat, time_limit=limit, planner=replace(strat.planner, engine=engine))  # type: ignore[arg-type]
+    strat = replace(strat, time_limit=limit, planner=replace(strat.planner, engine=engine),  # type: ignore[arg-type]
+                    max_actions=pddl_action_budget(prob.objects, strat.max_actions))  # as `nowplan run` does
     episode = Episode(prob, SymbolicWorld(prob.domain, prob.init, seed=0), SymbolicBelief(prob.init), str(problem))
     t0 = time.perf_counter()
     m = run_episode(episode, strat, seed=0)

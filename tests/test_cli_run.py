@@ -117,3 +117,32 @@ def test_run_max_nodes_reaches_every_planner_call(capsys):
     capsys.readouterr()
     assert main(argv[:-1] + ["--max-nodes", "1"]) == 1
     assert "raise them with --max-nodes N" in capsys.readouterr().out
+
+
+def test_a_pddl_runs_default_action_budget_grows_with_its_objects(capsys, tmp_path):
+    """A large PDDL problem is not cut by a budget sized for small ones: 1,000 actions or 10 per object."""
+    from nowplan.commands.run import pddl_action_budget
+
+    assert pddl_action_budget(range(50), 1_000) == 1_000
+    assert pddl_action_budget(range(304), 1_000) == 3_040  # gripper with 300 balls needs 900+ actions
+    n = 120
+    dom = tmp_path / "d.pddl"
+    dom.write_text("(define (domain tokens) (:requirements :strips :typing) (:types token)"
+                   " (:predicates (here ?t - token) (there ?t - token))"
+                   " (:action push :parameters (?t - token) :precondition (here ?t)"
+                   " :effect (and (there ?t) (not (here ?t)))))")
+    toks = " ".join(f"t{i}" for i in range(n))
+    prob = tmp_path / "p.pddl"
+    prob.write_text(f"(define (problem p) (:domain tokens) (:objects {toks} - token)"
+                    f" (:init {' '.join(f'(here t{i})' for i in range(n))})"
+                    f" (:goal (and {' '.join(f'(there t{i})' for i in range(n))})))")
+    trace = tmp_path / "t.jsonl"
+
+    def budget(*extra: str) -> int:
+        assert main(["run", str(dom), str(prob), "--strategy", "flat", "--json", "--trace", str(trace), *extra]) == 0
+        capsys.readouterr()
+        start = json.loads(trace.read_text().splitlines()[0])
+        return int(start["strategy"]["max_actions"])
+
+    assert budget() == 1_200
+    assert budget("--max-actions", "500") == 500  # the user's budget stands

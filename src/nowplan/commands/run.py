@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 from dataclasses import replace
+from collections.abc import Sized
 from pathlib import Path
 from typing import Any
 
@@ -42,7 +43,8 @@ def register(sub: Any) -> None:
     p.add_argument("--seed", type=nonneg_int, default=0, help="seed for every random choice")
     p.add_argument("--failure-prob", type=probability, help="probability that an action fails in the world")
     p.add_argument("--exogenous-prob", type=probability, help="probability of an exogenous change after an action")
-    p.add_argument("--max-actions", type=nonneg_int, help="action budget")
+    p.add_argument("--max-actions", type=nonneg_int, help="action budget (default: the strategy's 1,000; a PDDL run: "
+                   "1,000 or 10 per object, whichever is more)")
     p.add_argument("--time-limit", type=positive_float, help="wall-clock budget for the whole run (s)")
     p.add_argument("--max-nodes", type=positive_int, metavar="N",
                    help="node expansions allowed to each planner call (default: the domain's planner, "
@@ -56,6 +58,17 @@ def register(sub: Any) -> None:
     p.add_argument("--tree", action="store_true", help="print the plan tree")
     p.add_argument("--json", action="store_true", help="print the metrics as JSON")
     p.set_defaults(func=main)
+
+
+ACTIONS_PER_OBJECT = 10  # the default action budget of a PDDL run grows with its problem
+
+
+def pddl_action_budget(objects: Sized, floor: int) -> int:
+    """The action budget of a PDDL run the user gave none for: ``floor`` (the strategy's default), or
+    10 actions per object where that is more, so a large problem (gripper with 300 balls needs 900+
+    actions) is not cut by a budget sized for small ones; the progress guard, not this bound,
+    ends a run that loops."""
+    return max(floor, ACTIONS_PER_OBJECT * len(objects))
 
 
 def build_episode(args: argparse.Namespace, hierarchical: bool = True) -> Episode:
@@ -103,6 +116,8 @@ def main(args: argparse.Namespace) -> int:
     if args.trace is not None and args.trace.is_dir():
         raise UsageError(f"--trace {args.trace} is a directory; give a file path, e.g. {args.trace / 'trace.jsonl'}")
     episode = build_episode(args, strategy.hierarchical)
+    if args.pddl and args.max_actions is None:
+        strategy = replace(strategy, max_actions=pddl_action_budget(episode.problem.objects, strategy.max_actions))
     if args.failure_prob is not None or args.exogenous_prob is not None:
         from nowplan.worlds.base import FaultInjection
 
