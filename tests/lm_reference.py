@@ -11,7 +11,8 @@ from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
 
 from nowplan.planning.axioms import relaxed_task
-from nowplan.planning.task import FactMutex, Task
+from nowplan.planning.fact_mutex import FactMutex
+from nowplan.planning.task import Task
 
 MAX_DISJUNCTION = 4  # facts of one disjunctive landmark
 

@@ -173,14 +173,14 @@ def _walk_matches_full_exclusions(p: Problem, seed: int) -> int:
     import random
 
     from nowplan.belief.symbolic import SymbolicBelief
-    from nowplan.planning.task import _Excluder
+    from nowplan.planning.fact_mutex import Excluder
 
     top = p.domain.top_level
     assert top > 0 and p.domain.rules.conflicts
     belief = SymbolicBelief(p.init)
     task = build_task(p.domain, p.objects, belief, p.goal, LevelMap(top), lambda a: 1.0)
     gr = task_grounding.grounding(p.domain, p.objects, belief, top)
-    excluder = _Excluder(p.domain, gr.reached)
+    excluder = Excluder(p.domain, gr.reached)
     rng = random.Random(seed)
     state = task.init
     atoms = {a for a in p.init.atoms() if a.value is True and a in task.index}

@@ -38,7 +38,8 @@ from collections import deque
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING
 
-from nowplan.planning.task import FactMutex, Task
+from nowplan.planning.fact_mutex import FactMutex
+from nowplan.planning.task import Task
 
 if TYPE_CHECKING:
     from nowplan.planning._kernel import Kernel

@@ -22,15 +22,16 @@ re-exported here (``__all__``).
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from nowplan.core.atoms import Atom, Goal, KeyedRule, contradiction
+from nowplan.core.atoms import Atom, Goal, KeyedRule
 from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
+from nowplan.planning.fact_mutex import Excluder, FactMutex
 from nowplan.planning.relevance import relevant_operators
 from nowplan.planning.task_grounding import Grounding, grounding
 
@@ -374,7 +375,7 @@ class _Rows:
     def __init__(self, domain: Domain, statics: frozenset[str], index: dict[Atom, int], negs: frozenset[Atom],
                  reached: set[Atom]) -> None:
         self.domain, self.statics, self.index, self.negs, self.reached = domain, statics, index, negs, reached
-        self._excluder: _Excluder | None = None
+        self._excluder: Excluder | None = None
         # per added atom, the ids its exclusions delete (the atoms) and add (their "not" facts)
         self._excluded_ids: dict[Atom, tuple[frozenset[int], frozenset[int]]] = {}
 
@@ -413,37 +414,12 @@ class _Rows:
         hit = self._excluded_ids.get(e)
         if hit is None:
             if self._excluder is None:
-                self._excluder = _Excluder(self.domain, self.reached)
+                self._excluder = Excluder(self.domain, self.reached)
             index, negs = self.index, self.negs
             out = self._excluder([e])
             hit = self._excluded_ids[e] = (frozenset(index[x] for x in out if x in index),
                                            frozenset(index[x.negate()] for x in out if x in negs))
         return hit
-
-
-class FactMutex:
-    """``mutex(f, g)``: the conflict rules (inferred invariants) exclude facts ``f`` and ``g`` together."""
-
-    def __init__(self, facts: list[Atom], keyed: list[KeyedRule]) -> None:
-        self._facts = facts
-        self._keyed = keyed
-        self._memo: dict[int, frozenset[Any]] = {}
-
-    def keys(self, f: int) -> frozenset[Any]:
-        """The (rule, group) pairs of fact ``f``: two facts sharing one are mutex."""
-        hit = self._memo.get(f)
-        if hit is None:
-            a = self._facts[f]
-            hit = self._memo[f] = frozenset((i, k) for i, r in enumerate(self._keyed) for k in r.group_keys(a)) \
-                if a.value is True else frozenset()
-        return hit
-
-    def isolated(self, f: int) -> bool:
-        """No fact is mutex with ``f`` (it is in no group)."""
-        return not self.keys(f)
-
-    def __call__(self, f: int, g: int) -> bool:
-        return f != g and bool(self.keys(f) & self.keys(g))
 
 
 def _axiom_names(domain: Domain) -> frozenset[str]:
@@ -479,36 +455,3 @@ def _ground_axioms(domain: Domain, rules: list[tuple[Action, list[Atom]]], index
 
 def _atom_order(a: Atom) -> tuple[str, str, bool]:
     return (a.predicate, repr(a.args), bool(a.value))
-
-
-class _Excluder:
-    """The reached atoms that the domain's conflict rules exclude once an atom is added."""
-
-    def __init__(self, domain: Domain, reached: Iterable[Atom]) -> None:
-        self.rules = domain.rules
-        self.reached = sorted(reached)
-        self.memo: dict[Atom, frozenset[Atom]] = {}
-        keyed = [c for c in self.rules.conflicts if isinstance(c, KeyedRule)]
-        self.plain = [c for c in self.rules.conflicts if not isinstance(c, KeyedRule)]
-        self.groups: dict[Any, list[Atom]] = {}
-        self.keyed = keyed
-        for a in self.reached:
-            for rule in keyed:
-                for k in rule.group_keys(a):
-                    self.groups.setdefault(k, []).append(a)
-
-    def __call__(self, adds: Iterable[Atom]) -> set[Atom]:
-        out: set[Atom] = set()
-        for e in adds:
-            hit = self.memo.get(e)
-            if hit is None:
-                found: set[Atom] = set()
-                for rule in self.keyed:
-                    for k in rule.group_keys(e):
-                        found.update(x for x in self.groups.get(k, ()) if x != e)
-                if self.plain:
-                    found.update(x for x in self.reached
-                                 if x != e and contradiction([e, x], self.rules, new=[x]) is not None)
-                hit = self.memo[e] = frozenset(found)
-            out |= hit
-        return out

@@ -1,0 +1,71 @@
+"""Mutual exclusion of ground facts, from the domain's conflict rules (inferred invariants).
+
+:class:`FactMutex` answers ``mutex(f, g)`` over fact ids (landmark orders, the forward task);
+:class:`Excluder` lists the reached atoms an added atom excludes (the task's delete rows).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Any
+
+from nowplan.core.atoms import Atom, KeyedRule, contradiction
+from nowplan.core.domain import Domain
+
+
+class FactMutex:
+    """``mutex(f, g)``: the conflict rules (inferred invariants) exclude facts ``f`` and ``g`` together."""
+
+    def __init__(self, facts: list[Atom], keyed: list[KeyedRule]) -> None:
+        self._facts = facts
+        self._keyed = keyed
+        self._memo: dict[int, frozenset[Any]] = {}
+
+    def keys(self, f: int) -> frozenset[Any]:
+        """The (rule, group) pairs of fact ``f``: two facts sharing one are mutex."""
+        hit = self._memo.get(f)
+        if hit is None:
+            a = self._facts[f]
+            hit = self._memo[f] = frozenset((i, k) for i, r in enumerate(self._keyed) for k in r.group_keys(a)) \
+                if a.value is True else frozenset()
+        return hit
+
+    def isolated(self, f: int) -> bool:
+        """No fact is mutex with ``f`` (it is in no group)."""
+        return not self.keys(f)
+
+    def __call__(self, f: int, g: int) -> bool:
+        return f != g and bool(self.keys(f) & self.keys(g))
+
+
+class Excluder:
+    """The reached atoms that the domain's conflict rules exclude once an atom is added."""
+
+    def __init__(self, domain: Domain, reached: Iterable[Atom]) -> None:
+        self.rules = domain.rules
+        self.reached = sorted(reached)
+        self.memo: dict[Atom, frozenset[Atom]] = {}
+        keyed = [c for c in self.rules.conflicts if isinstance(c, KeyedRule)]
+        self.plain = [c for c in self.rules.conflicts if not isinstance(c, KeyedRule)]
+        self.groups: dict[Any, list[Atom]] = {}
+        self.keyed = keyed
+        for a in self.reached:
+            for rule in keyed:
+                for k in rule.group_keys(a):
+                    self.groups.setdefault(k, []).append(a)
+
+    def __call__(self, adds: Iterable[Atom]) -> set[Atom]:
+        out: set[Atom] = set()
+        for e in adds:
+            hit = self.memo.get(e)
+            if hit is None:
+                found: set[Atom] = set()
+                for rule in self.keyed:
+                    for k in rule.group_keys(e):
+                        found.update(x for x in self.groups.get(k, ()) if x != e)
+                if self.plain:
+                    found.update(x for x in self.reached
+                                 if x != e and contradiction([e, x], self.rules, new=[x]) is not None)
+                hit = self.memo[e] = frozenset(found)
+            out |= hit
+        return out
