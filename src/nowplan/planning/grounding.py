@@ -15,7 +15,6 @@ per-domain and per-problem stores are in :mod:`nowplan.planning.grounding_index`
 
 from __future__ import annotations
 
-import itertools
 from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -25,8 +24,8 @@ from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.grounding_index import (
-    _effects_by_predicate, _FillPlan, _is_plain, _per_atom, _per_state, _PerAtom, _PerState, _shared, context_key,
-    point_state, unify_effect,
+    _effects_by_predicate, _FillPlan, _is_plain, _per_atom, _per_state, _PerAtom, _PerState, _shared, completed,
+    context_key, point_state, unify_effect,
 )
 
 if TYPE_CHECKING:
@@ -488,42 +487,9 @@ class Grounder:
 
         allobj, typed = plan.allobj, plan.typed
         try:
-            yield from self._completed(op, join(0, b), allobj, typed, later, check)
+            yield from completed(op, join(0, b), allobj, typed, later, check, self.objects_of)
         finally:
             del join  # it refers to itself (see _run_generators)
-
-    def _completed(
-        self,
-        op: Operator,
-        joined: Iterator[dict[Var, Any]],
-        allobj: frozenset[str],
-        typed: tuple[tuple[Var, frozenset[str]], ...],
-        later: tuple[Atom, ...],
-        check: Callable[[dict[Var, Any]], bool],
-    ) -> Iterator[dict[Var, Any]]:
-        """The bindings of ``joined`` type-checked and completed with typed objects (:meth:`_fill`)."""
-        for jb in joined:
-            # a value bound before the product that names an object of another type: not an instance
-            bad = False
-            for v, ok_objs in typed:
-                val = jb.get(v, _UNSET)
-                if val is not _UNSET and isinstance(val, str) and val in allobj and val not in ok_objs:
-                    bad = True
-                    break
-            if bad:
-                continue
-            free = [v for v in op.params if v not in jb]
-            if not free:
-                if not later or check(jb):
-                    yield dict(jb)
-                continue
-            domains = [self.objects_of(op.type_of(v)) for v in free]
-            for combo in itertools.product(*domains):
-                full = dict(jb)
-                full.update(zip(free, combo, strict=True))
-                if later and not check(full):
-                    continue
-                yield full
 
 
 _UNSET = object()

@@ -11,7 +11,8 @@ many times with the same static facts: achievers, fills, each operator's
 
 from __future__ import annotations
 
-from collections.abc import Hashable
+import itertools
+from collections.abc import Callable, Hashable, Iterator
 from typing import Any
 
 from nowplan.core.atoms import Atom, Var
@@ -202,3 +203,42 @@ def _is_plain(domain: Domain, a: Atom) -> bool:
     """A static fluent that a belief can list facts of (no test function, boolean)."""
     pred = domain.predicates.get(a.predicate)
     return pred is not None and pred.test is None and a.value in (True, False)
+
+
+_UNSET = object()
+
+
+def completed(
+    op: Operator,
+    joined: Iterator[dict[Var, Any]],
+    allobj: frozenset[str],
+    typed: tuple[tuple[Var, frozenset[str]], ...],
+    later: tuple[Atom, ...],
+    check: Callable[[dict[Var, Any]], bool],
+    objects_of: Callable[[str | None], list[str]],
+) -> Iterator[dict[Var, Any]]:
+    """The bindings of ``joined`` (the grounder's static join) type-checked against ``typed`` and
+    completed with the objects of each free parameter's type, those failing ``check`` (the statics the
+    join left for later) dropped (``Grounder._fill``)."""
+    for jb in joined:
+        # a value bound before the product that names an object of another type: not an instance
+        bad = False
+        for v, ok_objs in typed:
+            val = jb.get(v, _UNSET)
+            if val is not _UNSET and isinstance(val, str) and val in allobj and val not in ok_objs:
+                bad = True
+                break
+        if bad:
+            continue
+        free = [v for v in op.params if v not in jb]
+        if not free:
+            if not later or check(jb):
+                yield dict(jb)
+            continue
+        domains = [objects_of(op.type_of(v)) for v in free]
+        for combo in itertools.product(*domains):
+            full = dict(jb)
+            full.update(zip(free, combo, strict=True))
+            if later and not check(full):
+                continue
+            yield full
