@@ -1,0 +1,38 @@
+"""Regressions from the stress fault levels (benchmarks/faults.py --stress), each on a small seeded scenario."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from nowplan.acting.metrics import Metrics, Outcome
+from nowplan.acting.run import run_episode
+from nowplan.acting.strategy import parse_strategy
+from nowplan.domains.registry import get_domain
+from nowplan.experiments.faults import Faults, apply_faults
+
+
+def test_the_planning_budget_grows_with_the_worlds_surprises_only():
+    st = replace(parse_strategy("hpn"), max_plans=100, replans_per_surprise=4)
+    assert st.plan_budget(Metrics(actions=50)) == 100
+    assert st.plan_budget(Metrics(actions=50, failed_actions=10, exogenous_changes=5)) == 160
+    out = st.exhausted(Metrics(actions=50, plans_made=120, failed_actions=10), 0.0)
+    assert out is None
+    out = st.exhausted(Metrics(actions=50, plans_made=140, failed_actions=10), 0.0)
+    assert out is not None and out[0] is Outcome.LIMIT and "140 calls" in out[1]
+
+
+def _marsupial_at_failure_07(replans_per_surprise: int) -> Metrics:
+    # marsupial single-2 at a 70 % action failure rate: HPN replans after most actions, so a fixed
+    # count of planner calls (150 here, 2,000 by default against single-3) ends a progressing run
+    ep = get_domain("marsupial").scenario("single-2")(2)
+    apply_faults(ep, Faults(failure=0.7))
+    st = replace(parse_strategy("hpn", time_limit=60.0), max_plans=150, replans_per_surprise=replans_per_surprise)
+    return run_episode(ep, st, seed=2)
+
+
+def test_a_run_at_a_high_failure_rate_is_not_ended_by_a_fixed_planning_budget():
+    fixed = _marsupial_at_failure_07(0)
+    assert fixed.outcome is Outcome.LIMIT and "planning budget" in fixed.reason
+    m = _marsupial_at_failure_07(4)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert m.plans_made + m.plan_failures > 150 and m.failed_actions > 0
