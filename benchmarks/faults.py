@@ -19,7 +19,9 @@ action failure 0.1/0.25/0.5, exogenous change 0.1/0.25/0.5, both at 0.5,
 range-dependent sensor noise 0.04/0.08/0.1 m per m, missed detections 0.1/0.3.
 ``--stress`` levels (results in ``results/faults_stress/``): action failure 0.6/0.7,
 exogenous change 0.6, both at 0.6, sensor noise 0.15/0.2 m per m, missed detections
-0.4/0.5, and failure 0.5 + missed 0.3 + noise 0.1 together.
+0.4/0.5, failure 0.5 + missed 0.3 + noise 0.1/m together, range-independent sensor
+noise 0.03 m, and failure 0.5 + missed 0.3 + noise 0.03 m together (the kitchen's sensor has no
+range-dependent noise; ``--domains kitchen`` adds the PyBullet kitchen's cook task).
 Strategies: those of ``tests/test_matrix.py`` (every switch on top of hpn or
 as the online policy, plus the papers' combinations); a strategy a domain
 refuses up front is left out for that domain.
@@ -46,6 +48,8 @@ from nowplan.experiments.sweep import SweepSpec, make_backend, parse_seeds, run_
 RESULTS = Path(__file__).resolve().parent / "results"
 # the scenario each domain is benchmarked on
 SCENARIOS = {"logistics": "small", "marsupial": "single-3", "namo": "domain1", "pieces": "tiny-disturbed"}
+# domains benchmarked only when named with --domains (slower: PyBullet), and their scenario
+EXTRA_SCENARIOS = {"kitchen": "cook"}
 ONLINE = ("online", "reuse", "deferred")
 
 FULL_LEVELS = (
@@ -60,7 +64,8 @@ QUICK_LEVELS = (Faults(), Faults(failure=0.5), Faults(exogenous=0.5), Faults(fai
                 Faults(sigma_per_m=0.1), Faults(miss=0.3))
 STRESS_LEVELS = (Faults(failure=0.6), Faults(failure=0.7), Faults(exogenous=0.6), Faults(failure=0.6, exogenous=0.6),
                  Faults(sigma_per_m=0.15), Faults(sigma_per_m=0.2), Faults(miss=0.4), Faults(miss=0.5),
-                 Faults(failure=0.5, sigma_per_m=0.1, miss=0.3))
+                 Faults(failure=0.5, sigma_per_m=0.1, miss=0.3),
+                 Faults(sigma=0.03), Faults(failure=0.5, miss=0.3, sigma=0.03))
 QUICK_STRATEGIES = ("hpn", "hpn+flexible", "hpn+aggressive", "hpn+flexible+serendipity+selective+foresight",
                     "online+reuse+deferred")
 
@@ -189,7 +194,7 @@ def main(argv: list[str] | None = None) -> int:
     wanted_keys: set[str] = set()
     backend = make_backend("local", args.jobs)
     for dom in domains:
-        scen = SCENARIOS.get(dom) or get_domain(dom).default_scenario
+        scen = SCENARIOS.get(dom) or EXTRA_SCENARIOS.get(dom) or get_domain(dom).default_scenario
         levels = levels_for(dom, scen, chosen_levels)
         names = args.strategies.split(",") if args.strategies else list(QUICK_STRATEGIES if quick else matrix_strategies())
         strategies = []

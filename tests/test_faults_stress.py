@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import pytest
+
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.run import run_episode
 from nowplan.acting.strategy import parse_strategy
@@ -36,3 +38,26 @@ def test_a_run_at_a_high_failure_rate_is_not_ended_by_a_fixed_planning_budget():
     m = _marsupial_at_failure_07(4)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.plans_made + m.plan_failures > 150 and m.failed_actions > 0
+
+
+def test_sensor_knobs_reach_a_particle_sensor_by_its_own_names():
+    from nowplan.errors import ScenarioError
+    from nowplan.experiments.faults import split_scenario, supports
+
+    pytest.importorskip("pybullet")
+    ep = get_domain("kitchen").scenario("inspect")(0)
+    assert supports(ep, "miss") and supports(ep, "sigma") and not supports(ep, "sigma_per_m")
+    apply_faults(ep, split_scenario("cook?miss=0.4&sigma=0.03")[1])
+    assert ep.world.sensor.p_fn == ep.belief.sensor.p_fn == 0.4
+    assert ep.world.sensor.sigma == ep.belief.sensor.sigma == 0.03
+    with pytest.raises(ScenarioError, match="p_FN"):  # the sensor's own range check, as a ScenarioError
+        apply_faults(get_domain("kitchen").scenario("inspect")(0), Faults(miss=1.0))
+    with pytest.raises(ScenarioError, match="sigma"):
+        apply_faults(get_domain("logistics").scenario("small")(0), Faults(sigma=0.03))
+
+
+def test_the_range_independent_noise_knob_sets_a_namo_sensors_noise_at_0_m():
+    pytest.importorskip("shapely")
+    ep = get_domain("namo").scenario("simple")(0)
+    apply_faults(ep, Faults(sigma=0.03))
+    assert ep.world.sensor.sigma0 == ep.belief.sensor.sigma0 == 0.03
