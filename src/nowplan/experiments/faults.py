@@ -105,15 +105,15 @@ def apply_faults(episode: Any, faults: Faults) -> None:
         v = getattr(faults, knob)
         if v is None:
             continue
-        sensor = getattr(world, "sensor", None)
-        attr = _sensor_attr(sensor, knob)
-        if attr is None:
+        sensor: Any = getattr(world, "sensor", None)
+        name = _sensor_attr(sensor, knob)
+        if sensor is None or name is None:
             raise ScenarioError(f"fault '{knob}': this domain's world has no sensor with "
                                 f"{' or '.join(_SENSOR[knob])}; drop it")
         try:
-            world.sensor = replace(sensor, **{attr: v})
+            world.sensor = replace(sensor, **{name: v})
             if hasattr(belief, "sensor"):  # the agent's model of its sensor is the sensor
-                belief.sensor = replace(belief.sensor, **{attr: v})
+                belief.sensor = replace(belief.sensor, **{name: v})
         except (ValueError, NowplanError) as exc:  # the sensor's own range check (e.g. p_fn < 1)
             raise ScenarioError(f"fault {knob}={v:g}: {exc}") from None
 
