@@ -32,6 +32,7 @@ def _marsupial_at_failure_07(replans_per_surprise: int) -> Metrics:
     return run_episode(ep, st, seed=2)
 
 
+@pytest.mark.slow
 def test_a_run_at_a_high_failure_rate_is_not_ended_by_a_fixed_planning_budget():
     fixed = _marsupial_at_failure_07(0)
     assert fixed.outcome is Outcome.LIMIT and "planning budget" in fixed.reason
@@ -61,3 +62,48 @@ def test_the_range_independent_noise_knob_sets_a_namo_sensors_noise_at_0_m():
     ep = get_domain("namo").scenario("simple")(0)
     apply_faults(ep, Faults(sigma=0.03))
     assert ep.world.sensor.sigma0 == ep.belief.sensor.sigma0 == 0.03
+
+
+class _Guarded:
+    """A belief whose generators guard against loops (nowplan.belief.protocols.GivesUp)."""
+
+    def planning_gave_up(self, context: object) -> str | None:
+        return None
+
+
+def _passes(first_takes: float, limit: float) -> tuple[list[float], object]:
+    """plan_whole_problem with a stand-in planner whose first pass runs out of nodes after
+    ``first_takes`` s of a cpu clock it advances itself; returns the passes' time limits and the result."""
+    import time as _time
+
+    from nowplan.acting.whole import plan_whole_problem
+    from nowplan.planning.config import PlannerConfig
+    from nowplan.planning.context import PlanningContext
+    from nowplan.planning.plan import PlanResult, PlanStatus
+
+    limits: list[float] = []
+
+    def planner(domain, objects, belief, goal, levels, config, context, rng):  # noqa: ANN001, ANN202
+        limits.append(config.time_limit)
+        if not context.restricted:
+            t0 = _time.process_time()
+            while _time.process_time() - t0 < first_takes:
+                pass
+            return PlanResult(PlanStatus.NODE_LIMIT, reason="expanded 10 nodes without a plan")
+        return PlanResult(PlanStatus.TIME_LIMIT, reason="time limit reached")
+
+    cfg = PlannerConfig(time_limit=limit, clock="cpu")
+    ctx = PlanningContext(extras={"whole_problem": True})
+    res = plan_whole_problem(planner, None, {}, _Guarded(), None, None, cfg, ctx, None)  # type: ignore[arg-type]
+    return limits, res
+
+
+def test_the_two_passes_of_a_whole_problem_call_share_its_time_limit():
+    # a second pass with the whole limit again overran the run's limit (NAMO sigma_per_m=0.15, flat,
+    # seed 3: killed by the sweep's hard limit instead of ending with its reason)
+    limits, _ = _passes(0.3, 1.0)
+    assert len(limits) == 2 and limits[0] == 1.0
+    assert limits[1] <= 0.7 + 1e-6
+    limits, res = _passes(0.3, 0.2)
+    assert len(limits) == 1  # no time left for the second pass
+    assert res.status.name == "TIME_LIMIT" and "unrestricted pass" in res.reason
