@@ -107,3 +107,42 @@ def test_the_two_passes_of_a_whole_problem_call_share_its_time_limit():
     limits, res = _passes(0.3, 0.2)
     assert len(limits) == 1  # no time left for the second pass
     assert res.status.name == "TIME_LIMIT" and "unrestricted pass" in res.reason
+
+
+def _pieces_under_camera_noise(strategy: str, seed: int) -> Metrics:
+    from nowplan.domains.pieces.render import CameraNoise
+    from nowplan.domains.pieces.scenarios import SIZES, generate, make_episode
+
+    noise = CameraNoise(jitter=0.12, rotation_deg=20.0, pixel_sigma=(8.0, 25.0), occlusion_prob=0.5, shake=5)
+    ep = make_episode(generate(SIZES["tiny"], seed, "pieces-tiny"), seed, 0.2, noise=noise)
+    return run_episode(ep, parse_strategy(strategy, time_limit=60.0), seed=seed)
+
+
+def test_a_misread_board_is_looked_at_again_before_the_goal_is_given_up():
+    # pieces tiny, disturbance 0.2, a harsher camera (benchmarks/faults_pieces_camera.py 'harsh'), seed 3:
+    # a misreading made the goal unreachable and hpn gave up after 12 actions ("no plan for the goal")
+    pytest.importorskip("PIL")
+    from nowplan.acting import reobserve
+
+    m = _pieces_under_camera_noise("hpn", 3)
+    assert m.outcome is Outcome.REACHED and m.goal_in_world is not False, m.reason
+    assert reobserve.LOOKS >= 1
+
+
+def test_looking_again_is_bounded_and_said():
+    from nowplan.acting.reobserve import LOOKS, look_again
+    from nowplan.trace import Trace
+
+    class Eyes:
+        looked = 0
+
+        def reobserve(self) -> None:
+            self.looked += 1
+
+    eyes, tr = Eyes(), Trace()
+    looks = 0
+    while look_again(eyes, tr, looks, "unsolvable"):
+        looks += 1
+    assert looks == eyes.looked == LOOKS
+    assert sum("observing again" in str(e.get("text")) for e in tr.events) == LOOKS
+    assert not look_again(object(), tr, 0, "unsolvable")  # a belief that cannot look again
