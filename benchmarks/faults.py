@@ -12,10 +12,16 @@ strategy, and the reason of every failure).
     python benchmarks/faults.py --quick            # a few minutes: 2 seeds, the extreme levels, 5 strategies
     python benchmarks/faults.py                    # the full benchmark: seeds 0-19, every level and strategy
     python benchmarks/faults.py --summarize        # only re-export the CSV and the table from the store
+    python benchmarks/faults.py --stress           # just beyond the benchmark's range: seeds 0-9, harsher levels
 
 Fault levels (each where the domain's world has the knob; others are left out):
 action failure 0.1/0.25/0.5, exogenous change 0.1/0.25/0.5, both at 0.5,
 range-dependent sensor noise 0.04/0.08/0.1 m per m, missed detections 0.1/0.3.
+``--stress`` levels (results in ``results/faults_stress/``): action failure 0.6/0.7,
+exogenous change 0.6, both at 0.6, sensor noise 0.15/0.2 m per m, missed detections
+0.4/0.5, failure 0.5 + missed 0.3 + noise 0.1/m together, range-independent sensor
+noise 0.03 m, and failure 0.5 + missed 0.3 + noise 0.03 m together (the kitchen's sensor has no
+range-dependent noise; ``--domains kitchen`` adds the PyBullet kitchen's cook task).
 Strategies: those of ``tests/test_matrix.py`` (every switch on top of hpn or
 as the online policy, plus the papers' combinations); a strategy a domain
 refuses up front is left out for that domain.
@@ -42,6 +48,8 @@ from nowplan.experiments.sweep import SweepSpec, make_backend, parse_seeds, run_
 RESULTS = Path(__file__).resolve().parent / "results"
 # the scenario each domain is benchmarked on
 SCENARIOS = {"logistics": "small", "marsupial": "single-3", "namo": "domain1", "pieces": "tiny-disturbed"}
+# domains benchmarked only when named with --domains (slower: PyBullet), and their scenario
+EXTRA_SCENARIOS = {"kitchen": "cook"}
 ONLINE = ("online", "reuse", "deferred")
 
 FULL_LEVELS = (
@@ -54,6 +62,10 @@ FULL_LEVELS = (
 )
 QUICK_LEVELS = (Faults(), Faults(failure=0.5), Faults(exogenous=0.5), Faults(failure=0.5, exogenous=0.5),
                 Faults(sigma_per_m=0.1), Faults(miss=0.3))
+STRESS_LEVELS = (Faults(failure=0.6), Faults(failure=0.7), Faults(exogenous=0.6), Faults(failure=0.6, exogenous=0.6),
+                 Faults(sigma_per_m=0.15), Faults(sigma_per_m=0.2), Faults(miss=0.4), Faults(miss=0.5),
+                 Faults(failure=0.5, sigma_per_m=0.1, miss=0.3),
+                 Faults(sigma=0.03), Faults(failure=0.5, miss=0.3, sigma=0.03))
 QUICK_STRATEGIES = ("hpn", "hpn+flexible", "hpn+aggressive", "hpn+flexible+serendipity+selective+foresight",
                     "online+reuse+deferred")
 
@@ -150,6 +162,8 @@ def export(records: list[RunRecord], out: Path) -> None:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", action="store_true", help="2 seeds, the extreme levels, 5 strategies (minutes)")
+    ap.add_argument("--stress", action="store_true", help="harsher levels than the benchmark's, seeds 0-9 "
+                    "(results/faults_stress, store faults_stress.sqlite)")
     ap.add_argument("--domains", default=",".join(SCENARIOS), help="domains joined by ','")
     ap.add_argument("--strategies", help="strategies joined by ',' (default: the matrix's, or --quick's five)")
     ap.add_argument("--seeds", help="seeds (default 0-19, --quick 0-1)")
@@ -165,20 +179,22 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
     quick = args.quick
     try:
-        chosen_levels = parse_levels(args.levels) if args.levels else QUICK_LEVELS if quick else FULL_LEVELS
+        default_levels = STRESS_LEVELS if args.stress else QUICK_LEVELS if quick else FULL_LEVELS
+        chosen_levels = parse_levels(args.levels) if args.levels else default_levels
     except NowplanError as exc:
         print(f"faults.py: --levels: {exc}", file=sys.stderr)
         return 2
-    seeds = parse_seeds(args.seeds or ("0-1" if quick else "0-19"))
+    seeds = parse_seeds(args.seeds or ("0-1" if quick else "0-9" if args.stress else "0-19"))
     limit = args.time_limit or (30.0 if quick else 60.0)
-    out = args.out or (RESULTS / "faults_quick" if quick else RESULTS)
-    store_path = args.store or (RESULTS / ("faults_quick.sqlite" if quick else "faults.sqlite"))
+    tag = "faults_quick" if quick else "faults_stress" if args.stress else ""
+    out = args.out or (RESULTS / tag if tag else RESULTS)
+    store_path = args.store or (RESULTS / f"{tag or 'faults'}.sqlite")
     store = Store(store_path)
     domains = [d.strip() for d in args.domains.split(",") if d.strip()]
     wanted_keys: set[str] = set()
     backend = make_backend("local", args.jobs)
     for dom in domains:
-        scen = SCENARIOS.get(dom) or get_domain(dom).default_scenario
+        scen = SCENARIOS.get(dom) or EXTRA_SCENARIOS.get(dom) or get_domain(dom).default_scenario
         levels = levels_for(dom, scen, chosen_levels)
         names = args.strategies.split(",") if args.strategies else list(QUICK_STRATEGIES if quick else matrix_strategies())
         strategies = []

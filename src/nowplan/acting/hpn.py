@@ -28,6 +28,7 @@ from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import (
     Cycle, CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason,
 )
+from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
 from nowplan.acting.refine_flat import FlatSteps, refinement_key
 from nowplan.acting.strategy import Strategy, check_supported
@@ -417,6 +418,7 @@ class Executive:
             self.progress.start(start)
         outcome, reason = Outcome.REACHED, ""
         consecutive_failures = 0
+        looks = 0  # fresh looks since the last plan (acting/reobserve.py)
         while self.stack:
             over = self.strategy.exhausted(self.metrics, time.perf_counter() - self._t0)
             if over is not None:
@@ -481,6 +483,9 @@ class Executive:
                         continue
                     if f.root:
                         timed_out = self._last_status is PlanStatus.TIME_LIMIT
+                        if not timed_out and look_again(self.belief, self.trace, looks, self._last_failure):
+                            looks += 1
+                            continue
                         outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
                         reason = f"no plan for the goal ({self._last_failure})"
                         break
@@ -492,7 +497,7 @@ class Executive:
                     # cycle (FlatSteps.check_cycle), plan the goal concretely
                     self.backtrack(f, action)
                     continue
-                consecutive_failures = 0
+                consecutive_failures = looks = 0
                 self.push(new, f)
             else:
                 self.execute(f, action)

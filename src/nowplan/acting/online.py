@@ -32,6 +32,7 @@ from nowplan.acting.deferred import resolve
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
+from nowplan.acting.reobserve import look_again
 from nowplan.acting.progress import CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
@@ -241,6 +242,7 @@ class OnlinePolicy:
         prev: tuple[SkeletonStep, ...] | None = None
         outcome, reason = Outcome.FAILED, ""
         retries = 0
+        looks = 0  # fresh looks since the last plan (acting/reobserve.py)
         progress = CycleDetector(self.strategy.max_cycles)
         self._tail = []
         start = self._situation()
@@ -277,6 +279,10 @@ class OnlinePolicy:
                                 goal=[str(a) for a in self.problem.goal], status=res.status.value,
                                 reason=res.reason, cpu_s=round(res.cpu_time_s, 6))
                 timed = res.status is PlanStatus.TIME_LIMIT
+                if not timed and look_again(self.belief, self.trace, looks, f"{res.status.value}: {res.reason}"):
+                    looks += 1
+                    prev = None
+                    continue
                 outcome = Outcome.LIMIT if timed else Outcome.FAILED
                 reason = f"no plan for the goal ({res.status.value}: {res.reason})"
                 if timed and self.clock() - t0 >= self.strategy.time_limit - 0.05:
@@ -290,6 +296,7 @@ class OnlinePolicy:
                 outcome, reason = Outcome.FAILED, f"no plan with expected cost below c*={self.c_star:g} (best {cost:g})"
                 break
             actions = res.plan.actions
+            looks = 0
             if self.streams is not None:
                 rs = resolve(actions, self.streams, self.belief, self.deferred)
                 self.planning_s += self.clock() - tp

@@ -44,7 +44,10 @@ class Strategy:
     cost_increase: float = 0.25  # selective: replan when a plan's remaining cost grows by this fraction
     planner: PlannerConfig = field(default_factory=PlannerConfig)
     max_actions: int = 1_000  # executive budgets: no loop without a bound
-    max_plans: int = 2_000
+    max_plans: int = 2_000  # planner calls the strategy makes of its own accord
+    # planner calls allowed on top of max_plans for each surprise (failed action or exogenous change):
+    # replanning after the world's doing is bounded by the action budget, not by max_plans alone
+    replans_per_surprise: int = 4
     max_depth: int = 64
     max_refinements: int = 5  # refinements of one plan step without an action before it is given up
     max_cycles: int = 3  # progress guard: cycles (nowplan.acting.progress) before a run ends as a livelock
@@ -64,11 +67,20 @@ class Strategy:
         why = f" ({metrics.world_summary()})"
         if metrics.actions >= self.max_actions:
             return Outcome.LIMIT, f"action budget of {self.max_actions} spent" + why
-        if metrics.plans_made + metrics.plan_failures >= self.max_plans:
-            return Outcome.LIMIT, f"planning budget of {self.max_plans} calls spent" + why
+        plan_budget = self.plan_budget(metrics)
+        if metrics.plans_made + metrics.plan_failures >= plan_budget:
+            return Outcome.LIMIT, f"planning budget of {plan_budget} calls spent" + why
         if elapsed > self.time_limit:
             return Outcome.LIMIT, f"time limit of {self.time_limit:g} s reached" + why
         return None
+
+    def plan_budget(self, metrics: Metrics) -> int:
+        """Planner calls allowed so far: ``max_plans`` plus ``replans_per_surprise`` for each failed
+        action and exogenous change (the world's surprises: a run at a 70 % failure rate replans
+        after most actions, which a fixed count would end by its budget while it is progressing;
+        the sum stays bounded, as surprises are bounded by the action budget)."""
+        surprises = metrics.failed_actions + metrics.exogenous_changes
+        return self.max_plans + self.replans_per_surprise * surprises
 
     def mechanisms(self) -> list[Mechanism]:
         _load()

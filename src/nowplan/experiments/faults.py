@@ -9,7 +9,10 @@ new column and a fault benchmark resumes like any sweep.  The knobs:
                 NAMO world's ``noise.move_fail`` and ``noise.grasp_fail``)
 ``exogenous``   probability of an exogenous change after an action (``world.exogenous_prob``)
 ``sigma_per_m`` range-dependent sensor noise (m per m; the world's and the agent's sensor model)
-``miss``        probability that a visible object goes undetected on one look
+``sigma``       sensor noise at 0 m or independent of range (m; a NAMO sensor's ``sigma0``,
+                a particle sensor's ``sigma``, e.g. the kitchen's)
+``miss``        probability that a visible object goes undetected on one look (``miss_prob``,
+                or a particle sensor's false-negative rate ``p_fn``, e.g. the kitchen's)
 ==============  ==========================================================
 
 A knob the episode's world does not have is refused with a
@@ -21,12 +24,13 @@ from __future__ import annotations
 from dataclasses import dataclass, fields, replace
 from typing import Any
 
-from nowplan.errors import ScenarioError
+from nowplan.errors import NowplanError, ScenarioError
 
 SEP = "?"
-# knob -> (attribute on the world, attribute of world.sensor, or None)
+# knob -> attribute on the world
 _WORLD = {"failure": "failure_prob", "exogenous": "exogenous_prob"}
-_SENSOR = {"sigma_per_m": "sigma_per_m", "miss": "miss_prob"}
+# knob -> the attributes of world.sensor it may set, the first the sensor has
+_SENSOR = {"sigma_per_m": ("sigma_per_m",), "sigma": ("sigma0", "sigma"), "miss": ("miss_prob", "p_fn")}
 # a world without failure_prob whose ``noise`` has these rates (NAMO: moves stop early, grasps miss)
 _NOISE_FAILURE = ("move_fail", "grasp_fail")
 KNOBS = (*_WORLD, *_SENSOR)
@@ -38,6 +42,7 @@ class Faults:
     exogenous: float = 0.0
     sigma_per_m: float | None = None  # None: the scenario's own sensor noise
     miss: float | None = None
+    sigma: float | None = None
 
     def items(self) -> list[tuple[str, float]]:
         out: list[tuple[str, float]] = []
@@ -72,9 +77,9 @@ def split_scenario(name: str) -> tuple[str, Faults]:
             v = float(raw)
         except ValueError:
             raise ScenarioError(f"scenario '{name}': fault {key}: '{raw}' is not a number") from None
-        top = 10.0 if key == "sigma_per_m" else 1.0
+        top = 10.0 if key in ("sigma_per_m", "sigma") else 1.0
         if not 0.0 <= v <= top:
-            what = "noise per metre" if key == "sigma_per_m" else "probability"
+            what = {"sigma_per_m": "noise per metre", "sigma": "noise in metres"}.get(key, "probability")
             raise ScenarioError(f"scenario '{name}': fault {key}={raw} is out of range; give a {what} "
                                 f"in [0, {top:g}]")
         values[key] = v
@@ -96,16 +101,21 @@ def apply_faults(episode: Any, faults: Faults) -> None:
         if knob == "exogenous" and getattr(world, "exogenous", True) is None:
             raise ScenarioError(f"fault '{knob}': this world has no exogenous changes to make; drop it")
         setattr(world, attr, v)
-    for knob, attr in _SENSOR.items():
+    for knob in _SENSOR:
         v = getattr(faults, knob)
         if v is None:
             continue
-        sensor = getattr(world, "sensor", None)
-        if sensor is None or not hasattr(sensor, attr):
-            raise ScenarioError(f"fault '{knob}': this domain's world has no sensor with {attr}; drop it")
-        world.sensor = replace(sensor, **{attr: v})
-        if hasattr(belief, "sensor"):  # the agent's model of its sensor is the sensor
-            belief.sensor = replace(belief.sensor, **{attr: v})
+        sensor: Any = getattr(world, "sensor", None)
+        name = _sensor_attr(sensor, knob)
+        if sensor is None or name is None:
+            raise ScenarioError(f"fault '{knob}': this domain's world has no sensor with "
+                                f"{' or '.join(_SENSOR[knob])}; drop it")
+        try:
+            world.sensor = replace(sensor, **{name: v})
+            if hasattr(belief, "sensor"):  # the agent's model of its sensor is the sensor
+                belief.sensor = replace(belief.sensor, **{name: v})
+        except (ValueError, NowplanError) as exc:  # the sensor's own range check (e.g. p_fn < 1)
+            raise ScenarioError(f"fault {knob}={v:g}: {exc}") from None
 
 
 def supports(episode: Any, knob: str) -> bool:
@@ -116,8 +126,14 @@ def supports(episode: Any, knob: str) -> bool:
     if knob in _WORLD:
         ok = hasattr(world, _WORLD[knob])
         return ok and not (knob == "exogenous" and getattr(world, "exogenous", True) is None)
-    sensor = getattr(world, "sensor", None)
-    return sensor is not None and hasattr(sensor, _SENSOR[knob])
+    return _sensor_attr(getattr(world, "sensor", None), knob) is not None
+
+
+def _sensor_attr(sensor: Any, knob: str) -> str | None:
+    """The attribute of ``sensor`` that the knob sets, or None."""
+    if sensor is None:
+        return None
+    return next((a for a in _SENSOR[knob] if hasattr(sensor, a)), None)
 
 
 def _noise_failure(world: Any) -> bool:

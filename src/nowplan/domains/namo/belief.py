@@ -37,7 +37,7 @@ from nowplan.domains.namo.estimate import ObjectEstimate, k_of
 from nowplan.domains.namo.geometry import (Box, Manip, MapGeometry, Pt, Region, along, heading_to, polyline_length,
                                           snap_free)
 from nowplan.domains.namo.params import DEFAULT_PARAMS, DEFAULT_SENSOR, Params, Sensor
-from nowplan.domains.namo.sensing import detect, sense
+from nowplan.domains.namo.sensing import detect, looks_to_give_up, sense
 from nowplan.planning.context import PlanningContext
 from nowplan.worlds.base import Observation
 
@@ -101,6 +101,9 @@ class NamoBelief:
     # (view point, object or "look:<region>") -> percept when a look from there did not localise the
     # object or reveal the region (occluded, out of view): not relied on again until something new is seen
     futile_looks: dict[tuple[Pt, str], int] = field(default_factory=dict)
+    # (view point, object) -> (percept, looks from there in a row that did not detect the object): with a
+    # sensor that misses visible objects, a look is futile only after looks_to_give_up of them
+    look_misses: dict[tuple[Pt, str], tuple[int, int]] = field(default_factory=dict)
     # object -> (point the robot's centre was stopped from reaching by it, its estimated centre then):
     # a blocked move is an observation that the object occupies the way there (see in_contact_way)
     touched: dict[str, list[tuple[Pt, Pt]]] = field(default_factory=dict)
@@ -372,13 +375,25 @@ class NamoBelief:
             # not detected (occluded, out of view, missed): a look from there is not relied on again
             # until something new is seen.  (A detected object's estimate always tightens by the
             # predicted amount, however little: a chain of looks with a noisy sensor is not futile.)
+            # With a sensor that misses visible objects (``miss_prob``), one miss is chance: the look
+            # is futile after looks_to_give_up(miss_prob) misses in a row (issue 14 stress runs:
+            # at miss 0.3 one miss barred the only view of an object and the search found no plan).
             v = action.args[0]
             if isinstance(v, Pt):
-                self.futile_looks[(v, looked.name)] = self.percept
+                key = (v, looked.name)
+                was = self.look_misses.get(key)
+                n = was[1] + 1 if was is not None and was[0] == self.percept else 1
+                self.look_misses[key] = (self.percept, n)
+                if n >= looks_to_give_up(self.sensor.miss_prob):
+                    self.futile_looks[key] = self.percept
         if name == "Look" and isinstance(action.args[0], Pt) and isinstance(action.args[1], Region):
             if not self.is_observed(action.args[1]):  # (fog hidden behind something: not from here)
                 self.futile_looks[(action.args[0], f"look:{action.args[1]}")] = self.percept
         self._bump()
+
+    def misses_now(self) -> frozenset[tuple[tuple[Pt, str], int]]:
+        """The looks that missed their object since the last perceptual event, with their counts."""
+        return frozenset((k, n) for k, (pc, n) in self.look_misses.items() if pc == self.percept)
 
     def _remember_contacts(self, data: dict[str, Any], h: Pt) -> None:
         """A move stopped by contact: the robot's centre could not reach ``h`` for the objects touched.

@@ -58,5 +58,6 @@ def fingerprint(b: NamoBelief) -> Hashable:
         frozenset((n, q_pt(h)) for n, hits in sorted(b.touched.items()) for h, _ in hits),
         frozenset(n for n in b.unmovable if b.stuck(n)),
         frozenset(k for k, v in b.futile_looks.items() if v == b.percept),
+        b.misses_now(),
         frozenset(b.blocked_picks),
     )

@@ -114,3 +114,16 @@ def off_walls(b: NamoBelief, est: ObjectEstimate) -> None:
         if best is not None:
             est.mean = np.array(best)
             return
+
+
+# a look that did not detect an object is given up on when a visible object would have been missed that
+# many times in a row with at most this chance (the rest of the time it was not visible from there)
+MISS_GIVE_UP = 0.1
+
+
+def looks_to_give_up(miss_prob: float, chance: float = MISS_GIVE_UP) -> int:
+    """Looks in a row from one view point that must miss an object before a look from there is futile:
+    the least k with ``miss_prob ** k <= chance`` (1 for a sensor that never misses a visible object)."""
+    if miss_prob <= chance:
+        return 1
+    return max(1, math.ceil(math.log(chance) / math.log(min(miss_prob, 0.99))))
