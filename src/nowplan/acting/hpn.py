@@ -41,6 +41,7 @@ from nowplan.core.operators import Action
 from nowplan.errors import ScenarioError
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep, goal_text
+from nowplan.planning.regression import concrete
 from nowplan.planning.regression import plan as regression_plan
 from nowplan.trace import Trace
 from nowplan.worlds.base import Observation, World
@@ -129,6 +130,9 @@ class Executive:
         self.base_levels = (
             LevelMap(self.domain.top_level) if strategy.hierarchical else flat_levels()
         )
+        # a flat strategy, or a domain whose top level keeps every precondition (the kitchen: no
+        # criticalities): every call plans the whole problem concretely, as a flat strategy's does
+        self.single_level = not strategy.hierarchical or concrete(self.domain, self.base_levels)
 
     # -- plan-stack operations ------------------------------------------------
     def applicable(self, f: Frame) -> bool:
@@ -193,7 +197,7 @@ class Executive:
         """What the planner and generators see: the plan stack only with foresight on; a flat strategy's
         planner also gets the domain's goal-distance estimate, as the online policy's flat planner does."""
         extras: dict[str, Any] = {"foresight": self.strategy.foresight}
-        if not self.strategy.hierarchical:  # it plans the whole problem: no level above to fall back to
+        if self.single_level:  # it plans the whole problem: no level above to fall back to
             extras["whole_problem"] = True
             if isinstance(self.belief, HasHeuristic):
                 extras["heuristic"] = self.belief.planning_heuristic
