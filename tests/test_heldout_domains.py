@@ -15,6 +15,7 @@ tested predicate
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -54,30 +55,30 @@ def _refused(strategy: str, refused: set[str]) -> bool:
     return bool(refused & set(strategy.split("+")))
 
 
-@pytest.mark.parametrize("strategy", STRATEGIES)
-def test_lab_under_every_strategy(lab: DomainSpec, strategy: str) -> None:
-    ep = lab.scenario("sticky")(0)  # the lab door sticks 3 times in 10
+def _reaches_or_is_refused(ep: Any, strategy: str, seed: int, refused: set[str], match: str) -> None:
+    """``strategy`` reaches the goal in the world on ``ep``, or, when one of its switches is in
+    ``refused``, is refused before the run with a message matching ``match``."""
     st = parse_strategy(strategy, max_actions=300, time_limit=60.0)
-    if _refused(strategy, {"domain-planner"}):
-        with pytest.raises(ScenarioError, match="domain-planner"):
-            run_episode(ep, st, seed=0)
+    if _refused(strategy, refused):
+        with pytest.raises(ScenarioError, match=match):
+            run_episode(ep, st, seed=seed)
         return
-    m = run_episode(ep, st, seed=0)
+    m = run_episode(ep, st, seed=seed)
     assert m.outcome is Outcome.REACHED, f"{strategy}: {m.outcome.value} ({m.reason})"
     assert m.goal_in_world is True
+
+
+@pytest.mark.parametrize("strategy", STRATEGIES)
+def test_lab_under_every_strategy(lab: DomainSpec, strategy: str) -> None:
+    # the lab door sticks 3 times in 10
+    _reaches_or_is_refused(lab.scenario("sticky")(0), strategy, 0, {"domain-planner"}, "domain-planner")
 
 
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_search_under_every_strategy(search: DomainSpec, strategy: str) -> None:
-    ep = search.scenario("missy")(1)  # looks miss 2 times in 10; seed 1 misses at least once under hpn
-    st = parse_strategy(strategy, max_actions=300, time_limit=60.0)
-    if _refused(strategy, {"domain-planner"} | MONITORS):
-        with pytest.raises(ScenarioError, match="domain-planner|tested on the belief"):
-            run_episode(ep, st, seed=1)
-        return
-    m = run_episode(ep, st, seed=1)
-    assert m.outcome is Outcome.REACHED, f"{strategy}: {m.outcome.value} ({m.reason})"
-    assert m.goal_in_world is True
+    # looks miss 2 times in 10; seed 1 misses at least once under hpn
+    _reaches_or_is_refused(search.scenario("missy")(1), strategy, 1, {"domain-planner"} | MONITORS,
+                           "domain-planner|tested on the belief")
 
 
 def test_lab_samples_drift_out_of_sight_and_are_found_again(lab: DomainSpec) -> None:
