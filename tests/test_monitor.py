@@ -183,3 +183,26 @@ def test_monitor_on_logistics_with_the_default_distance(switch: str) -> None:
     assert world.exogenous_events == 1 and mon.stats.surprises == 1
     assert sum(mon.stats.decisions.values()) == 1 and m.replans >= 1
     assert any(r["trigger"] == "monitor" for r in trace.of("replan"))
+
+
+def test_only_tests_that_need_the_belief_refuse_the_monitor() -> None:
+    """The monitor plans over States: a test reading what a State has not (AttributeError) refuses it;
+    a test that works on States, or one that only fails on the probe's arguments (KeyError), does not."""
+    from types import SimpleNamespace
+
+    from nowplan.acting.monitor import _tests_not_on_states
+
+    def odds(belief: object, args: tuple[object, ...], value: object) -> bool:
+        return belief.probability(args) > 0.1  # type: ignore[attr-defined]
+
+    def facts(belief: object, args: tuple[object, ...], value: object) -> bool:
+        return isinstance(belief, State)
+
+    def table(belief: object, args: tuple[object, ...], value: object) -> bool:
+        return {("b",): True}[args]  # KeyError for the probe's first object
+
+    preds = {n: SimpleNamespace(name=n, test=t, arg_types=("thing",), arity=1)
+             for n, t in (("odds", odds), ("facts", facts), ("table", table), ("plain", None))}
+    ex = SimpleNamespace(belief=SymbolicBelief(State({})), problem=SimpleNamespace(objects={"a": "thing", "b": "thing"}),
+                         domain=SimpleNamespace(predicates=preds))
+    assert _tests_not_on_states(ex) == ["odds"]  # type: ignore[arg-type]

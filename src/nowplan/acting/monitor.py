@@ -88,11 +88,12 @@ def monitor_settings(config: MonitorConfig) -> Iterator[MonitorConfig]:
         _ACTIVE = old
 
 
-
 def _tests_not_on_states(ex: Executive) -> list[str]:
     """The tested predicates whose test cannot answer on a :class:`State` (it reads something only the
-    belief has, e.g. a particle belief's odds): tried once on the belief's state, with the first
-    objects of the argument types.  A test that reads the state's facts (marsupial's ``same_city``) works."""
+    belief has, e.g. a particle belief's odds: an AttributeError or TypeError): tried once on the belief's
+    state, with the first objects of the argument types.  A test that reads the state's facts
+    (marsupial's ``same_city``) works; one that fails on those particular arguments (a KeyError, say)
+    is not taken for a test that needs the belief."""
     state = state_of(ex.belief)
     objects = list(ex.problem.objects.items())
     out: list[str] = []
@@ -103,9 +104,12 @@ def _tests_not_on_states(ex: Executive) -> list[str]:
                      for want in (p.arg_types or (None,) * p.arity)[:p.arity])
         try:
             p.test(state, args, True)
-        except Exception:  # noqa: BLE001 - any error means the test needs more than a State
+        except (AttributeError, TypeError):  # it reads what a State has not (a particle belief's odds)
             out.append(p.name)
+        except Exception:  # noqa: BLE001 - another error is about these arguments, not about States
+            continue
     return sorted(out)
+
 
 class Monitor(MonitorPlanning, Mechanism):
     name = "monitor"

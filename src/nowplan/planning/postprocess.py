@@ -20,7 +20,8 @@ cProfile.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
+from typing import TypeVar
 
 from nowplan.planning.axioms import AxiomEvaluator, evaluator
 from nowplan.planning.task import Task
@@ -111,36 +112,42 @@ def _states_bits(task: Task, plan: list[int], goal: int) -> list[int] | None:
     return out if state & goal == goal else None
 
 
-def eliminate_actions(task: Task, plan: list[int]) -> list[int]:
-    """The plan with unneeded actions removed (greedy action elimination)."""
-    cost = task.cost
-    ev = evaluator(task)
-    if ev is None:  # states as bit masks: the same tries, several times faster than sets of fact ids
-        goal = _mask(task.goal)
-        bits = _states_bits(task, plan, goal)
-        if bits is not None:
-            return _eliminate_bits(task, plan, bits, goal)
-    states = _states(task, ev, plan)
-    i = 0
-    while i < len(plan):
-        shorter = _run(task, plan, i, states)
-        if shorter is not None and (sum(cost[a] for a in shorter) < sum(cost[a] for a in plan) or
-                                    len(shorter) < len(plan) and
-                                    sum(cost[a] for a in shorter) <= sum(cost[a] for a in plan)):
-            plan = shorter  # re-examine from the same position
-            states = _states(task, ev, plan)
-        else:
-            i += 1
-    return plan
+def _better(cost: list[float], shorter: list[int], plan: list[int]) -> bool:
+    """Whether ``shorter`` costs less than ``plan``, or as much with fewer steps."""
+    new, old = sum(cost[a] for a in shorter), sum(cost[a] for a in plan)
+    return new < old or (len(shorter) < len(plan) and new <= old)
 
 
-# steps replayed by one bit-mask pass at most (~1 s here): the tries are quadratic in the plan's length, so a
+# steps replayed by one pass at most (~1 s with bit masks): the tries are quadratic in the plan's length, so a
 # plan of thousands of steps (visit-all 50x50: 3,218) would spend far longer here than its search did; the
 # pass then keeps the plan it has (valid, never costlier).  Plans of a few hundred steps need ~10^5.
 MAX_REPLAY_STEPS = 1_000_000
 
 
-def _eliminate_bits(task: Task, plan: list[int], states: list[int], goal: int) -> list[int]:
+def eliminate_actions(task: Task, plan: list[int]) -> list[int]:
+    """The plan with unneeded actions removed (greedy action elimination)."""
+    ev = evaluator(task)
+    if ev is None:  # states as bit masks: the same tries, several times faster than sets of fact ids
+        goal = _mask(task.goal)
+        bits = _states_bits(task, plan, goal)
+        if bits is not None:
+            def states_bits(p: list[int]) -> list[int]:
+                again = _states_bits(task, p, goal)
+                assert again is not None  # a plan _run_bits returns applies and reaches the goal
+                return again
+
+            return _eliminate(task, plan, bits, states_bits, lambda p, i, s: _run_bits(task, p, i, s, goal))
+    return _eliminate(task, plan, _states(task, ev, plan), lambda p: _states(task, ev, p),
+                      lambda p, i, s: _run(task, p, i, s))
+
+
+S = TypeVar("S")  # the states a plan passes through, in one representation
+
+
+def _eliminate(task: Task, plan: list[int], states: S, states_of: Callable[[list[int]], S],
+               run: Callable[[list[int], int, S], list[int] | None]) -> list[int]:
+    """The elimination loop over one state representation: ``states_of(plan)`` the states the plan passes
+    through, ``run(plan, i, states)`` the plan without step ``i`` (and what it leaves inapplicable)."""
     cost = task.cost
     i = 0
     work = 0
@@ -148,14 +155,10 @@ def _eliminate_bits(task: Task, plan: list[int], states: list[int], goal: int) -
         work += len(plan) - i
         if work > MAX_REPLAY_STEPS:
             break
-        shorter = _run_bits(task, plan, i, states, goal)
-        if shorter is not None and (sum(cost[a] for a in shorter) < sum(cost[a] for a in plan) or
-                                    len(shorter) < len(plan) and
-                                    sum(cost[a] for a in shorter) <= sum(cost[a] for a in plan)):
-            plan = shorter
-            again = _states_bits(task, plan, goal)
-            assert again is not None  # a plan _run_bits returns applies and reaches the goal
-            states = again
+        shorter = run(plan, i, states)
+        if shorter is not None and _better(cost, shorter, plan):
+            plan = shorter  # re-examine from the same position
+            states = states_of(plan)
         else:
             i += 1
     return plan
