@@ -10,7 +10,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from nowplan.cli import main as cli_main
@@ -127,6 +127,9 @@ _STORE: list[bytes] = []
 @pytest.mark.timeout(300, method="thread")  # a parser loop fails the run (see pyproject.toml)
 @FUZZ
 @given(drawn=CONTENT)
+# a byte that is not UTF-8 in the schema's page: SQLite's own error text was then undecodable
+# and the report ended in a UnicodeDecodeError traceback (found by this test under load)
+@example(drawn=[(0, 3368, 128)])
 def test_run_store_files(drawn, capsys):
     if not _STORE:
         _STORE.append(_store_bytes())

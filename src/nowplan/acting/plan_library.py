@@ -132,7 +132,7 @@ class PlanLibrary:
                     f"plan library {where} has schema version {row[0]}, this nowplan writes "
                     f"{SCHEMA_VERSION}; delete the file or pass another library path"
                 )
-        except sqlite3.DatabaseError as exc:
+        except (sqlite3.DatabaseError, UnicodeDecodeError) as exc:  # a damaged page can garble the error text too
             raise self._error(exc) from exc
 
     def _error(self, exc: Exception) -> StoreError:
@@ -172,7 +172,7 @@ class PlanLibrary:
                 [(pid, i, state_key(s), _canon(list(s.atoms()))) for i, s in enumerate(states)],
             )
             self._db.commit()
-        except sqlite3.DatabaseError as exc:
+        except (sqlite3.DatabaseError, UnicodeDecodeError) as exc:  # a damaged page can garble the error text too
             raise self._error(exc) from exc
         log.debug("plan library: stored plan %d (%d actions) for %s", pid, len(actions), domain)
         return pid
@@ -215,7 +215,7 @@ class PlanLibrary:
                 out.append(StoredPlan(int(pid), str(dom), str(ik), str(gk), acts, states, float(cost),
                                       tuple(str(k) for _, k, _ in srows)))
             return out
-        except sqlite3.DatabaseError as exc:
+        except (sqlite3.DatabaseError, UnicodeDecodeError) as exc:  # a damaged page can garble the error text too
             raise self._error(exc) from exc
         except (ValueError, TypeError) as exc:  # malformed JSON or rows
             raise self._error(exc) from exc
@@ -223,7 +223,7 @@ class PlanLibrary:
     def __len__(self) -> int:
         try:
             return int(self._db.execute("SELECT COUNT(*) FROM plans").fetchone()[0])
-        except sqlite3.DatabaseError as exc:
+        except (sqlite3.DatabaseError, UnicodeDecodeError) as exc:  # a damaged page can garble the error text too
             raise self._error(exc) from exc
 
     def close(self) -> None:

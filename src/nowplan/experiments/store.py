@@ -86,7 +86,7 @@ class Store:
                 )
             self._db.execute("PRAGMA journal_mode=WAL")  # readers (a report) never block the sweep
             self._db.execute("PRAGMA synchronous=FULL")
-        except sqlite3.DatabaseError as exc:
+        except (sqlite3.DatabaseError, UnicodeDecodeError) as exc:  # a damaged page can garble the error text too
             self._db.close()
             raise StoreError(f"{self.path}: not a usable nowplan run store ({exc})") from exc
         except StoreError:
@@ -173,7 +173,7 @@ class Store:
             rows = self._db.execute(
                 f"SELECT {', '.join(_COLUMNS)} FROM runs ORDER BY domain, scenario, strategy, seed, time_limit"
             ).fetchall()
-        except sqlite3.DatabaseError as exc:
+        except (sqlite3.DatabaseError, UnicodeDecodeError) as exc:  # a damaged page can garble the error text too
             raise StoreError(f"{self.path}: the run store cannot be read ({exc}); restore it from a copy") from exc
         for row in rows:
             yield self._from_row(row)
