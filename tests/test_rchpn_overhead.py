@@ -19,7 +19,9 @@ from hypothesis import strategies as st
 from nowplan.acting.peephole import Peephole
 from nowplan.core.atoms import AtMostOne, Rules, atom, contradiction
 from nowplan.domains.marsupial import loader as lp
-from nowplan.domains.marsupial.grid import SHAPES, SIZES, Hold, cells, inside, load_anchor, occupancy, reachable
+from nowplan.domains.marsupial.grid import (
+    SHAPES, SIZES, Hold, border, cells, in_storage, inside, load_anchor, occupancy, reachable,
+)
 
 pytestmark = pytest.mark.timeout(120)
 
@@ -92,6 +94,72 @@ def test_bay_geometry_matches_the_reference(conf: lp.Config) -> None:
         after = t.after[0]
         assert after.items == tuple(sorted(after.items))
         occupancy(*t.after)  # no exception
+
+
+def _successors_ref(conf: lp.Config) -> list[tuple[lp.Transition, float]]:
+    """The robot operators as they were made before the bit-mask flood (a dict BFS, ``spots``)."""
+    hold, door = conf
+    rows, cols = hold.rows, hold.cols
+    out: list[tuple[lp.Transition, float]] = []
+    occ = occupancy(hold, door)
+    dist = reachable(hold, door, occ)
+    if hold.held is None:
+        seen: set[str] = set()
+        for dr, dc in ((-1, 0), (1, 0), (0, -1), (0, 1)):
+            q = occ.get((hold.loader[0] + dr, hold.loader[1] + dc))
+            if q is None or q in seen:
+                continue
+            seen.add(q)
+            if door is not None and q == door[0]:
+                after: lp.Config = (Hold(rows, cols, hold.items, hold.loader, q, door[1]), None)
+            else:
+                q_shape = next(s for n, s, _ in hold.items if n == q)
+                rest = tuple(sorted(i for i in hold.items if i[0] != q))
+                after = (Hold(rows, cols, rest, hold.loader, q, q_shape), door)
+            out.append((lp.Transition("grasp", q, conf, after), 1.0))
+        near: set[tuple[int, int]] = set()
+        for x in occ:
+            near.update((x[0] + dr, x[1] + dc) for dr, dc in ((-1, 0), (1, 0), (0, -1), (0, 1)))
+        targets = {x for x in dist if x in near and x != hold.loader}
+        parking = [x for x in dist if in_storage(x, rows, cols)]
+        if not in_storage(hold.loader, rows, cols) and parking:
+            targets.add(min(parking, key=lambda x: (dist[x], x)))
+        for x in sorted(targets):
+            out.append((lp.Transition("move", x, conf, (hold._replace(loader=x), door)), 1.0))
+        return out
+    shape = hold.held_shape
+    assert shape is not None
+    ranked = sorted((lp.spot_penalty(shape, a, rows, cols), a) for a in _spots_ref(hold, door, shape))
+    for pen, a in ranked:
+        if hold.loader in border(shape, a):
+            out.append((lp.Transition("place", hold.held, conf, lp._set_down(hold, door, a)),
+                        1.0 + lp.EPS * max(pen, 0.0)))
+    stores = [a for p, a in ranked if p < 10.0 * cols][: lp.MAX_PLACEMENTS]
+    buffers = [a for p, a in ranked if p >= 10.0 * cols][: lp.MAX_BUFFER]
+    targets = set()
+    for a in stores + buffers:
+        stand = [x for x in border(shape, a) if x in dist]
+        if stand and hold.loader not in stand:
+            targets.add(min(stand, key=lambda x: (dist[x], x)))
+    for x in sorted(targets):
+        out.append((lp.Transition("move", x, conf, (hold._replace(loader=x), door)), 1.0))
+    return out
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(bays(), st.lists(st.integers(0, 31), max_size=4))
+def test_successors_match_the_reference(conf: lp.Config, moves: list[int]) -> None:
+    """The same operators in the same order, with a search's memo of what configurations that
+    differ only in the loader's cell share (filled by earlier calls) or without one."""
+    hold, door = conf
+    memo: dict[Any, Any] = {}
+    free = [x for x in ((r, c) for r in range(hold.rows) for c in range(hold.cols))
+            if x not in occupancy(hold, door)]
+    for i in [None, *moves]:
+        here = conf if i is None else (hold._replace(loader=free[i % len(free)]), door)
+        want = _successors_ref(here)
+        assert lp.successors(here) == want
+        assert lp.successors(here, memo) == want
 
 
 # ------------------------------------------------------------------ the path cache

@@ -24,8 +24,9 @@ import itertools
 import logging
 from collections.abc import Callable, Mapping, Sequence
 from functools import lru_cache
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
+from nowplan.domains.marsupial import bitgrid as bg
 from nowplan.domains.marsupial.grid import (
     STEPS,
     Cell,
@@ -35,13 +36,10 @@ from nowplan.domains.marsupial.grid import (
     cells,
     door_status,
     in_storage,
-    inside,
     is_packed,
     load_anchor,
-    neighbours,
     occupancy,
     placement_penalty,
-    reachable,
     stored,
 )
 
@@ -115,20 +113,58 @@ def _set_down(hold: Hold, door: Door, anchor: Cell) -> Config:
     return base.with_items([*hold.items, (hold.held, hold.held_shape, anchor)]), door
 
 
-def successors(conf: Config) -> list[tuple[Transition, float]]:
-    """The robot operators from ``conf``, made anew at each call.  They were memoised (4,096
-    configurations), but across the 24 RCHPN runs of both-dispersed 5-10, trials 0-3, only 13 %
-    of the calls hit, and the ~108,000 objects the memo kept (a third of the process's heap)
-    made every pass of the cyclic collector dearer than the hits saved (docs/peephole.md)."""
+# what the successors of a configuration share with every configuration that differs from it only in
+# the loader's cell (the occupied cells, the cells next to them, the spots for the held package)
+_Shared = tuple[dict[Cell, str], int, int, tuple[tuple[float, Cell, int, int], ...]]
+
+
+def _shared(hold: Hold, door: Door) -> _Shared:
+    rows, cols = hold.rows, hold.cols
+    occ = occupancy(hold, door)
+    occ_mask = bg.mask(occ, rows, cols)
+    lay = bg.layout(rows, cols)
+    ranked: tuple[tuple[float, Cell, int, int], ...] = ()
+    if hold.held_shape is not None:
+        shape = hold.held_shape
+        anchor = load_anchor(cols)
+        found = []
+        for a, cs in _anchors(shape, rows, cols):  # spots(), but for the loader's cell (see successors)
+            if occ.keys().isdisjoint(cs) and (a == anchor or door is None or anchor not in cs):
+                found.append((spot_penalty(shape, a, rows, cols), a, bg.shape_mask(shape, a, rows, cols),
+                              bg.border_mask(shape, a, rows, cols)))
+        ranked = tuple(sorted(found))
+    return occ, occ_mask, bg.expand(occ_mask, lay), ranked
+
+
+def successors(conf: Config, memo: dict[Any, _Shared] | None = None) -> list[tuple[Transition, float]]:
+    """The robot operators from ``conf``, made anew at each call.  (A memo of them, 4,096
+    configurations, hit 13 % of the calls across the 24 RCHPN runs of both-dispersed 5-10, trials 0-3,
+    and the ~108,000 objects it kept made every pass of the cyclic collector dearer than the hits
+    saved, docs/peephole.md.)  ``memo`` (one search's) keeps what configurations that differ only in
+    the loader's cell share: the occupied cells, the cells next to them and the held package's spots;
+    the loader's walk is a flood over bit masks (:mod:`.bitgrid`).  The operators and their order are
+    those of :func:`~.grid.reachable` and :func:`spots` (tests/test_rchpn_overhead.py)."""
     hold, door = conf
     rows, cols = hold.rows, hold.cols
+    key = (hold.items, door, hold.held, hold.held_shape)
+    shared = memo.get(key) if memo is not None else None
+    if shared is None:
+        shared = _shared(hold, door)
+        if memo is not None:
+            memo[key] = shared
+    occ, occ_mask, near_mask, ranked_all = shared
+    lay = bg.layout(rows, cols)
+    loader = hold.loader
+    lbit = bg.mask((loader,), rows, cols)
+    layers = bg.flood(lbit, lay.full & ~occ_mask, lay)
+    reach = 0
+    for layer in layers:
+        reach |= layer
     out: list[tuple[Transition, float]] = []
-    occ = occupancy(hold, door)
-    dist = reachable(hold, door, occ)
     if hold.held is None:
         seen: set[str] = set()
         for dr, dc in STEPS:  # lift a neighbouring package
-            q = occ.get((hold.loader[0] + dr, hold.loader[1] + dc))
+            q = occ.get((loader[0] + dr, loader[1] + dc))
             if q is None or q in seen:
                 continue
             seen.add(q)
@@ -139,32 +175,29 @@ def successors(conf: Config) -> list[tuple[Transition, float]]:
                 rest = tuple(sorted(i for i in hold.items if i[0] != q))
                 after = (Hold(hold.rows, hold.cols, rest, hold.loader, q, q_shape), door)
             out.append((Transition("grasp", q, conf, after), 1.0))
-        # walk next to a package, or out of the load region
-        nbrs = neighbours(rows, cols)
-        near: set[Cell] = set()
-        for x in occ:
-            near.update(nbrs[x] if x in nbrs else [(x[0] + dr, x[1] + dc) for dr, dc in STEPS])
-        targets: set[Cell] = {x for x in dist if x in near and x != hold.loader}
-        parking = [x for x in dist if in_storage(x, rows, cols)]
-        if not in_storage(hold.loader, rows, cols) and parking:
-            targets.add(min(parking, key=lambda x: (dist[x], x)))
+        # walk next to a package, or out of the load region (to the nearest storage cell)
+        targets = set(bg.cells_of(reach & near_mask & ~lbit, cols))
+        if not in_storage(loader, rows, cols):
+            park = bg.nearest(lay.storage, layers, cols)
+            if park is not None:
+                targets.add(park)
         for x in sorted(targets):
             out.append((Transition("move", x, conf, (_moved(hold, x), door)), 1.0))
         return out
-    shape = hold.held_shape
-    assert shape is not None
-    ranked = sorted((spot_penalty(shape, a, rows, cols), a) for a in spots(hold, door, shape))
-    for pen, a in ranked:  # set it down next to the loader (never on it: spots() excludes its cell)
-        if hold.loader in border(shape, a):
+    # the spots free of the loader's cell (spots()), best first
+    ranked = [(pen, a, bm) for pen, a, sm, bm in ranked_all if not sm & lbit]
+    for pen, a, bm in ranked:  # set it down next to the loader (never on it)
+        if bm & lbit:
             out.append((Transition("place", hold.held, conf, _set_down(hold, door, a)), 1.0 + EPS * max(pen, 0.0)))
     # walk towards the best spots (each from its nearest neighbouring cell)
-    stores = [a for p, a in ranked if p < 10.0 * cols][:MAX_PLACEMENTS]
-    buffers = [a for p, a in ranked if p >= 10.0 * cols][:MAX_BUFFER]
+    stores = [bm for p, _, bm in ranked if p < 10.0 * cols][:MAX_PLACEMENTS]
+    buffers = [bm for p, _, bm in ranked if p >= 10.0 * cols][:MAX_BUFFER]
     targets = set()
-    for a in stores + buffers:
-        stand = [x for x in border(shape, a) if x in dist]
-        if stand and hold.loader not in stand:
-            targets.add(min(stand, key=lambda x: (dist[x], x)))
+    for bm in stores + buffers:
+        if not bm & lbit:
+            stand = bg.nearest(bm, layers, cols)
+            if stand is not None:
+                targets.add(stand)
     for x in sorted(targets):
         out.append((Transition("move", x, conf, (_moved(hold, x), door)), 1.0))
     return out
@@ -274,6 +307,7 @@ def search_status(
     best: dict[Config, float] = {start: 0.0}
     parent: dict[Config, Transition | None] = {start: None}
     closed: set[Config] = set()
+    shared: dict[Any, _Shared] = {}  # what configurations differing only in the loader's cell share
     while frontier:
         _, _, conf = heapq.heappop(frontier)
         if conf in closed:
@@ -293,7 +327,7 @@ def search_status(
             log.info("loader search gave up after %d configurations", max_nodes)
             return None, True
         g = best[conf]
-        for t, cost in successors(conf):
+        for t, cost in successors(conf, shared):
             nxt = t.after
             ng = g + cost
             if nxt in closed or ng >= best.get(nxt, float("inf")):
