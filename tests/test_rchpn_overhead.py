@@ -315,3 +315,33 @@ def test_reorderer_finds_the_static_predicates_when_first_needed() -> None:
     assert r._drop is None  # nothing validated yet
     assert r.drop == static_drop(ep.problem.domain, ep.belief) and r.drop
     assert r._drop is r.drop
+
+
+def _actions(regime: str, n: int, trial: int) -> list[str]:
+    from nowplan.domains.marsupial.flatcmp import timed_run
+    from nowplan.domains.marsupial.scenarios import episode
+
+    ep = episode(regime, n, trial)
+    _, _, ok = timed_run(ep, "hpn+peephole", trial, 120.0)
+    assert ok
+    return [str(a) for a in ep.world.asked]
+
+
+@pytest.mark.parametrize("regime,n,trial", [("both", 7, 0), ("single", 6, 1), ("dests", 6, 2)])
+def test_can_follow_changes_no_choice_of_rchpn(
+    regime: str, n: int, trial: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The necessary condition before arrange and validity skips only moves validity refuses:
+    the executed actions are those of the run that asks arrange and validity for every move."""
+    from nowplan.acting.reorder import Reorderer
+
+    with_filter = _actions(regime, n, trial)
+    refused: list[int] = []
+    orig = Reorderer.can_follow
+
+    def never(self: Reorderer, a: Any, before: Any) -> bool:
+        refused.append(not orig(self, a, before))
+        return True
+
+    monkeypatch.setattr(Reorderer, "can_follow", never)
+    assert _actions(regime, n, trial) == with_filter and any(refused)

@@ -154,6 +154,27 @@ class Reorderer:
         self._regressed[key] = (g, a, pre)
         return pre
 
+    def can_follow(self, a: Action, before: Sequence[Action]) -> bool:
+        """A necessary condition, found without regressing, for keeping ``a`` right after ``before``
+        (the steps ahead of it in a reordered tail) in a plan :meth:`valid` accepts: each of ``a``'s
+        preconditions at its level that no effect of ``before`` touches holds now.
+
+        The regression adds ``a``'s preconditions (those of :attr:`drop` excepted) to the pre-image
+        before ``a`` (merged with an atom of the same fluent, the merge entails them); an atom no
+        operator of ``before`` has an effect on stays as it is down to ``g0``, which the belief
+        must satisfy.  (A plan in which ``a`` is dropped as redundant does not keep ``a`` there.)
+        On marsupial, most candidate combinations of top-level steps that failed validity failed
+        only there: an Unload pulled ahead of the steps that bring its package to the vehicle.
+        """
+        touched = {e.key for b in before for e in b.effects()}
+        drop = self.drop
+        for p in a.preconditions(self.levels.level(a)):
+            if p.predicate in drop or p.key in touched:
+                continue
+            if not self.domain.holds(p, self.belief):
+                return False
+        return True
+
     def valid(self, ops: Sequence[Action], goal: Goal) -> tuple[list[Action], list[Goal]] | None:
         """The plan (redundant steps dropped) and its pre-images if it is valid from the belief."""
         self.validity_checks += 1
@@ -194,7 +215,7 @@ class Reorderer:
             first = Subgoal((ops[0],), goals[1])
             moved = False
             for j in range(1, len(ops)):
-                if not self.arrangeable(ops[j]):
+                if not self.arrangeable(ops[j]) or not self.can_follow(ops[j], ()):
                     continue
                 if self.arrange(first, Subgoal((ops[j],), goals[j + 1]), Arrange.SECOND) is not Arrange.SECOND:
                     continue
@@ -235,7 +256,8 @@ class Reorderer:
             return ops, goals, last
         j = 1
         while j < len(ops) and last + 1 < self.config.max_combined:
-            if self.combinable(ops[j]) and not self.failed_within([*ops[: last + 1], ops[j]]):
+            if (self.combinable(ops[j]) and not self.failed_within([*ops[: last + 1], ops[j]])
+                    and self.can_follow(ops[j], ops[: last + 1])):
                 group = Subgoal(tuple(ops[: last + 1]), goals[last + 1])
                 if self.arrange(group, Subgoal((ops[j],), goals[j + 1]), Arrange.COMBINE) is Arrange.COMBINE:
                     new = [*ops[: last + 1], ops[j], *ops[last + 1 : j], *ops[j + 1 :]]
