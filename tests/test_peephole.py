@@ -242,6 +242,30 @@ def test_highest_applicable_subgoal():
     assert highest_applicable(TOY, s, p) == 1  # the robot is already in the hall
 
 
+@settings(max_examples=100, deadline=None)
+@given(st.data())
+def test_highest_applicable_with_watched_atoms_answers_as_without(data: st.DataObject) -> None:
+    """The watched atoms kept for a plan across beliefs change no answer, whatever the beliefs."""
+    from nowplan.planning.plan import Plan, PlanStep
+
+    s = state(robot="door", x="hall", y="yard")
+    ops = [act("goto", "door", "hall"), act("place", "x", "hall"), act("goto", "hall", "yard"),
+           act("carry", "y", "yard"), act("goto", "yard", "hall"), act("goto", "hall", "door"), act("close")]
+    r = reorderer(s)
+    ops, goals = r.chain(ops, Goal.of([atom("inside", "x"), atom("carried", "y"), atom("closed")]))
+    p = Plan(tuple([PlanStep(None, goals[0]), *(PlanStep(op, g) for op, g in zip(ops, goals[1:]))]),
+             LevelMap(TOY.top_level))
+    watch: dict = {}
+    for _ in range(data.draw(st.integers(1, 8))):
+        here = data.draw(st.sampled_from(PLACES))
+        facts = list(state(robot=here, x=data.draw(st.sampled_from(PLACES)),
+                           y=data.draw(st.sampled_from(PLACES))).atoms())
+        facts += [atom(n, *args) for n, args in data.draw(st.lists(st.sampled_from(
+            [("inside", ("x",)), ("carried", ("y",)), ("closed", ())]), unique=True))]
+        b = State(facts)
+        assert highest_applicable(TOY, b, p, watch) == highest_applicable(TOY, b, p)
+
+
 # ------------------------------------------------------------------ whole runs
 
 

@@ -105,7 +105,7 @@ class Peephole(Mechanism):
                 return False  # above a combination given up: popped (as not applicable)
         if frame.i >= frame.n:
             return False
-        k = highest_applicable(ex.domain, ex.belief, frame.plan)
+        k = highest_applicable(ex.domain, ex.belief, frame.plan, _watch(frame))
         # the executive asks next_step right after this, in the same belief: it reuses k
         self._applicable = (frame, frame.plan, ex.metrics.actions, k)
         if k is None:
@@ -142,7 +142,7 @@ class Peephole(Mechanism):
         if known is not None and known[0] is frame and known[1] is plan and known[2] == ex.metrics.actions:
             k = known[3]
         else:
-            k = highest_applicable(ex.domain, ex.belief, plan)
+            k = highest_applicable(ex.domain, ex.belief, plan, _watch(frame))
         if k is None or k >= frame.n:
             return None
         ops = [s.action for s in plan.steps[k + 1 :] if s.action is not None]
@@ -237,6 +237,16 @@ class Peephole(Mechanism):
         if below and not self.config.held_rewrites:
             out = replace(out or config, held_rewrites=False)
         return out
+
+
+def _watch(frame: Frame) -> dict[int, Any]:
+    """The frame's watched atoms for :func:`highest_applicable`, for the plan it holds now (a
+    rewritten plan starts with none)."""
+    known = frame.info.get("watch")
+    if known is None or known[0] is not frame.plan:
+        known = frame.info["watch"] = (frame.plan, {})
+    watch: dict[int, Any] = known[1]
+    return watch
 
 
 def _combination(frame: Frame) -> frozenset[Any] | None:

@@ -22,7 +22,7 @@ from typing import Any
 
 from nowplan.acting.arrange import Arrange, Subgoal, arrange
 from nowplan.acting.resources import Estimator, ResourceModel, resource_model
-from nowplan.core.atoms import Goal
+from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
@@ -281,11 +281,27 @@ def combine_goals(ops: Sequence[Action], goals: Sequence[Goal], last: int) -> Su
     return Subgoal(tuple(ops[: last + 1]), goals[last + 1])
 
 
-def highest_applicable(domain: Domain, belief: Any, plan: Plan) -> int | None:
-    """The highest ``i`` with the belief in ``g_i`` (``n`` if the goal already holds)."""
+def highest_applicable(
+    domain: Domain, belief: Any, plan: Plan, watch: dict[int, Atom] | None = None
+) -> int | None:
+    """The highest ``i`` with the belief in ``g_i`` (``n`` if the goal already holds).
+
+    ``watch`` (kept by the caller for this plan across beliefs) holds, per pre-image found false,
+    the atom that was false: it is tested first next time, so a pre-image that stays false (most
+    of a long plan's, while its first steps are taken) costs one test instead of a pass over its
+    atoms up to a false one.  The answer is the same with or without it.
+    """
+    holds = domain.holds
     for i in range(len(plan.steps) - 1, -1, -1):
-        if domain.satisfies(belief, plan.steps[i].goal):
+        if watch is not None:
+            w = watch.get(i)
+            if w is not None and not holds(w, belief):
+                continue
+        false = next((a for a in plan.steps[i].goal.atoms if not holds(a, belief)), None)
+        if false is None:
             return i
+        if watch is not None:
+            watch[i] = false
     return None
 
 
