@@ -162,6 +162,55 @@ def test_successors_match_the_reference(conf: lp.Config, moves: list[int]) -> No
         assert lp.successors(here, memo) == want
 
 
+def _search_ref(start: lp.Config, goal: Any, h: Any, max_nodes: int) -> tuple[Any, bool]:
+    """The loader's A* as it was: a closed set and separate cost and parent tables."""
+    import heapq
+    import itertools
+
+    counter = itertools.count()
+    frontier = [(h(start), next(counter), start)]
+    best = {start: 0.0}
+    parent: dict[Any, Any] = {start: None}
+    closed: set[Any] = set()
+    while frontier:
+        _, _, conf = heapq.heappop(frontier)
+        if conf in closed:
+            continue
+        if goal(conf):
+            path = []
+            cur = conf
+            while parent[cur] is not None:
+                t = parent[cur]
+                path.append(t)
+                cur = t.before
+            path.reverse()
+            return path, False
+        closed.add(conf)
+        if len(closed) > max_nodes:
+            return None, True
+        g = best[conf]
+        for t, cost in _successors_ref(conf):
+            nxt = t.after
+            ng = g + cost
+            if nxt in closed or ng >= best.get(nxt, float("inf")):
+                continue
+            best[nxt] = ng
+            parent[nxt] = t
+            heapq.heappush(frontier, (ng + h(nxt), next(counter), nxt))
+    return None, False
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(bays(), st.sampled_from([30, 300, 2000]))
+def test_loader_search_matches_the_reference(conf: lp.Config, max_nodes: int) -> None:
+    """The same path (or the same failure) for the stow and fetch searches of random bays."""
+    hold, door = conf
+    pkgs = hold.packages() + ([door[0]] if door is not None else [])
+    searches = [(lp.stow_goal, lp.stow_h)] + [(lp.fetch_goal(p), lp.fetch_h(p)) for p in pkgs[:2]]
+    for goal, h in searches:
+        assert lp.search_status(conf, goal, h, max_nodes) == _search_ref(conf, goal, h, max_nodes)
+
+
 # ------------------------------------------------------------------ the path cache
 
 

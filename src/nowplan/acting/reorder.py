@@ -104,6 +104,9 @@ class Reorderer:
         # The goal and operator are kept in the value, so the ids are never reused while cached
         self._regressed: dict[tuple[int, int], tuple[Goal, Action, Goal | None]] = {}
         self.regressions = 0  # pre-images computed (not found in the cache)
+        # per action key, for this level map (SelectGap, SelectParallelOps and Gather ask again and again)
+        self._arrangeable: dict[Any, bool] = {}
+        self._combinable: dict[Any, bool] = {}
 
     @property
     def drop(self) -> frozenset[str]:
@@ -185,13 +188,18 @@ class Reorderer:
 
     # -- the preference ---------------------------------------------------------
     def arrangeable(self, a: Action) -> bool:
-        if self.levels.is_primitive(a):
-            return False
-        names = self.model.arrangeable
-        return names is None or a.name in names
+        known = self._arrangeable.get(a.key)
+        if known is None:
+            names = self.model.arrangeable
+            known = self._arrangeable[a.key] = not self.levels.is_primitive(a) and (names is None or a.name in names)
+        return known
 
     def combinable(self, a: Action) -> bool:
-        return self.arrangeable(a) and self.levels.describe(a) >= self.config.min_hidden_to_combine
+        known = self._combinable.get(a.key)
+        if known is None:
+            known = self._combinable[a.key] = (
+                self.arrangeable(a) and self.levels.describe(a) >= self.config.min_hidden_to_combine)
+        return known
 
     def arrange(self, s1: Subgoal, s2: Subgoal, want: Arrange | None = None) -> Arrange:
         """``arrange`` with the combination rule of ours; ``want``: see :func:`~.arrange.arrange`."""

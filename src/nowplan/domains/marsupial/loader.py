@@ -304,36 +304,41 @@ def search_status(
     expanded every configuration it can reach)."""
     counter = itertools.count()
     frontier: list[tuple[float, int, Config]] = [(h(start), next(counter), start)]
-    best: dict[Config, float] = {start: 0.0}
-    parent: dict[Config, Transition | None] = {start: None}
-    closed: set[Config] = set()
+    # per configuration reached: [cost so far, the transition into it, closed] (one dict: a
+    # configuration is hashed once per successor instead of once per table)
+    node: dict[Config, list[Any]] = {start: [0.0, None, False]}
+    closed = 0
     shared: dict[Any, _Shared] = {}  # what configurations differing only in the loader's cell share
     while frontier:
         _, _, conf = heapq.heappop(frontier)
-        if conf in closed:
+        rec = node[conf]
+        if rec[2]:
             continue
         if goal(conf):
             path: list[Transition] = []
-            cur = conf
-            while parent[cur] is not None:
-                t = parent[cur]
-                assert t is not None
+            t = rec[1]
+            while t is not None:
                 path.append(t)
-                cur = t.before
+                t = node[t.before][1]
             path.reverse()
             return path, False
-        closed.add(conf)
-        if len(closed) > max_nodes:
+        rec[2] = True
+        closed += 1
+        if closed > max_nodes:
             log.info("loader search gave up after %d configurations", max_nodes)
             return None, True
-        g = best[conf]
+        g = rec[0]
         for t, cost in successors(conf, shared):
             nxt = t.after
             ng = g + cost
-            if nxt in closed or ng >= best.get(nxt, float("inf")):
+            known = node.get(nxt)
+            if known is None:
+                node[nxt] = [ng, t, False]
+            elif known[2] or ng >= known[0]:
                 continue
-            best[nxt] = ng
-            parent[nxt] = t
+            else:
+                known[0] = ng
+                known[1] = t
             heapq.heappush(frontier, (ng + weight * h(nxt), next(counter), nxt))
     return None, False
 
