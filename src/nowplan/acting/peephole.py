@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 from nowplan.acting.gather import gather
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.reorder import PeepholeConfig, Reorderer, highest_applicable
+from nowplan.acting.resources import resource_model
 from nowplan.core.atoms import Goal
 from nowplan.core.operators import Action
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
@@ -145,6 +146,13 @@ class Peephole(Mechanism):
             k = highest_applicable(ex.domain, ex.belief, plan, _watch(frame))
         if k is None or k >= frame.n:
             return None
+        first = plan.steps[k + 1].action
+        if first is not None and not _arrangeable(ex, plan, first):
+            # nothing to rewrite (a primitive step or one the domain does not let move): the step
+            # after the highest true kernel, as the rewrite below would choose it, without it
+            frame.i = k + 1
+            frame.info["fallout"] = frame.info["joint"] = frame.info["joint_ops"] = None
+            return frame.plan.steps[frame.i]
         ops = [s.action for s in plan.steps[k + 1 :] if s.action is not None]
         before = list(ops)
         goals = [s.goal for s in plan.steps[k:]]
@@ -237,6 +245,14 @@ class Peephole(Mechanism):
         if below and not self.config.held_rewrites:
             out = replace(out or config, held_rewrites=False)
         return out
+
+
+def _arrangeable(ex: Executive, plan: Plan, a: Action) -> bool:
+    """:meth:`Reorderer.arrangeable` without a Reorderer (most steps are primitive)."""
+    if plan.levels.is_primitive(a):
+        return False
+    names = resource_model(ex.domain).arrangeable
+    return names is None or a.name in names
 
 
 def _watch(frame: Frame) -> dict[int, Any]:
