@@ -208,7 +208,13 @@ def test_loader_search_matches_the_reference(conf: lp.Config, max_nodes: int) ->
     pkgs = hold.packages() + ([door[0]] if door is not None else [])
     searches = [(lp.stow_goal, lp.stow_h)] + [(lp.fetch_goal(p), lp.fetch_h(p)) for p in pkgs[:2]]
     for goal, h in searches:
-        assert lp.search_status(conf, goal, h, max_nodes) == _search_ref(conf, goal, h, max_nodes)
+        want = _search_ref(conf, goal, h, max_nodes)
+        assert lp.search_status(conf, goal, h, max_nodes) == want
+        # a search stopped at a smaller limit and resumed gives what one run with the larger gives
+        astar = lp.AStar(conf, goal, h)
+        first = astar.run(max_nodes // 10)
+        assert first == _search_ref(conf, goal, h, max_nodes // 10)
+        assert (astar.run(max_nodes) if first[1] else first) == want
 
 
 # ------------------------------------------------------------------ the path cache

@@ -49,9 +49,13 @@ Config = tuple[Hold, Door]
 EPS = 1e-3  # weight of the packer's placement preference in the search cost
 MAX_PLACEMENTS = 6  # storage spots the loader walks towards per held package (best first)
 MAX_BUFFER = 2  # temporary spots in the load region it walks towards
-# configurations a search with an infeasibility test expands before asking it (PathCache.path):
-# the fetch searches that succeed on marsupial's bays expand fewer; the ones that fail 20 000
-PROBE_NODES = 1_000
+# configurations a search with an infeasibility test expands before asking it (PathCache.path; the
+# answer is the search's either way, the probe only decides when the test is worth its cost): the
+# fetch searches that fail expand 20 000; of those that succeed in seed 002's full run all but 4
+# end within 1 000 and 3 of the 4 within 1 150 (both dispersed; one took 6 413), where the test,
+# which could not prove them impossible, cost 0.07-0.21 CPU s each
+PROBE_NODES = 2_000
+SEARCH_NODES = 20_000  # configurations a search closes at most
 
 
 class Transition(NamedTuple):
@@ -291,56 +295,74 @@ def exact_goal(target: Hold, status: str | None) -> Goal:
 
 
 def search(
-    start: Config, goal: Goal, h: Heuristic, max_nodes: int = 20_000, weight: float = 1.0
+    start: Config, goal: Goal, h: Heuristic, max_nodes: int = SEARCH_NODES, weight: float = 1.0
 ) -> list[Transition] | None:
     """Weighted A* over configurations: a cheap operator sequence reaching ``goal``, or None."""
     return search_status(start, goal, h, max_nodes, weight)[0]
 
 
 def search_status(
-    start: Config, goal: Goal, h: Heuristic, max_nodes: int = 20_000, weight: float = 1.0
+    start: Config, goal: Goal, h: Heuristic, max_nodes: int = SEARCH_NODES, weight: float = 1.0
 ) -> tuple[list[Transition] | None, bool]:
     """:func:`search`, and whether it stopped at ``max_nodes`` (False: it found a path or
     expanded every configuration it can reach)."""
-    counter = itertools.count()
-    frontier: list[tuple[float, int, Config]] = [(h(start), next(counter), start)]
-    # per configuration reached: [cost so far, the transition into it, closed] (one dict: a
-    # configuration is hashed once per successor instead of once per table)
-    node: dict[Config, list[Any]] = {start: [0.0, None, False]}
-    closed = 0
-    shared: dict[Any, _Shared] = {}  # what configurations differing only in the loader's cell share
-    while frontier:
-        _, _, conf = heapq.heappop(frontier)
-        rec = node[conf]
-        if rec[2]:
-            continue
-        if goal(conf):
-            path: list[Transition] = []
-            t = rec[1]
-            while t is not None:
-                path.append(t)
-                t = node[t.before][1]
-            path.reverse()
-            return path, False
-        rec[2] = True
-        closed += 1
-        if closed > max_nodes:
-            log.info("loader search gave up after %d configurations", max_nodes)
-            return None, True
-        g = rec[0]
-        for t, cost in successors(conf, shared):
-            nxt = t.after
-            ng = g + cost
-            known = node.get(nxt)
-            if known is None:
-                node[nxt] = [ng, t, False]
-            elif known[2] or ng >= known[0]:
+    return AStar(start, goal, h, weight).run(max_nodes)
+
+
+class AStar:
+    """The loader's weighted A*, resumable: :meth:`run` with a larger limit after one that stopped
+    at its limit goes on where it stopped, so it expands what one run with that limit would, in the
+    same order, and gives the same answer (:meth:`PathCache.path` probes with a small limit first)."""
+
+    def __init__(self, start: Config, goal: Goal, h: Heuristic, weight: float = 1.0) -> None:
+        self.goal, self.h, self.weight = goal, h, weight
+        self._counter = itertools.count()
+        self._frontier: list[tuple[float, int, Config]] = [(h(start), next(self._counter), start)]
+        # per configuration reached: [cost so far, the transition into it, closed] (one dict: a
+        # configuration is hashed once per successor instead of once per table)
+        self._node: dict[Config, list[Any]] = {start: [0.0, None, False]}
+        self.closed = 0
+        self._shared: dict[Any, _Shared] = {}  # what configurations differing only in the loader's cell share
+
+    def run(self, max_nodes: int) -> tuple[list[Transition] | None, bool]:
+        """Search on until a path is found (it, False), every reachable configuration is closed
+        (None, False) or more than ``max_nodes`` configurations in all would be closed (None, True)."""
+        frontier, node, goal, h, weight = self._frontier, self._node, self.goal, self.h, self.weight
+        counter, shared = self._counter, self._shared
+        while frontier:
+            entry = heapq.heappop(frontier)
+            conf = entry[2]
+            rec = node[conf]
+            if rec[2]:
                 continue
-            else:
-                known[0] = ng
-                known[1] = t
-            heapq.heappush(frontier, (ng + weight * h(nxt), next(counter), nxt))
-    return None, False
+            if goal(conf):
+                path: list[Transition] = []
+                t = rec[1]
+                while t is not None:
+                    path.append(t)
+                    t = node[t.before][1]
+                path.reverse()
+                return path, False
+            if self.closed >= max_nodes:
+                heapq.heappush(frontier, entry)  # the next to close, when a larger limit resumes
+                log.info("loader search gave up after %d configurations", max_nodes)
+                return None, True
+            rec[2] = True
+            self.closed += 1
+            g = rec[0]
+            for t, cost in successors(conf, shared):
+                nxt = t.after
+                ng = g + cost
+                known = node.get(nxt)
+                if known is None:
+                    node[nxt] = [ng, t, False]
+                elif known[2] or ng >= known[0]:
+                    continue
+                else:
+                    known[0] = ng
+                    known[1] = t
+                heapq.heappush(frontier, (ng + weight * h(nxt), next(counter), nxt))
+        return None, False
 
 
 class PathCache:
@@ -373,13 +395,14 @@ class PathCache:
             if infeasible is None:
                 found = search(start, goal, h)
             else:
-                found, cut = search_status(start, goal, h, max_nodes=PROBE_NODES)
+                astar = AStar(start, goal, h)
+                found, cut = astar.run(PROBE_NODES)
                 if cut:
                     self.relaxed_tests += 1
                     if infeasible(start):
                         self.relaxed_proofs += 1
                     else:
-                        found = search(start, goal, h)
+                        found = astar.run(SEARCH_NODES)[0]  # on from where the probe stopped
             self._paths[key] = found
             if found:
                 self._by_start.setdefault(start, []).append(found)
