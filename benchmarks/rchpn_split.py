@@ -14,7 +14,7 @@ the whole run.
   and ``small_plan``: its small regression searches, both without the loader;
 * ``share``: the domain's shareability verdicts (``model._bay_shareable``) without the loader;
 * ``valid``: the validity chains (``Reorderer.valid``);
-* ``loader:<part>``: the loader's bay searches (``loader.search_status`` and the relaxed
+* ``loader:<part>``: the loader's bay searches (``loader.AStar.run`` and the relaxed
   infeasibility test), by the part that asked for them;
 * ``gc``: the collector's passes (``gc.callbacks``);
 * ``other``: the rest (simulation, executive bookkeeping).
@@ -113,7 +113,10 @@ def install(split: Split) -> None:
     est.small_plan = split.wrap("small_plan", est.small_plan)  # type: ignore[method-assign]
     reorder_mod.Reorderer.valid = split.wrap("valid", reorder_mod.Reorderer.valid)  # type: ignore[method-assign]
     model_mod._bay_shareable = split.wrap("share", model_mod._bay_shareable)  # type: ignore[assignment]
-    lp.search_status = split.wrap("loader", lp.search_status)  # type: ignore[assignment]
+    if hasattr(lp, "AStar"):
+        lp.AStar.run = split.wrap("loader", lp.AStar.run)  # type: ignore[method-assign]
+    else:  # a tree before the resumable search (for A/B runs against it)
+        lp.search_status = split.wrap("loader", lp.search_status)
     model_mod.fetch_infeasible = split.wrap("loader", model_mod.fetch_infeasible)  # type: ignore[assignment]
     gc.callbacks.append(split.on_gc)
 
