@@ -6,6 +6,8 @@ from dataclasses import replace
 from typing import Any
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from nowplan.acting.arrange import Arrange, Subgoal, arrange, depends
 from nowplan.acting.metrics import Outcome
@@ -156,7 +158,9 @@ def test_select_gap_does_not_move_when_the_result_is_invalid():
     ops, goals = r.chain(ops, goal)
     assert r.arrange(Subgoal((ops[0],), goals[1]), Subgoal((ops[2],), goals[3])) is Arrange.SECOND
     new, _ = r.select_gap(list(ops), goals)
-    assert new == ops and not r.moves and r.validity_checks >= 1
+    # refused before the validity check: stow's have(x) holds neither now nor after nothing
+    assert new == ops and not r.moves and not r.can_follow(ops[2], ())
+    assert r.valid([ops[2], ops[0], ops[1]], goal) is None
     # once the object is held, the same preference may be followed
     s2 = State([*state(robot="door").atoms(), atom("have", "x")])
     r2 = reorderer(s2)
@@ -236,6 +240,30 @@ def test_highest_applicable_subgoal():
     p = Plan(tuple([PlanStep(None, goals[0]), *(PlanStep(op, g) for op, g in zip(ops, goals[1:]))]),
              LevelMap(TOY.top_level))
     assert highest_applicable(TOY, s, p) == 1  # the robot is already in the hall
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.data())
+def test_highest_applicable_with_watched_atoms_answers_as_without(data: st.DataObject) -> None:
+    """The watched atoms kept for a plan across beliefs change no answer, whatever the beliefs."""
+    from nowplan.planning.plan import Plan, PlanStep
+
+    s = state(robot="door", x="hall", y="yard")
+    ops = [act("goto", "door", "hall"), act("place", "x", "hall"), act("goto", "hall", "yard"),
+           act("carry", "y", "yard"), act("goto", "yard", "hall"), act("goto", "hall", "door"), act("close")]
+    r = reorderer(s)
+    ops, goals = r.chain(ops, Goal.of([atom("inside", "x"), atom("carried", "y"), atom("closed")]))
+    p = Plan(tuple([PlanStep(None, goals[0]), *(PlanStep(op, g) for op, g in zip(ops, goals[1:]))]),
+             LevelMap(TOY.top_level))
+    watch: dict = {}
+    for _ in range(data.draw(st.integers(1, 8))):
+        here = data.draw(st.sampled_from(PLACES))
+        facts = list(state(robot=here, x=data.draw(st.sampled_from(PLACES)),
+                           y=data.draw(st.sampled_from(PLACES))).atoms())
+        facts += [atom(n, *args) for n, args in data.draw(st.lists(st.sampled_from(
+            [("inside", ("x",)), ("carried", ("y",)), ("closed", ())]), unique=True))]
+        b = State(facts)
+        assert highest_applicable(TOY, b, p, watch) == highest_applicable(TOY, b, p)
 
 
 # ------------------------------------------------------------------ whole runs
@@ -736,3 +764,48 @@ def test_a_step_of_a_given_up_combination_refined_alone_gets_the_fallout_budget(
         assert cfg is not None and cfg.call_nodes == fallout and cfg.max_nodes <= fallout
     else:
         assert not frame.info["fallout"] and cfg is None
+
+
+# ------------------------------------------------------------------ can_follow (before validity)
+
+_POOL = [act("goto", p, q) for p, q in [("door", "hall"), ("hall", "door"), ("hall", "yard"), ("yard", "hall"),
+                                        ("hall", "shelf"), ("shelf", "hall")]]
+_POOL += [act("place", x, p) for x in ("x", "y") for p in ("hall", "yard")] + [act("close")]
+_POOL += [act("grab", x) for x in ("x", "y")] + [act("stow", x) for x in ("x", "y")]
+_POOL += [act("carry", x, p) for x in ("x", "y") for p in ("hall", "yard")]
+
+
+@pytest.mark.parametrize("levels_top", [None, 1])
+@settings(max_examples=200, deadline=None)
+@given(st.sampled_from(PLACES), st.sampled_from(PLACES), st.sampled_from(PLACES), st.data())
+def test_can_follow_never_refuses_a_move_that_validity_keeps(
+    levels_top: int | None, robot: str, x_at: str, y_at: str, data: st.DataObject
+) -> None:
+    """can_follow(a, before) False => no valid plan keeps a right after before (SelectGap's and
+    SelectParallelOps' moves), on random executable tails of the toy domain (their goal: what they
+    make true) at two abstraction levels."""
+    s = state(robot, x=x_at, y=y_at)
+    true = {x.key for x in s.atoms() if x.value is True}
+    ops = []
+    for _ in range(data.draw(st.integers(2, 7))):
+        ok = [a for a in _POOL if all((p.key in true) == bool(p.value) for p in a.preconditions(None))]
+        if not ok:
+            break
+        a = ok[data.draw(st.integers(0, len(ok) - 1))]
+        for e in a.effects():
+            (true.add if e.value else true.discard)(e.key)
+        ops.append(a)
+    made = [e for a in ops for e in a.effects() if e.value is True and e.key in true and not TOY.holds(e, s)]
+    if len(ops) < 2 or not made:
+        return
+    goal = Goal.of(made)
+    levels = LevelMap(TOY.top_level if levels_top is None else levels_top)
+    r = Reorderer(TOY, OBJECTS, s, levels, ResourceModel(), PeepholeConfig())
+    for j in range(1, len(ops)):
+        for last in range(-1, j - 1):  # -1: ops[j] moved first (SelectGap)
+            before = ops[: last + 1]
+            new = [*before, ops[j], *ops[last + 1 : j], *ops[j + 1 :]]
+            res = r.valid(new, goal)
+            if res is not None and res[0][: last + 2] == new[: last + 2]:
+                assert r.can_follow(ops[j], before), (new, before)
+

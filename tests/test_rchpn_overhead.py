@@ -19,7 +19,9 @@ from hypothesis import strategies as st
 from nowplan.acting.peephole import Peephole
 from nowplan.core.atoms import AtMostOne, Rules, atom, contradiction
 from nowplan.domains.marsupial import loader as lp
-from nowplan.domains.marsupial.grid import SHAPES, SIZES, Hold, cells, inside, load_anchor, occupancy, reachable
+from nowplan.domains.marsupial.grid import (
+    SHAPES, SIZES, Hold, border, cells, in_storage, inside, load_anchor, occupancy, reachable,
+)
 
 pytestmark = pytest.mark.timeout(120)
 
@@ -92,6 +94,127 @@ def test_bay_geometry_matches_the_reference(conf: lp.Config) -> None:
         after = t.after[0]
         assert after.items == tuple(sorted(after.items))
         occupancy(*t.after)  # no exception
+
+
+def _successors_ref(conf: lp.Config) -> list[tuple[lp.Transition, float]]:
+    """The robot operators as they were made before the bit-mask flood (a dict BFS, ``spots``)."""
+    hold, door = conf
+    rows, cols = hold.rows, hold.cols
+    out: list[tuple[lp.Transition, float]] = []
+    occ = occupancy(hold, door)
+    dist = reachable(hold, door, occ)
+    if hold.held is None:
+        seen: set[str] = set()
+        for dr, dc in ((-1, 0), (1, 0), (0, -1), (0, 1)):
+            q = occ.get((hold.loader[0] + dr, hold.loader[1] + dc))
+            if q is None or q in seen:
+                continue
+            seen.add(q)
+            if door is not None and q == door[0]:
+                after: lp.Config = (Hold(rows, cols, hold.items, hold.loader, q, door[1]), None)
+            else:
+                q_shape = next(s for n, s, _ in hold.items if n == q)
+                rest = tuple(sorted(i for i in hold.items if i[0] != q))
+                after = (Hold(rows, cols, rest, hold.loader, q, q_shape), door)
+            out.append((lp.Transition("grasp", q, conf, after), 1.0))
+        near: set[tuple[int, int]] = set()
+        for x in occ:
+            near.update((x[0] + dr, x[1] + dc) for dr, dc in ((-1, 0), (1, 0), (0, -1), (0, 1)))
+        targets = {x for x in dist if x in near and x != hold.loader}
+        parking = [x for x in dist if in_storage(x, rows, cols)]
+        if not in_storage(hold.loader, rows, cols) and parking:
+            targets.add(min(parking, key=lambda x: (dist[x], x)))
+        for x in sorted(targets):
+            out.append((lp.Transition("move", x, conf, (hold._replace(loader=x), door)), 1.0))
+        return out
+    shape = hold.held_shape
+    assert shape is not None
+    ranked = sorted((lp.spot_penalty(shape, a, rows, cols), a) for a in _spots_ref(hold, door, shape))
+    for pen, a in ranked:
+        if hold.loader in border(shape, a):
+            out.append((lp.Transition("place", hold.held, conf, lp._set_down(hold, door, a)),
+                        1.0 + lp.EPS * max(pen, 0.0)))
+    stores = [a for p, a in ranked if p < 10.0 * cols][: lp.MAX_PLACEMENTS]
+    buffers = [a for p, a in ranked if p >= 10.0 * cols][: lp.MAX_BUFFER]
+    targets = set()
+    for a in stores + buffers:
+        stand = [x for x in border(shape, a) if x in dist]
+        if stand and hold.loader not in stand:
+            targets.add(min(stand, key=lambda x: (dist[x], x)))
+    for x in sorted(targets):
+        out.append((lp.Transition("move", x, conf, (hold._replace(loader=x), door)), 1.0))
+    return out
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(bays(), st.lists(st.integers(0, 31), max_size=4))
+def test_successors_match_the_reference(conf: lp.Config, moves: list[int]) -> None:
+    """The same operators in the same order, with a search's memo of what configurations that
+    differ only in the loader's cell share (filled by earlier calls) or without one."""
+    hold, door = conf
+    memo: dict[Any, Any] = {}
+    free = [x for x in ((r, c) for r in range(hold.rows) for c in range(hold.cols))
+            if x not in occupancy(hold, door)]
+    for i in [None, *moves]:
+        here = conf if i is None else (hold._replace(loader=free[i % len(free)]), door)
+        want = _successors_ref(here)
+        assert lp.successors(here) == want
+        assert lp.successors(here, memo) == want
+
+
+def _search_ref(start: lp.Config, goal: Any, h: Any, max_nodes: int) -> tuple[Any, bool]:
+    """The loader's A* as it was: a closed set and separate cost and parent tables."""
+    import heapq
+    import itertools
+
+    counter = itertools.count()
+    frontier = [(h(start), next(counter), start)]
+    best = {start: 0.0}
+    parent: dict[Any, Any] = {start: None}
+    closed: set[Any] = set()
+    while frontier:
+        _, _, conf = heapq.heappop(frontier)
+        if conf in closed:
+            continue
+        if goal(conf):
+            path = []
+            cur = conf
+            while parent[cur] is not None:
+                t = parent[cur]
+                path.append(t)
+                cur = t.before
+            path.reverse()
+            return path, False
+        closed.add(conf)
+        if len(closed) > max_nodes:
+            return None, True
+        g = best[conf]
+        for t, cost in _successors_ref(conf):
+            nxt = t.after
+            ng = g + cost
+            if nxt in closed or ng >= best.get(nxt, float("inf")):
+                continue
+            best[nxt] = ng
+            parent[nxt] = t
+            heapq.heappush(frontier, (ng + h(nxt), next(counter), nxt))
+    return None, False
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(bays(), st.sampled_from([30, 300, 2000]))
+def test_loader_search_matches_the_reference(conf: lp.Config, max_nodes: int) -> None:
+    """The same path (or the same failure) for the stow and fetch searches of random bays."""
+    hold, door = conf
+    pkgs = hold.packages() + ([door[0]] if door is not None else [])
+    searches = [(lp.stow_goal, lp.stow_h)] + [(lp.fetch_goal(p), lp.fetch_h(p)) for p in pkgs[:2]]
+    for goal, h in searches:
+        want = _search_ref(conf, goal, h, max_nodes)
+        assert lp.search_status(conf, goal, h, max_nodes) == want
+        # a search stopped at a smaller limit and resumed gives what one run with the larger gives
+        astar = lp.AStar(conf, goal, h)
+        first = astar.run(max_nodes // 10)
+        assert first == _search_ref(conf, goal, h, max_nodes // 10)
+        assert (astar.run(max_nodes) if first[1] else first) == want
 
 
 # ------------------------------------------------------------------ the path cache
@@ -247,3 +370,33 @@ def test_reorderer_finds_the_static_predicates_when_first_needed() -> None:
     assert r._drop is None  # nothing validated yet
     assert r.drop == static_drop(ep.problem.domain, ep.belief) and r.drop
     assert r._drop is r.drop
+
+
+def _actions(regime: str, n: int, trial: int) -> list[str]:
+    from nowplan.domains.marsupial.flatcmp import timed_run
+    from nowplan.domains.marsupial.scenarios import episode
+
+    ep = episode(regime, n, trial)
+    _, _, ok = timed_run(ep, "hpn+peephole", trial, 120.0)
+    assert ok
+    return [str(a) for a in ep.world.asked]
+
+
+@pytest.mark.parametrize("regime,n,trial", [("both", 7, 0), ("single", 6, 1), ("dests", 6, 2)])
+def test_can_follow_changes_no_choice_of_rchpn(
+    regime: str, n: int, trial: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The necessary condition before arrange and validity skips only moves validity refuses:
+    the executed actions are those of the run that asks arrange and validity for every move."""
+    from nowplan.acting.reorder import Reorderer
+
+    with_filter = _actions(regime, n, trial)
+    refused: list[int] = []
+    orig = Reorderer.can_follow
+
+    def never(self: Reorderer, a: Any, before: Any) -> bool:
+        refused.append(not orig(self, a, before))
+        return True
+
+    monkeypatch.setattr(Reorderer, "can_follow", never)
+    assert _actions(regime, n, trial) == with_filter and any(refused)

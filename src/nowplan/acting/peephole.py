@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 from nowplan.acting.gather import gather
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.reorder import PeepholeConfig, Reorderer, highest_applicable
+from nowplan.acting.resources import resource_model
 from nowplan.core.atoms import Goal
 from nowplan.core.operators import Action
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
@@ -105,7 +106,7 @@ class Peephole(Mechanism):
                 return False  # above a combination given up: popped (as not applicable)
         if frame.i >= frame.n:
             return False
-        k = highest_applicable(ex.domain, ex.belief, frame.plan)
+        k = highest_applicable(ex.domain, ex.belief, frame.plan, _watch(frame))
         # the executive asks next_step right after this, in the same belief: it reuses k
         self._applicable = (frame, frame.plan, ex.metrics.actions, k)
         if k is None:
@@ -142,9 +143,16 @@ class Peephole(Mechanism):
         if known is not None and known[0] is frame and known[1] is plan and known[2] == ex.metrics.actions:
             k = known[3]
         else:
-            k = highest_applicable(ex.domain, ex.belief, plan)
+            k = highest_applicable(ex.domain, ex.belief, plan, _watch(frame))
         if k is None or k >= frame.n:
             return None
+        first = plan.steps[k + 1].action
+        if first is not None and not _arrangeable(ex, plan, first):
+            # nothing to rewrite (a primitive step or one the domain does not let move): the step
+            # after the highest true kernel, as the rewrite below would choose it, without it
+            frame.i = k + 1
+            frame.info["fallout"] = frame.info["joint"] = frame.info["joint_ops"] = None
+            return frame.plan.steps[frame.i]
         ops = [s.action for s in plan.steps[k + 1 :] if s.action is not None]
         before = list(ops)
         goals = [s.goal for s in plan.steps[k:]]
@@ -237,6 +245,24 @@ class Peephole(Mechanism):
         if below and not self.config.held_rewrites:
             out = replace(out or config, held_rewrites=False)
         return out
+
+
+def _arrangeable(ex: Executive, plan: Plan, a: Action) -> bool:
+    """:meth:`Reorderer.arrangeable` without a Reorderer (most steps are primitive)."""
+    if plan.levels.is_primitive(a):
+        return False
+    names = resource_model(ex.domain).arrangeable
+    return names is None or a.name in names
+
+
+def _watch(frame: Frame) -> dict[int, Any]:
+    """The frame's watched atoms for :func:`highest_applicable`, for the plan it holds now (a
+    rewritten plan starts with none)."""
+    known = frame.info.get("watch")
+    if known is None or known[0] is not frame.plan:
+        known = frame.info["watch"] = (frame.plan, {})
+    watch: dict[int, Any] = known[1]
+    return watch
 
 
 def _combination(frame: Frame) -> frozenset[Any] | None:

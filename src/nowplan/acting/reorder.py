@@ -22,7 +22,7 @@ from typing import Any
 
 from nowplan.acting.arrange import Arrange, Subgoal, arrange
 from nowplan.acting.resources import Estimator, ResourceModel, resource_model
-from nowplan.core.atoms import Goal
+from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
@@ -104,6 +104,9 @@ class Reorderer:
         # The goal and operator are kept in the value, so the ids are never reused while cached
         self._regressed: dict[tuple[int, int], tuple[Goal, Action, Goal | None]] = {}
         self.regressions = 0  # pre-images computed (not found in the cache)
+        # per action key, for this level map (SelectGap, SelectParallelOps and Gather ask again and again)
+        self._arrangeable: dict[Any, bool] = {}
+        self._combinable: dict[Any, bool] = {}
 
     @property
     def drop(self) -> frozenset[str]:
@@ -154,6 +157,27 @@ class Reorderer:
         self._regressed[key] = (g, a, pre)
         return pre
 
+    def can_follow(self, a: Action, before: Sequence[Action]) -> bool:
+        """A necessary condition, found without regressing, for keeping ``a`` right after ``before``
+        (the steps ahead of it in a reordered tail) in a plan :meth:`valid` accepts: each of ``a``'s
+        preconditions at its level that no effect of ``before`` touches holds now.
+
+        The regression adds ``a``'s preconditions (those of :attr:`drop` excepted) to the pre-image
+        before ``a`` (merged with an atom of the same fluent, the merge entails them); an atom no
+        operator of ``before`` has an effect on stays as it is down to ``g0``, which the belief
+        must satisfy.  (A plan in which ``a`` is dropped as redundant does not keep ``a`` there.)
+        On marsupial, most candidate combinations of top-level steps that failed validity failed
+        only there: an Unload pulled ahead of the steps that bring its package to the vehicle.
+        """
+        touched = {e.key for b in before for e in b.effects()}
+        drop = self.drop
+        for p in a.preconditions(self.levels.level(a)):
+            if p.predicate in drop or p.key in touched:
+                continue
+            if not self.domain.holds(p, self.belief):
+                return False
+        return True
+
     def valid(self, ops: Sequence[Action], goal: Goal) -> tuple[list[Action], list[Goal]] | None:
         """The plan (redundant steps dropped) and its pre-images if it is valid from the belief."""
         self.validity_checks += 1
@@ -164,13 +188,18 @@ class Reorderer:
 
     # -- the preference ---------------------------------------------------------
     def arrangeable(self, a: Action) -> bool:
-        if self.levels.is_primitive(a):
-            return False
-        names = self.model.arrangeable
-        return names is None or a.name in names
+        known = self._arrangeable.get(a.key)
+        if known is None:
+            names = self.model.arrangeable
+            known = self._arrangeable[a.key] = not self.levels.is_primitive(a) and (names is None or a.name in names)
+        return known
 
     def combinable(self, a: Action) -> bool:
-        return self.arrangeable(a) and self.levels.describe(a) >= self.config.min_hidden_to_combine
+        known = self._combinable.get(a.key)
+        if known is None:
+            known = self._combinable[a.key] = (
+                self.arrangeable(a) and self.levels.describe(a) >= self.config.min_hidden_to_combine)
+        return known
 
     def arrange(self, s1: Subgoal, s2: Subgoal, want: Arrange | None = None) -> Arrange:
         """``arrange`` with the combination rule of ours; ``want``: see :func:`~.arrange.arrange`."""
@@ -194,7 +223,7 @@ class Reorderer:
             first = Subgoal((ops[0],), goals[1])
             moved = False
             for j in range(1, len(ops)):
-                if not self.arrangeable(ops[j]):
+                if not self.arrangeable(ops[j]) or not self.can_follow(ops[j], ()):
                     continue
                 if self.arrange(first, Subgoal((ops[j],), goals[j + 1]), Arrange.SECOND) is not Arrange.SECOND:
                     continue
@@ -235,7 +264,8 @@ class Reorderer:
             return ops, goals, last
         j = 1
         while j < len(ops) and last + 1 < self.config.max_combined:
-            if self.combinable(ops[j]) and not self.failed_within([*ops[: last + 1], ops[j]]):
+            if (self.combinable(ops[j]) and not self.failed_within([*ops[: last + 1], ops[j]])
+                    and self.can_follow(ops[j], ops[: last + 1])):
                 group = Subgoal(tuple(ops[: last + 1]), goals[last + 1])
                 if self.arrange(group, Subgoal((ops[j],), goals[j + 1]), Arrange.COMBINE) is Arrange.COMBINE:
                     new = [*ops[: last + 1], ops[j], *ops[last + 1 : j], *ops[j + 1 :]]
@@ -259,11 +289,27 @@ def combine_goals(ops: Sequence[Action], goals: Sequence[Goal], last: int) -> Su
     return Subgoal(tuple(ops[: last + 1]), goals[last + 1])
 
 
-def highest_applicable(domain: Domain, belief: Any, plan: Plan) -> int | None:
-    """The highest ``i`` with the belief in ``g_i`` (``n`` if the goal already holds)."""
+def highest_applicable(
+    domain: Domain, belief: Any, plan: Plan, watch: dict[int, Atom] | None = None
+) -> int | None:
+    """The highest ``i`` with the belief in ``g_i`` (``n`` if the goal already holds).
+
+    ``watch`` (kept by the caller for this plan across beliefs) holds, per pre-image found false,
+    the atom that was false: it is tested first next time, so a pre-image that stays false (most
+    of a long plan's, while its first steps are taken) costs one test instead of a pass over its
+    atoms up to a false one.  The answer is the same with or without it.
+    """
+    holds = domain.holds
     for i in range(len(plan.steps) - 1, -1, -1):
-        if domain.satisfies(belief, plan.steps[i].goal):
+        if watch is not None:
+            w = watch.get(i)
+            if w is not None and not holds(w, belief):
+                continue
+        false = next((a for a in plan.steps[i].goal.atoms if not holds(a, belief)), None)
+        if false is None:
             return i
+        if watch is not None:
+            watch[i] = false
     return None
 
 

@@ -42,6 +42,9 @@ ShareableFn = Callable[[ResourceName, Sequence[Action], Sequence[Action], Any], 
 ClashFn = Callable[[ResourceName, ResourceName], bool]
 # (atoms unmet in the belief, belief) -> a lower bound on the cost of any plan achieving them all
 EffortBoundFn = Callable[[Sequence[Atom], Any], float]
+# (domain, atoms unmet in the belief, belief, level map) -> the small plan the estimator's search
+# would find for them, known to the domain without a search, or None (the estimator searches)
+SmallPlanFn = Callable[[Domain, Sequence[Atom], Any, LevelMap], "tuple[Action, ...] | None"]
 
 # the strongest use wins when an estimate meets one resource several times
 _STRENGTH = {ResourceUse.SHAREABLE: 0, ResourceUse.CONTAINED: 1, ResourceUse.CONTINUAL: 2}
@@ -64,6 +67,11 @@ class ResourceModel:
     exposed preconditions (a lower bound on every plan's cost, hence on the small plan's the
     effort is): ``arrange`` asked whether the second of two steps goes first skips the small
     search where the bound already says it is not easier to reach (:meth:`Estimator.effort_bound`).
+    ``small_plan`` gives, for unmet atoms whose plan the domain knows without a search, the plan the
+    estimator's small search would find (marsupial: a load, a travel, or the loader's fetch path for
+    ``door(v) = p``, which the search only follows one robot operator at a time through their
+    generators); None lets the estimator search.  It must be the search's own answer: the effort
+    and the resources come from it.
     """
 
     orders: Mapping[str, int] = field(default_factory=dict, hash=False)
@@ -72,6 +80,7 @@ class ResourceModel:
     clash: ClashFn | None = field(default=None, compare=False, hash=False)
     arrange: Callable[..., int] | None = field(default=None, compare=False, hash=False)
     effort_bound: EffortBoundFn | None = field(default=None, compare=False, hash=False)
+    small_plan: SmallPlanFn | None = field(default=None, compare=False, hash=False)
 
     def order(self, action: Action) -> int:
         return int(self.orders.get(action.name, 0))
@@ -246,7 +255,9 @@ class Estimator:
             if asked in self._by_goal:
                 out = self._by_goal[asked]
             else:
-                out = self.small_plan(unmet, levels)
+                own = self.model.small_plan
+                known = own(self.domain, unmet, self.belief, levels) if own is not None else None
+                out = known if known is not None else self.small_plan(unmet, levels)
                 self._by_goal[asked] = out
         self._plans[key] = out
         return out

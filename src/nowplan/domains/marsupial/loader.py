@@ -24,8 +24,9 @@ import itertools
 import logging
 from collections.abc import Callable, Mapping, Sequence
 from functools import lru_cache
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
+from nowplan.domains.marsupial import bitgrid as bg
 from nowplan.domains.marsupial.grid import (
     STEPS,
     Cell,
@@ -35,13 +36,10 @@ from nowplan.domains.marsupial.grid import (
     cells,
     door_status,
     in_storage,
-    inside,
     is_packed,
     load_anchor,
-    neighbours,
     occupancy,
     placement_penalty,
-    reachable,
     stored,
 )
 
@@ -51,9 +49,13 @@ Config = tuple[Hold, Door]
 EPS = 1e-3  # weight of the packer's placement preference in the search cost
 MAX_PLACEMENTS = 6  # storage spots the loader walks towards per held package (best first)
 MAX_BUFFER = 2  # temporary spots in the load region it walks towards
-# configurations a search with an infeasibility test expands before asking it (PathCache.path):
-# the fetch searches that succeed on marsupial's bays expand fewer; the ones that fail 20 000
-PROBE_NODES = 1_000
+# configurations a search with an infeasibility test expands before asking it (PathCache.path; the
+# answer is the search's either way, the probe only decides when the test is worth its cost): the
+# fetch searches that fail expand 20 000; of those that succeed in seed 002's full run all but 4
+# end within 1 000 and 3 of the 4 within 1 150 (both dispersed; one took 6 413), where the test,
+# which could not prove them impossible, cost 0.07-0.21 CPU s each
+PROBE_NODES = 2_000
+SEARCH_NODES = 20_000  # configurations a search closes at most
 
 
 class Transition(NamedTuple):
@@ -115,20 +117,58 @@ def _set_down(hold: Hold, door: Door, anchor: Cell) -> Config:
     return base.with_items([*hold.items, (hold.held, hold.held_shape, anchor)]), door
 
 
-def successors(conf: Config) -> list[tuple[Transition, float]]:
-    """The robot operators from ``conf``, made anew at each call.  They were memoised (4,096
-    configurations), but across the 24 RCHPN runs of both-dispersed 5-10, trials 0-3, only 13 %
-    of the calls hit, and the ~108,000 objects the memo kept (a third of the process's heap)
-    made every pass of the cyclic collector dearer than the hits saved (docs/peephole.md)."""
+# what the successors of a configuration share with every configuration that differs from it only in
+# the loader's cell (the occupied cells, the cells next to them, the spots for the held package)
+_Shared = tuple[dict[Cell, str], int, int, tuple[tuple[float, Cell, int, int], ...]]
+
+
+def _shared(hold: Hold, door: Door) -> _Shared:
+    rows, cols = hold.rows, hold.cols
+    occ = occupancy(hold, door)
+    occ_mask = bg.mask(occ, rows, cols)
+    lay = bg.layout(rows, cols)
+    ranked: tuple[tuple[float, Cell, int, int], ...] = ()
+    if hold.held_shape is not None:
+        shape = hold.held_shape
+        anchor = load_anchor(cols)
+        found = []
+        for a, cs in _anchors(shape, rows, cols):  # spots(), but for the loader's cell (see successors)
+            if occ.keys().isdisjoint(cs) and (a == anchor or door is None or anchor not in cs):
+                found.append((spot_penalty(shape, a, rows, cols), a, bg.shape_mask(shape, a, rows, cols),
+                              bg.border_mask(shape, a, rows, cols)))
+        ranked = tuple(sorted(found))
+    return occ, occ_mask, bg.expand(occ_mask, lay), ranked
+
+
+def successors(conf: Config, memo: dict[Any, _Shared] | None = None) -> list[tuple[Transition, float]]:
+    """The robot operators from ``conf``, made anew at each call.  (A memo of them, 4,096
+    configurations, hit 13 % of the calls across the 24 RCHPN runs of both-dispersed 5-10, trials 0-3,
+    and the ~108,000 objects it kept made every pass of the cyclic collector dearer than the hits
+    saved, docs/peephole.md.)  ``memo`` (one search's) keeps what configurations that differ only in
+    the loader's cell share: the occupied cells, the cells next to them and the held package's spots;
+    the loader's walk is a flood over bit masks (:mod:`.bitgrid`).  The operators and their order are
+    those of :func:`~.grid.reachable` and :func:`spots` (tests/test_rchpn_overhead.py)."""
     hold, door = conf
     rows, cols = hold.rows, hold.cols
+    key = (hold.items, door, hold.held, hold.held_shape)
+    shared = memo.get(key) if memo is not None else None
+    if shared is None:
+        shared = _shared(hold, door)
+        if memo is not None:
+            memo[key] = shared
+    occ, occ_mask, near_mask, ranked_all = shared
+    lay = bg.layout(rows, cols)
+    loader = hold.loader
+    lbit = bg.mask((loader,), rows, cols)
+    layers = bg.flood(lbit, lay.full & ~occ_mask, lay)
+    reach = 0
+    for layer in layers:
+        reach |= layer
     out: list[tuple[Transition, float]] = []
-    occ = occupancy(hold, door)
-    dist = reachable(hold, door, occ)
     if hold.held is None:
         seen: set[str] = set()
         for dr, dc in STEPS:  # lift a neighbouring package
-            q = occ.get((hold.loader[0] + dr, hold.loader[1] + dc))
+            q = occ.get((loader[0] + dr, loader[1] + dc))
             if q is None or q in seen:
                 continue
             seen.add(q)
@@ -139,32 +179,29 @@ def successors(conf: Config) -> list[tuple[Transition, float]]:
                 rest = tuple(sorted(i for i in hold.items if i[0] != q))
                 after = (Hold(hold.rows, hold.cols, rest, hold.loader, q, q_shape), door)
             out.append((Transition("grasp", q, conf, after), 1.0))
-        # walk next to a package, or out of the load region
-        nbrs = neighbours(rows, cols)
-        near: set[Cell] = set()
-        for x in occ:
-            near.update(nbrs[x] if x in nbrs else [(x[0] + dr, x[1] + dc) for dr, dc in STEPS])
-        targets: set[Cell] = {x for x in dist if x in near and x != hold.loader}
-        parking = [x for x in dist if in_storage(x, rows, cols)]
-        if not in_storage(hold.loader, rows, cols) and parking:
-            targets.add(min(parking, key=lambda x: (dist[x], x)))
+        # walk next to a package, or out of the load region (to the nearest storage cell)
+        targets = set(bg.cells_of(reach & near_mask & ~lbit, cols))
+        if not in_storage(loader, rows, cols):
+            park = bg.nearest(lay.storage, layers, cols)
+            if park is not None:
+                targets.add(park)
         for x in sorted(targets):
             out.append((Transition("move", x, conf, (_moved(hold, x), door)), 1.0))
         return out
-    shape = hold.held_shape
-    assert shape is not None
-    ranked = sorted((spot_penalty(shape, a, rows, cols), a) for a in spots(hold, door, shape))
-    for pen, a in ranked:  # set it down next to the loader (never on it: spots() excludes its cell)
-        if hold.loader in border(shape, a):
+    # the spots free of the loader's cell (spots()), best first
+    ranked = [(pen, a, bm) for pen, a, sm, bm in ranked_all if not sm & lbit]
+    for pen, a, bm in ranked:  # set it down next to the loader (never on it)
+        if bm & lbit:
             out.append((Transition("place", hold.held, conf, _set_down(hold, door, a)), 1.0 + EPS * max(pen, 0.0)))
     # walk towards the best spots (each from its nearest neighbouring cell)
-    stores = [a for p, a in ranked if p < 10.0 * cols][:MAX_PLACEMENTS]
-    buffers = [a for p, a in ranked if p >= 10.0 * cols][:MAX_BUFFER]
+    stores = [bm for p, _, bm in ranked if p < 10.0 * cols][:MAX_PLACEMENTS]
+    buffers = [bm for p, _, bm in ranked if p >= 10.0 * cols][:MAX_BUFFER]
     targets = set()
-    for a in stores + buffers:
-        stand = [x for x in border(shape, a) if x in dist]
-        if stand and hold.loader not in stand:
-            targets.add(min(stand, key=lambda x: (dist[x], x)))
+    for bm in stores + buffers:
+        if not bm & lbit:
+            stand = bg.nearest(bm, layers, cols)
+            if stand is not None:
+                targets.add(stand)
     for x in sorted(targets):
         out.append((Transition("move", x, conf, (_moved(hold, x), door)), 1.0))
     return out
@@ -258,50 +295,74 @@ def exact_goal(target: Hold, status: str | None) -> Goal:
 
 
 def search(
-    start: Config, goal: Goal, h: Heuristic, max_nodes: int = 20_000, weight: float = 1.0
+    start: Config, goal: Goal, h: Heuristic, max_nodes: int = SEARCH_NODES, weight: float = 1.0
 ) -> list[Transition] | None:
     """Weighted A* over configurations: a cheap operator sequence reaching ``goal``, or None."""
     return search_status(start, goal, h, max_nodes, weight)[0]
 
 
 def search_status(
-    start: Config, goal: Goal, h: Heuristic, max_nodes: int = 20_000, weight: float = 1.0
+    start: Config, goal: Goal, h: Heuristic, max_nodes: int = SEARCH_NODES, weight: float = 1.0
 ) -> tuple[list[Transition] | None, bool]:
     """:func:`search`, and whether it stopped at ``max_nodes`` (False: it found a path or
     expanded every configuration it can reach)."""
-    counter = itertools.count()
-    frontier: list[tuple[float, int, Config]] = [(h(start), next(counter), start)]
-    best: dict[Config, float] = {start: 0.0}
-    parent: dict[Config, Transition | None] = {start: None}
-    closed: set[Config] = set()
-    while frontier:
-        _, _, conf = heapq.heappop(frontier)
-        if conf in closed:
-            continue
-        if goal(conf):
-            path: list[Transition] = []
-            cur = conf
-            while parent[cur] is not None:
-                t = parent[cur]
-                assert t is not None
-                path.append(t)
-                cur = t.before
-            path.reverse()
-            return path, False
-        closed.add(conf)
-        if len(closed) > max_nodes:
-            log.info("loader search gave up after %d configurations", max_nodes)
-            return None, True
-        g = best[conf]
-        for t, cost in successors(conf):
-            nxt = t.after
-            ng = g + cost
-            if nxt in closed or ng >= best.get(nxt, float("inf")):
+    return AStar(start, goal, h, weight).run(max_nodes)
+
+
+class AStar:
+    """The loader's weighted A*, resumable: :meth:`run` with a larger limit after one that stopped
+    at its limit goes on where it stopped, so it expands what one run with that limit would, in the
+    same order, and gives the same answer (:meth:`PathCache.path` probes with a small limit first)."""
+
+    def __init__(self, start: Config, goal: Goal, h: Heuristic, weight: float = 1.0) -> None:
+        self.goal, self.h, self.weight = goal, h, weight
+        self._counter = itertools.count()
+        self._frontier: list[tuple[float, int, Config]] = [(h(start), next(self._counter), start)]
+        # per configuration reached: [cost so far, the transition into it, closed] (one dict: a
+        # configuration is hashed once per successor instead of once per table)
+        self._node: dict[Config, list[Any]] = {start: [0.0, None, False]}
+        self.closed = 0
+        self._shared: dict[Any, _Shared] = {}  # what configurations differing only in the loader's cell share
+
+    def run(self, max_nodes: int) -> tuple[list[Transition] | None, bool]:
+        """Search on until a path is found (it, False), every reachable configuration is closed
+        (None, False) or more than ``max_nodes`` configurations in all would be closed (None, True)."""
+        frontier, node, goal, h, weight = self._frontier, self._node, self.goal, self.h, self.weight
+        counter, shared = self._counter, self._shared
+        while frontier:
+            entry = heapq.heappop(frontier)
+            conf = entry[2]
+            rec = node[conf]
+            if rec[2]:
                 continue
-            best[nxt] = ng
-            parent[nxt] = t
-            heapq.heappush(frontier, (ng + weight * h(nxt), next(counter), nxt))
-    return None, False
+            if goal(conf):
+                path: list[Transition] = []
+                t = rec[1]
+                while t is not None:
+                    path.append(t)
+                    t = node[t.before][1]
+                path.reverse()
+                return path, False
+            if self.closed >= max_nodes:
+                heapq.heappush(frontier, entry)  # the next to close, when a larger limit resumes
+                log.info("loader search gave up after %d configurations", max_nodes)
+                return None, True
+            rec[2] = True
+            self.closed += 1
+            g = rec[0]
+            for t, cost in successors(conf, shared):
+                nxt = t.after
+                ng = g + cost
+                known = node.get(nxt)
+                if known is None:
+                    node[nxt] = [ng, t, False]
+                elif known[2] or ng >= known[0]:
+                    continue
+                else:
+                    known[0] = ng
+                    known[1] = t
+                heapq.heappush(frontier, (ng + weight * h(nxt), next(counter), nxt))
+        return None, False
 
 
 class PathCache:
@@ -334,13 +395,14 @@ class PathCache:
             if infeasible is None:
                 found = search(start, goal, h)
             else:
-                found, cut = search_status(start, goal, h, max_nodes=PROBE_NODES)
+                astar = AStar(start, goal, h)
+                found, cut = astar.run(PROBE_NODES)
                 if cut:
                     self.relaxed_tests += 1
                     if infeasible(start):
                         self.relaxed_proofs += 1
                     else:
-                        found = search(start, goal, h)
+                        found = astar.run(SEARCH_NODES)[0]  # on from where the probe stopped
             self._paths[key] = found
             if found:
                 self._by_start.setdefault(start, []).append(found)

@@ -52,6 +52,7 @@ from nowplan.core.operators import (
 )
 from nowplan.domains.marsupial import loader as lp
 from nowplan.domains.marsupial.bay_relaxed import fetch_infeasible
+from nowplan.domains.marsupial.small_plans import small_plan
 from nowplan.domains.marsupial.grid import NONE, Door, Hold, can_share, door_package, is_packed
 from nowplan.planning.regression import PlannerConfig
 
@@ -477,4 +478,5 @@ RESOURCES = ResourceModel(  # every marsupial domain carries it (make_domain)
     arrangeable=frozenset({"load", "unload", "same_city"}),
     shareable=vehicle_shareable,
     effort_bound=effort_bound,
+    small_plan=small_plan,
 )
