@@ -270,11 +270,12 @@ class Executive:
         }
         return res.plan
 
-    def direct_plan(self, goal: Goal, levels: LevelMap, action: Action) -> Plan | None:
+    def direct_plan(self, goal: Goal, levels: LevelMap, action: Action, may_swap: bool = False) -> Plan | None:
         """A refinement of ``action`` made without a planner call (acting/refine.py), counted as a
-        plan made (method ``direct``); ``None``: the planner refines the step."""
+        plan made (method ``direct``); ``None``: the planner refines the step.  ``may_swap``: the step
+        was not itself swapped in, so its refinement may swap it for a sibling (as a planner's may)."""
         t0 = time.process_time()
-        plan = direct_refinement(self, goal, levels, action)
+        plan = direct_refinement(self, goal, levels, action, may_swap)
         cpu = time.process_time() - t0
         self.metrics.planning_cpu_s += cpu
         if plan is not None:
@@ -471,7 +472,8 @@ class Executive:
                 new = None  # a short refinement needs no planner call (a domain's own planner is asked)
                 if action is not None and self.strategy.direct_refinements and not (
                         f.root or key in self._flat_steps or self.strategy.domain_planner):
-                    new = self.direct_plan(step.goal, levels, action)
+                    new = self.direct_plan(step.goal, levels, action,
+                                           f.plan.levels.floored([action]) is f.plan.levels)
                 if new is None:
                     new = self.make_plan(step.goal, levels, f)
                     if new is not None and action is not None:
