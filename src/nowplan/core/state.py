@@ -44,6 +44,10 @@ class State:
     def holds(self, a: Atom) -> bool:
         return bool(self.value(a.key) == a.value)
 
+    def has_items(self, items: frozenset[tuple[Key, Any]]) -> bool:
+        """Every ``(key, value)`` of ``items`` is in this state (one set test)."""
+        return self._map.items() >= items
+
     def facts(self, predicate: str) -> list[tuple[Term, ...]]:
         """Argument tuples of the true (non-False) fluents of ``predicate``."""
         if self._by_pred is None:
