@@ -1,8 +1,8 @@
-"""``Domain.satisfies`` over a :class:`State` in a domain of plain truth: one set test for the atoms asked true.
+"""``Domain.satisfies`` over a :class:`State` in a domain of plain truth: one dictionary lookup per atom (``State.all_hold``).
 
 A property test: on random states and goals (true, false and other-valued atoms, values stored as
-``True``/``1``/``False``/absent), the set test answers exactly as the atom-by-atom ``holds``; domains with
-a tested predicate or another value rule keep the atom-by-atom test; the executive hands the symbolic
+``True``/``1``/``False``/absent), the lookup answers exactly as ``Domain.holds``; domains with
+a tested predicate or another value rule keep ``holds``; the executive hands the symbolic
 belief's state to it only where the domain's truth is plain.
 """
 
@@ -32,7 +32,7 @@ values = st.sampled_from([True, False, 1, 0, "red", None])
 
 @settings(max_examples=300, deadline=None)
 @given(st.dictionaries(keys, values, max_size=8), st.dictionaries(keys, st.sampled_from([True, False, "red", 1]), max_size=6))
-def test_the_set_test_answers_as_holds(state_map: dict, goal_map: dict) -> None:  # type: ignore[type-arg]
+def test_the_lookup_answers_as_holds(state_map: dict, goal_map: dict) -> None:  # type: ignore[type-arg]
     domain = Domain("d", PREDS)
     assert domain.plain_truth
     state = State(state_map)

@@ -138,7 +138,7 @@ class Executive:
     @property
     def truth(self) -> Any:
         """What the executive's own tests of goals read: a symbolic belief's state where the domain's
-        truth is plain (``Domain.satisfies`` then makes one set test per goal), else the belief."""
+        truth is plain (``Domain.satisfies`` then looks each atom up in it), else the belief."""
         b = self.belief
         return b.state if type(b) is SymbolicBelief and self.domain.plain_truth else b
 

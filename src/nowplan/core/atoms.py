@@ -331,22 +331,6 @@ class Goal:
             object.__setattr__(self, "_by_key", table)
         return table.get(key)
 
-    def true_items(self) -> frozenset[tuple[tuple[str, tuple[Term, ...]], Any]]:
-        """``(key, True)`` for each atom that asks its fluent to be true (made on the first call): a
-        state's ``items()`` containing them all is the set test :meth:`nowplan.core.domain.Domain.satisfies`
-        makes where truth is plain equality."""
-        hit: frozenset[tuple[tuple[str, tuple[Term, ...]], Any]] | None = self.__dict__.get("_true_items")
-        if hit is None:
-            hit = frozenset((a.key, True) for a in self.atoms if a.value is True)
-            object.__setattr__(self, "_true_items", hit)
-            object.__setattr__(self, "_not_true", tuple(a for a in self.atoms if a.value is not True))
-        return hit
-
-    def not_true(self) -> tuple[Atom, ...]:
-        """The atoms that :meth:`true_items` leaves out (another value asked, or false)."""
-        self.true_items()
-        return self.__dict__["_not_true"]  # type: ignore[no-any-return]
-
     def with_first(self, predicate: str, first: Term) -> tuple[Atom, ...]:
         """The atoms of ``predicate`` whose first argument is ``first`` (an index made on the first call)."""
         index: dict[tuple[str, Term], tuple[Atom, ...]] | None = self.__dict__.get("_by_first")

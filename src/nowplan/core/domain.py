@@ -200,11 +200,10 @@ class Domain:
         return all(p.test is None and type(p.rule) is ValueRule for p in self.predicates.values())
 
     def satisfies(self, belief: Any, goal: Goal | Iterable[Atom]) -> bool:
-        if isinstance(goal, Goal):
-            if self.plain_truth and isinstance(belief, State):  # one set test for the atoms asked true
-                return belief.has_items(goal.true_items()) and all(self.holds(a, belief) for a in goal.not_true())
-            return all(self.holds(a, belief) for a in goal.atoms)
-        return all(self.holds(a, belief) for a in goal)
+        atoms = goal.atoms if isinstance(goal, Goal) else goal
+        if self.plain_truth and isinstance(belief, State):  # one dictionary lookup per atom
+            return belief.all_hold(atoms)
+        return all(self.holds(a, belief) for a in atoms)
 
 
 @dataclass(frozen=True)
