@@ -6,7 +6,9 @@ cleared before each run) and reports, for the second, the run's totals (whole ru
 ``prepare_problem``) and the CPU inside a few functions, timed by wrapping them (process_time;
 nested phases overlap: ``build_task`` contains ``build_structure``, ``make_plan`` the planner's).
 
-    PYTHONPATH=src .venv/bin/python benchmarks/criticality_auto_phases.py depots:1 miconic:2
+    PYTHONPATH=src .venv/bin/python benchmarks/criticality_auto_phases.py depots:1 miconic:2 satellite:L1
+
+``DOMAIN:LK`` names the K-th of ``criticality_auto.LARGEST[DOMAIN]`` (the largest tier).
 """
 
 from __future__ import annotations
@@ -25,9 +27,10 @@ for _p in (ROOT, ROOT / "src"):
         sys.path.insert(0, str(_p))
 
 from benchmarks.classical.generate import domain_file, generate  # noqa: E402
-from benchmarks.criticality_auto import LARGER, run_one  # noqa: E402
+from benchmarks import criticality_auto  # noqa: E402
+from benchmarks.criticality_auto import LARGER, LARGEST, run_one  # noqa: E402
 from nowplan.acting import hpn, refine_flat  # noqa: E402
-from nowplan.planning import forward, task, task_grounding  # noqa: E402
+from nowplan.planning import dead_ends, forward, hff, landmarks, reach_statics, task, task_grounding  # noqa: E402
 from nowplan.worlds import base  # noqa: E402
 
 SPENT: collections.Counter[str] = collections.Counter()
@@ -40,6 +43,10 @@ PHASES: list[tuple[Any, str, str]] = [
     (hpn.Executive, "push", "push"), (hpn.Executive, "execute", "execute"),
     (hpn.Executive, "applicable", "applicable"), (hpn.Executive, "watch", "watch"),
     (refine_flat.FlatSteps, "check_cycle", "check_cycle"), (base.SimulatedWorld, "execute", "world.execute"),
+    (criticality_auto, "load_pddl", "parse"), (criticality_auto, "prepare_problem", "prepare_problem"),
+    (reach_statics, "add_reachability_statics", "reach_statics"), (dead_ends, "irreversible_step", "dead_end_test"),
+    (hff.RelaxedHeuristic, "__init__", "hff_init"), (landmarks.LandmarkCount, "__init__", "landmark_count_init"),
+    (forward, "eliminate_actions", "eliminate_actions"),
 ]
 
 
@@ -64,7 +71,7 @@ def main(argv: list[str]) -> int:
     with tempfile.TemporaryDirectory() as tmp:
         for spec in argv:
             d, k = spec.split(":")
-            params, seed = LARGER[d][int(k) - 1]
+            params, seed = LARGEST[d][int(k[1:]) - 1] if k.startswith("L") else LARGER[d][int(k) - 1]
             path = Path(tmp) / f"{d}-{k}.pddl"
             path.write_text(generate(d, params, seed))
             for setting, crit, strat in (("flat", None, "flat"), ("auto", "auto", "hpn+refine-flat")):

@@ -34,6 +34,7 @@ from nowplan.acting.refine_flat import FlatSteps, refinement_key
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.acting.whole import plan_whole_problem
 from nowplan.belief.protocols import HasHeuristic, check_belief
+from nowplan.belief.symbolic import SymbolicBelief
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap, flat_levels
@@ -134,6 +135,13 @@ class Executive:
         # criticalities): every call plans the whole problem concretely, as a flat strategy's does
         self.single_level = not strategy.hierarchical or concrete(self.domain, self.base_levels)
 
+    @property
+    def truth(self) -> Any:
+        """What the executive's own tests of goals read: a symbolic belief's state where the domain's
+        truth is plain (``Domain.satisfies`` then looks each atom up in it), else the belief."""
+        b = self.belief
+        return b.state if type(b) is SymbolicBelief and self.domain.plain_truth else b
+
     # -- plan-stack operations ------------------------------------------------
     def applicable(self, f: Frame) -> bool:
         for m in self.mechanisms:
@@ -141,15 +149,15 @@ class Executive:
             if verdict is not None:
                 return verdict
         if f.root:
-            return not self.domain.satisfies(self.belief, self.problem.goal)
-        return f.i < f.n and self.domain.satisfies(self.belief, f.plan.preimage(f.i))
+            return not self.domain.satisfies(self.truth, self.problem.goal)
+        return f.i < f.n and self.domain.satisfies(self.truth, f.plan.preimage(f.i))
 
     def next_step(self, f: Frame) -> PlanStep:
         if f.root:
             # the first stage (Problem.stages) that does not hold yet, else the goal
             last = len(f.plan.steps) - 1
             for i in range(1, last):
-                if not self.domain.satisfies(self.belief, f.plan.steps[i].goal):
+                if not self.domain.satisfies(self.truth, f.plan.steps[i].goal):
                     f.i = i
                     return f.plan.steps[i]
             f.i = last
@@ -270,11 +278,12 @@ class Executive:
         }
         return res.plan
 
-    def direct_plan(self, goal: Goal, levels: LevelMap, action: Action) -> Plan | None:
+    def direct_plan(self, goal: Goal, levels: LevelMap, action: Action, may_swap: bool = False) -> Plan | None:
         """A refinement of ``action`` made without a planner call (acting/refine.py), counted as a
-        plan made (method ``direct``); ``None``: the planner refines the step."""
+        plan made (method ``direct``); ``None``: the planner refines the step.  ``may_swap``: the step
+        was not itself swapped in, so its refinement may swap it for a sibling (as a planner's may)."""
         t0 = time.process_time()
-        plan = direct_refinement(self, goal, levels, action)
+        plan = direct_refinement(self, goal, levels, action, may_swap)
         cpu = time.process_time() - t0
         self.metrics.planning_cpu_s += cpu
         if plan is not None:
@@ -306,7 +315,7 @@ class Executive:
             self.trace.emit("exogenous", n=self.metrics.actions - 1, change=list(obs.exogenous))
         if self.on_action is not None:
             self.on_action(self, action)
-        if not obs.success or not self.domain.satisfies(self.belief, f.plan.preimage(f.i)):
+        if not obs.success or not self.domain.satisfies(self.truth, f.plan.preimage(f.i)):
             self.trace.emit(
                 "failure", plan_id=f.plan_id, index=f.i, action=action.pddl(),
                 reason=str(obs.info.get("reason", "expected result does not hold")),
@@ -404,7 +413,7 @@ class Executive:
         return None
 
     def goal_holds(self) -> bool:
-        return self.domain.satisfies(self.belief, self.problem.goal)
+        return self.domain.satisfies(self.truth, self.problem.goal)
 
     refinement_key = staticmethod(refinement_key)
 
@@ -430,7 +439,7 @@ class Executive:
                 break
             f = self.stack[-1]
             if not self.applicable(f):
-                done = self.domain.satisfies(self.belief, f.plan.goal)
+                done = self.domain.satisfies(self.truth, f.plan.goal)
                 self.pop("done" if done else "not applicable")
                 continue
             step = self.next_step(f)
@@ -471,7 +480,8 @@ class Executive:
                 new = None  # a short refinement needs no planner call (a domain's own planner is asked)
                 if action is not None and self.strategy.direct_refinements and not (
                         f.root or key in self._flat_steps or self.strategy.domain_planner):
-                    new = self.direct_plan(step.goal, levels, action)
+                    new = self.direct_plan(step.goal, levels, action,
+                                           f.plan.levels.floored([action]) is f.plan.levels)
                 if new is None:
                     new = self.make_plan(step.goal, levels, f)
                     if new is not None and action is not None:

@@ -210,7 +210,8 @@ DIRECT_STEPS = 4
 CARRY_STEPS = 3  # chains whose steps leave atoms to earlier ones: at most CARRY_STEPS - 1 before the refined step
 
 
-def direct_refinement(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Plan | None:
+def direct_refinement(ex: Executive, goal: Goal, levels: LevelMap, refined: Action,
+                      may_swap: bool = False) -> Plan | None:
     """A refinement of ``refined`` (ω) found without a planner call: the shortest plan ``[…, ω]``
     of at most :data:`DIRECT_STEPS` steps in which each action makes every unmet atom of its
     successor's pre-image true and needs only atoms that hold now or that its predecessor makes
@@ -227,18 +228,22 @@ def direct_refinement(ex: Executive, goal: Goal, levels: LevelMap, refined: Acti
     (acting/backtrack.py) are not used first, and no action swaps in an instance more abstract
     than one refined above it (see :func:`refine_without_swaps`).  Chains longer than ``[ω]``
     need a ground, boolean domain whose belief lists its facts (the forward task's premise).
+
+    With ``may_swap`` (``refined`` was not itself swapped in), where no chain exists the one-step
+    plan with a sibling of ``refined`` ready at the refined level is tried too
+    (:func:`nowplan.acting.direct_sibling.sibling_refinement`: what the planner's plan mostly is there).
     """
     paused = gc.isenabled()  # as the planner does (planning/regression.py): no collector passes mid-call
     if paused:
         gc.disable()
     try:
-        return _direct(ex, goal, levels, refined)
+        return _direct(ex, goal, levels, refined, may_swap)
     finally:
         if paused:
             gc.enable()
 
 
-def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Plan | None:
+def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action, may_swap: bool = False) -> Plan | None:
     from nowplan.planning.preimage import preimage, static_drop
     from nowplan.planning.task import forward_unsupported
 
@@ -277,7 +282,11 @@ def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action) -> Pla
             if found is not None:
                 break
         if found is None:
-            return None
+            if not may_swap:
+                return None
+            from nowplan.acting.direct_sibling import sibling_refinement
+
+            return sibling_refinement(ex, index, goal, levels, refined, forbidden, holds, drop)
         chain = [*found, refined]
     goals = [goal, g1]
     for a in reversed(chain[:-1]):

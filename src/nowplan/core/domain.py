@@ -193,8 +193,16 @@ class Domain:
             return have is False or have is None
         return have is not None and have is not False and rule.entails(have, a.value)
 
+    @cached_property
+    def plain_truth(self) -> bool:
+        """No predicate has a test and every value rule is plain equality (PDDL domains): an atom asking
+        a fluent to be true holds in a :class:`State` exactly when the state maps its key to true."""
+        return all(p.test is None and type(p.rule) is ValueRule for p in self.predicates.values())
+
     def satisfies(self, belief: Any, goal: Goal | Iterable[Atom]) -> bool:
         atoms = goal.atoms if isinstance(goal, Goal) else goal
+        if self.plain_truth and isinstance(belief, State):  # one dictionary lookup per atom
+            return belief.all_hold(atoms)
         return all(self.holds(a, belief) for a in atoms)
 
 

@@ -44,6 +44,19 @@ class State:
     def holds(self, a: Atom) -> bool:
         return bool(self.value(a.key) == a.value)
 
+    def all_hold(self, atoms: Iterable[Atom]) -> bool:
+        """Every atom holds here under plain truth (no tests, equality rules): what ``Domain.holds``
+        answers atom by atom, with one dictionary lookup each (``Domain.satisfies`` asks it)."""
+        get = self._map.get
+        for a in atoms:
+            have = get((a.predicate, a.args), False)
+            if a.value is False:
+                if have is not False and have is not None:
+                    return False
+            elif have is None or have is False or not have == a.value:
+                return False
+        return True
+
     def facts(self, predicate: str) -> list[tuple[Term, ...]]:
         """Argument tuples of the true (non-False) fluents of ``predicate``."""
         if self._by_pred is None:

@@ -49,6 +49,8 @@ class Excluder:
         self.plain = [c for c in self.rules.conflicts if not isinstance(c, KeyedRule)]
         self.groups: dict[Any, list[Atom]] = {}
         self.keyed = keyed
+        self._reached = frozenset(self.reached)
+        self._keys: dict[Atom, tuple[Any, ...]] = {}
         for a in self.reached:
             for rule in keyed:
                 for k in rule.group_keys(a):
@@ -68,4 +70,37 @@ class Excluder:
                                  if x != e and contradiction([e, x], self.rules, new=[x]) is not None)
                 hit = self.memo[e] = frozenset(found)
             out |= hit
+        return out
+
+    def keys(self, a: Atom) -> tuple[Any, ...]:
+        """The group keys of ``a`` under the keyed rules (two true atoms sharing one exclude each other)."""
+        hit = self._keys.get(a)
+        if hit is None:
+            hit = self._keys[a] = tuple(k for rule in self.keyed for k in rule.group_keys(a))
+        return hit
+
+    def beyond(self, e: Atom, held: list[Atom]) -> list[Atom] | None:
+        """The reached atoms ``e`` excludes that no atom of ``held`` (true atoms) excludes: ``self([e])``
+        minus ``self(held)``, found without making either set; None where plain (unkeyed) rules exist.
+
+        An atom shares a group with ``e``; it is kept only if every group it is in holds no atom of
+        ``held`` but itself.  A group of ``e`` that an atom of ``held`` is in leaves only that atom (the
+        rest it excludes already), so only the groups ``held`` leaves alone are walked (a task's abstract
+        rows: ``in(p, t)`` added by a load whose kept precondition ``at(p, l)`` is in the same group)."""
+        if self.plain:
+            return None
+        by_key: dict[Any, list[Atom]] = {}
+        for c in held:
+            for k in self.keys(c):
+                by_key.setdefault(k, []).append(c)
+        out: list[Atom] = []
+        seen: set[Atom] = set()
+        for k in self.keys(e):
+            holders = by_key.get(k)
+            for x in (holders if holders is not None else self.groups.get(k, ())):
+                if x == e or x in seen or (holders is not None and x not in self._reached):
+                    continue
+                seen.add(x)
+                if all(all(h == x for h in by_key.get(k2, ())) for k2 in self.keys(x)):
+                    out.append(x)
         return out

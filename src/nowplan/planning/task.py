@@ -396,17 +396,28 @@ class _Rows:
             # for what a kept precondition excludes already: false before the action in a state that
             # keeps the rules (every state these rows reach from one that does), and not added, so
             # false after it too (board's exclusions in zenotravel are all of this kind)
-            held_gone: set[int] = set()
-            held_back: set[int] = set()
-            for c in conds:
-                if c.value is True:
+            if self._excluder is None:
+                self._excluder = Excluder(self.domain, self.reached)
+            held = [c for c in conds if c.value is True]
+            beyond = [self._excluder.beyond(e, held) for e in adds]  # (keyed rules: no sets made)
+            if all(b is not None for b in beyond):
+                for xs in beyond:
+                    for x in xs or ():
+                        if x in index:
+                            d_ids.add(index[x])
+                        if x in negs:
+                            a_ids.add(index[x.negate()])
+            else:
+                held_gone: set[int] = set()
+                held_back: set[int] = set()
+                for c in held:
                     gone, back = self._excluded(c)
                     held_gone |= gone
                     held_back |= back
-            for e in adds:
-                gone, back = self._excluded(e)
-                d_ids |= gone - held_gone
-                a_ids |= back - held_back
+                for e in adds:
+                    gone, back = self._excluded(e)
+                    d_ids |= gone - held_gone
+                    a_ids |= back - held_back
             a_ids -= not_adds  # (an added atom is no exclusion: its "not" fact stays deleted)
         return p_ids, tuple(sorted(a_ids)), tuple(sorted(d_ids - a_ids))
 
