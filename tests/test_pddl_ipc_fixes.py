@@ -6,6 +6,7 @@ IPC domain; every plan replays on the original semantics (tests/pddl_sim.py).
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -214,3 +215,55 @@ def test_ipc_check_script_reports_accepted_refused_and_validated(tmp_path: Path)
     assert rows["store"][2:5] == ["yes", "yes", "1"] and rows["store"][8].startswith("valid")
     assert rows["broken"][2:4] == ["no", "no"] and "refused" in rows["broken"][-1]
     assert out.read_text().startswith("2 pairs: accepted 1, solved 1")
+
+
+# IPC-2008/2011 transport and elevators as stored in some public copies: the cost reads a function
+# ((road-length ?a ?b)) that (:functions ...) never declares; the problem's :init gives its values.
+ROADS = """\
+(define (domain roads)
+  (:requirements :typing :action-costs)
+  (:types place truck)
+  (:predicates (at ?t - truck ?p - place) (road ?a ?b - place))
+  (:functions (total-cost) - number)
+  (:action drive
+    :parameters (?t - truck ?a ?b - place)
+    :precondition (and (at ?t ?a) (road ?a ?b))
+    :effect (and (not (at ?t ?a)) (at ?t ?b) (increase (total-cost) (road-length ?a ?b)))))
+"""
+
+ROADS_P = """\
+(define (problem roads-1) (:domain roads)
+  (:objects t - truck x y z - place)
+  (:init (at t x) (road x y) (road y z) (road x z)
+         (= (road-length x y) 2) (= (road-length y z) 3) (= (road-length x z) 9)
+         (= (fuel-price x) 4) (= (total-cost) 0))
+  (:goal (at t z))
+  (:metric minimize (total-cost)))
+"""
+
+
+def test_undeclared_cost_function_is_declared_from_its_use(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                           caplog: pytest.LogCaptureFixture) -> None:
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    d.write_text(ROADS)
+    p.write_text(ROADS_P)
+    code = main(["plan", str(d), str(p), "--json", "--time-limit", "20"])
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    doc = json.loads(out.out)
+    assert doc["plan"] == ["(drive t x y)", "(drive t y z)"] and doc["cost"] == 5.0  # 2 + 3 < 9
+    msgs = [r.getMessage() for r in caplog.records]
+    assert any("'road-length' is used in the effect of action drive but not declared" in m for m in msgs)
+    assert any("'fuel-price', which the domain neither declares nor uses (ignored)" in m for m in msgs)
+
+
+def test_undeclared_function_keeps_its_arity(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The first use fixes the arity: a later use with another arity is still an error naming both."""
+    dom = ROADS.replace("(increase (total-cost) (road-length ?a ?b))",
+                        "(increase (total-cost) (road-length ?a ?b)) (increase (total-cost) (road-length ?a))")
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    d.write_text(dom)
+    p.write_text(ROADS_P)
+    assert main(["plan", str(d), str(p)]) == 2
+    err = capsys.readouterr().err
+    assert "function 'road-length' takes 2 argument(s)" in err and "Traceback" not in err

@@ -259,6 +259,11 @@ def _read_init(p: ProblemDef, d: DomainDef, checker: Checker, known: Mapping[str
             if fname == TOTAL_COST:
                 continue
             if fname not in checker.functions:
+                if fname and not any(isinstance(a, SList) for a in fn.items[1:]):
+                    # as Fast Downward: a value for a function no action reads is dropped
+                    log.warning("%s:%d: the initial state gives a value to '%s', which the domain neither declares "
+                                "nor uses (ignored)", p.path, line, fname)
+                    continue
                 raise PDDLError(f"unknown function '{fname or fn}' in the initial state; declared functions: "
                                 f"{', '.join(sorted(f for f in checker.functions if f != TOTAL_COST)) or 'none'}",
                                 path=p.path, line=line)
