@@ -204,17 +204,24 @@ def test_ipc_check_script_reports_accepted_refused_and_validated(tmp_path: Path)
     (good / "p01.pddl").write_text(STORE_P)
     (bad / "domain.pddl").write_text(STORE.replace("(:action put", "(:action put :vars (?x)", 1))
     (bad / "p01.pddl").write_text(STORE_P)
+    (bad / "p02-domain.pddl").write_text(STORE)  # a per-instance domain wins over the folder's
+    (bad / "p02.pddl").write_text(STORE_P)
     out = tmp_path / "table.md"
     env = {**os.environ, "PYTHONPATH": str(root / "src")}
     proc = subprocess.run([sys.executable, str(root / "benchmarks" / "ipc_check.py"), str(tmp_path / "pairs"),
-                           "--time-limit", "10", "--out", str(out)], capture_output=True, text=True, env=env,
+                           "--time-limit", "10", "--problems", "2", "--out", str(out)], capture_output=True,
+                          text=True, env=env,
                           timeout=200)
     assert proc.returncode == 0, proc.stderr
     rows = {ln.split("|")[1].strip(): [c.strip() for c in ln.split("|")[1:-1]]
             for ln in out.read_text().splitlines() if ln.startswith("| ") and not ln.startswith("| domain")}
-    assert rows["store"][2:5] == ["yes", "yes", "1"] and rows["store"][8].startswith("valid")
-    assert rows["broken"][2:4] == ["no", "no"] and "refused" in rows["broken"][-1]
-    assert out.read_text().startswith("2 pairs: accepted 1, solved 1")
+    assert rows["store/p01"][2:5] == ["yes", "yes", "1"] and rows["store/p01"][8].startswith("valid")
+    assert rows["broken/p01"][2:4] == ["no", "no"] and "refused" in rows["broken/p01"][-1]
+    assert rows["broken/p02"][2:5] == ["yes", "yes", "1"]  # read with p02-domain.pddl
+    summary = out.read_text().splitlines()[0]
+    assert summary.startswith("3 pairs: accepted 2, solved 2, plans valid 2")
+    if rows["store/p01"][6] == "yes":  # Fast Downward installed and solved it: the time ratio is reported
+        assert float(rows["store/p01"][11]) > 0 and "median" in summary and "worst" in summary
 
 
 # IPC-2008/2011 transport and elevators as stored in some public copies: the cost reads a function
