@@ -274,3 +274,34 @@ def test_undeclared_function_keeps_its_arity(tmp_path: Path, capsys: pytest.Capt
     assert main(["plan", str(d), str(p)]) == 2
     err = capsys.readouterr().err
     assert "function 'road-length' takes 2 argument(s)" in err and "Traceback" not in err
+
+
+# IPC-2011 floor-tile: the search's ties are broken by the order successors are generated in; in the domain's
+# order of actions (as planners generate them) lama-first expands 92 states on p02, in name order 19,246.
+TIES = """\
+(define (domain ties)
+  (:requirements :strips)
+  (:predicates (start) (done) (via-zulu) (via-alpha))
+  (:action zulu :parameters () :precondition (start) :effect (and (done) (via-zulu)))
+  (:action alpha :parameters () :precondition (start) :effect (and (done) (via-alpha))))
+"""
+
+TIES_P = """\
+(define (problem ties-1) (:domain ties)
+  (:init (start))
+  (:goal (done)))
+"""
+
+
+@pytest.mark.parametrize("search", ["lama", "gbfs"])
+def test_tied_successors_follow_the_domains_order_of_actions(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                             search: str) -> None:
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    d.write_text(TIES)
+    p.write_text(TIES_P)
+    assert main(["plan", str(d), str(p), "--search", search]) == 0
+    assert capsys.readouterr().out.split() == ["(zulu)"]  # declared first; "alpha" sorts first by name
+    d.write_text(TIES.replace("(:action zulu", "(:action zz").replace("(:action alpha", "(:action zulu")
+                 .replace("(:action zz", "(:action alpha"))
+    assert main(["plan", str(d), str(p), "--search", search]) == 0
+    assert capsys.readouterr().out.split() == ["(alpha)"]
