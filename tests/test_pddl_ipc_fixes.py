@@ -305,3 +305,16 @@ def test_tied_successors_follow_the_domains_order_of_actions(tmp_path: Path, cap
                  .replace("(:action zz", "(:action alpha"))
     assert main(["plan", str(d), str(p), "--search", search]) == 0
     assert capsys.readouterr().out.split() == ["(alpha)"]
+
+
+# IPC-2002 STRIPS problems (zenotravel, driverlog, depots ...) end with (:metric minimize (total-time)).
+def test_total_time_metric_is_ignored_with_a_warning(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                     caplog: pytest.LogCaptureFixture) -> None:
+    prob = STORE_P.replace("(:goal (on c s2)))", "(:goal (on c s2))\n  (:metric minimize (total-time)))")
+    assert "total-time" in prob
+    assert solve(tmp_path, STORE, prob, capsys) == ["(put h c s1 s2)"]
+    assert any("(:metric minimize (total-time)) is ignored" in r.getMessage() for r in caplog.records)
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    p.write_text(prob.replace("minimize (total-time)", "maximize (total-time)"))
+    assert main(["plan", str(d), str(p)]) == 2  # any other metric: still refused, naming it
+    assert "the metric (maximize ...) is not supported" in capsys.readouterr().err
