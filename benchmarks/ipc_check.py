@@ -4,7 +4,8 @@ Issue 18's target: every classical IPC file that Fast Downward's translator
 accepts, ``nowplan plan`` accepts.  This script takes a folder laid out as
 
 * ``FOLDER/NAME/domain.pddl`` with problems ``FOLDER/NAME/*.pddl`` (the first
-  ``--problems`` of them in name order), or
+  ``--problems`` of them in name order; a per-instance domain ``FOLDER/NAME/p01-domain.pddl``
+  is used for ``p01.pddl`` when it exists, as in Fast Downward's benchmark layout), or
 * ``FOLDER/NAME-domain.pddl`` with ``FOLDER/NAME-p01.pddl`` (tests/data/pddl_ipc_style),
 
 and for each pair runs ``nowplan plan D P --json --time-limit T`` and Fast
@@ -25,6 +26,7 @@ the front end; a traceback is reported as a crash.
 from __future__ import annotations
 
 import argparse
+import compileall
 import importlib.util
 import json
 import re
@@ -51,11 +53,14 @@ class Outcome:
 def pairs(folder: Path, problems: int) -> list[tuple[str, Path, Path]]:
     out: list[tuple[str, Path, Path]] = []
     for d in sorted(p for p in folder.iterdir() if p.is_dir()):
-        dom = d / "domain.pddl"
-        if not dom.exists():
-            continue
-        probs = sorted(p for p in d.glob("*.pddl") if p.name != "domain.pddl" and "domain" not in p.name)
-        out.extend((d.name if problems == 1 else f"{d.name}/{p.stem}", dom, p) for p in probs[:problems])
+        # one domain.pddl for the folder, or a domain per instance (FD's benchmark layout: p01-domain.pddl)
+        probs = sorted(p for p in d.glob("*.pddl") if "domain" not in p.name)
+        for p in probs[:problems]:
+            dom = d / f"{p.stem}-domain.pddl"
+            if not dom.exists():
+                dom = d / "domain.pddl"
+            if dom.exists():
+                out.append((d.name if problems == 1 else f"{d.name}/{p.stem}", dom, p))
     for dom in sorted(folder.glob("*-domain.pddl")):
         name = dom.name[: -len("-domain.pddl")]
         prob = folder / f"{name}-p01.pddl"
@@ -159,13 +164,20 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-fd", action="store_true")
     ap.add_argument("--out", type=Path)
     args = ap.parse_args(argv)
+    # nowplan runs from this checkout's sources: compile their bytecode once, as `pip install` does (and as
+    # benchmarks/classical.py does; the Fast Downward driver's is installed compiled), else with
+    # PYTHONDONTWRITEBYTECODE set every run compiles every module again (~0.3 s of a small problem's wall time)
+    src = Path(__file__).resolve().parent.parent / "src" / "nowplan"
+    if src.is_dir():
+        compileall.compile_dir(str(src), quiet=1)
     driver = None if args.no_fd else fd_driver()
     has_fd = driver is not None
     has_up = importlib.util.find_spec("unified_planning") is not None
     rows = ["| domain | problem | accepted | solved | cost | FD accepted | FD solved | FD cost | validation "
-            "| time s | FD time s | note |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    n = acc = sol = fd_acc = fd_sol = both = acc_where_fd = 0
+            "| time s | FD time s | time / FD | note |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    n = acc = sol = fd_acc = fd_sol = both = acc_where_fd = valid = 0
+    ratios: list[float] = []
     for name, dom, prob in pairs(args.folder, args.problems):
         n += 1
         ours = run(dom, prob, args.time_limit, [])
@@ -177,17 +189,24 @@ def main(argv: list[str] | None = None) -> int:
         acc_where_fd += bool(fd and fd.accepted and ours.accepted)
         both += bool(ours.solved and fd and fd.solved)
         check = validate(dom, prob, ours.plan, has_up) if ours.solved else "-"
+        valid += check.startswith("valid")
+        if ours.solved and fd is not None and fd.solved and fd.wall > 0:
+            ratios.append(ours.wall / fd.wall)
         fd_cells = ("-", "-", "-", "-") if fd is None else (
             "yes" if fd.accepted else "no", "yes" if fd.solved else "no",
             "" if fd.cost is None else f"{fd.cost:g}", f"{fd.wall:.1f}")
         note = ours.note or (f"FD: {fd.note}" if fd and fd.note else "")
+        ratio = f"{ours.wall / fd.wall:.2f}" if ours.solved and fd is not None and fd.solved and fd.wall > 0 else ""
         rows.append(f"| {name} | {prob.name} | {'yes' if ours.accepted else 'no'} | {'yes' if ours.solved else 'no'} "
                     f"| {'' if ours.cost is None else f'{ours.cost:g}'} | {fd_cells[0]} | {fd_cells[1]} | {fd_cells[2]} "
-                    f"| {check} | {ours.wall:.1f} | {fd_cells[3]} | {note.replace('|', '/')} |")
+                    f"| {check} | {ours.wall:.1f} | {fd_cells[3]} | {ratio} | {note.replace('|', '/')} |")
         print(rows[-1], file=sys.stderr, flush=True)
-    summary = (f"{n} pairs: accepted {acc}, solved {sol}"
+    ratios.sort()
+    spread = (f"; wall time / FD's where both solved: median {ratios[len(ratios) // 2]:.2f}, worst {ratios[-1]:.2f}"
+              if ratios else "")
+    summary = (f"{n} pairs: accepted {acc}, solved {sol}, plans valid {valid}"
                + (f"; Fast Downward (original files) accepted {fd_acc}, solved {fd_sol}; nowplan accepted "
-                  f"{acc_where_fd} of the {fd_acc} FD accepts; both solved {both}"
+                  f"{acc_where_fd} of the {fd_acc} FD accepts; both solved {both}{spread}"
                   if has_fd else "; Fast Downward not installed"))
     text = "\n".join([summary, "", *rows, ""])
     if args.out:

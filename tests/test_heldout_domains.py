@@ -147,11 +147,12 @@ def test_a_symbolic_world_skips_preconditions_on_the_belief(search: DomainSpec) 
 
 
 def test_online_progress_between_cycles_restarts_their_count(lab: DomainSpec) -> None:
-    """Seed 12 of the drifting lab: the online policy shuttles between floors (two cycles, then it
-    commits), makes progress for a dozen actions, then puts a sample down and picks it up again
-    when the world shuts the door.  The third cycle came after progress: it is not a livelock."""
-    ep = lab.scenario("drift")(12)
-    m = run_episode(ep, parse_strategy("online", max_actions=300, time_limit=60.0), seed=12)
+    """A seed of the drifting lab whose online run makes three clean cycles (the livelock bound) and
+    still reaches the goal: progress or the world's changes between them restart their count, so the
+    third cycle is not a livelock.  (Seed 12 did this until the forward search generated successors in
+    the domain's order of actions; its run now makes no cycle.  Seed 81 is the first of 0-140 with three.)"""
+    ep = lab.scenario("drift")(81)
+    m = run_episode(ep, parse_strategy("online", max_actions=300, time_limit=60.0), seed=81)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.cycles >= 3
 

@@ -6,6 +6,7 @@ IPC domain; every plan replays on the original semantics (tests/pddl_sim.py).
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -203,14 +204,117 @@ def test_ipc_check_script_reports_accepted_refused_and_validated(tmp_path: Path)
     (good / "p01.pddl").write_text(STORE_P)
     (bad / "domain.pddl").write_text(STORE.replace("(:action put", "(:action put :vars (?x)", 1))
     (bad / "p01.pddl").write_text(STORE_P)
+    (bad / "p02-domain.pddl").write_text(STORE)  # a per-instance domain wins over the folder's
+    (bad / "p02.pddl").write_text(STORE_P)
     out = tmp_path / "table.md"
     env = {**os.environ, "PYTHONPATH": str(root / "src")}
     proc = subprocess.run([sys.executable, str(root / "benchmarks" / "ipc_check.py"), str(tmp_path / "pairs"),
-                           "--time-limit", "10", "--out", str(out)], capture_output=True, text=True, env=env,
+                           "--time-limit", "10", "--problems", "2", "--out", str(out)], capture_output=True,
+                          text=True, env=env,
                           timeout=200)
     assert proc.returncode == 0, proc.stderr
     rows = {ln.split("|")[1].strip(): [c.strip() for c in ln.split("|")[1:-1]]
             for ln in out.read_text().splitlines() if ln.startswith("| ") and not ln.startswith("| domain")}
-    assert rows["store"][2:5] == ["yes", "yes", "1"] and rows["store"][8].startswith("valid")
-    assert rows["broken"][2:4] == ["no", "no"] and "refused" in rows["broken"][-1]
-    assert out.read_text().startswith("2 pairs: accepted 1, solved 1")
+    assert rows["store/p01"][2:5] == ["yes", "yes", "1"] and rows["store/p01"][8].startswith("valid")
+    assert rows["broken/p01"][2:4] == ["no", "no"] and "refused" in rows["broken/p01"][-1]
+    assert rows["broken/p02"][2:5] == ["yes", "yes", "1"]  # read with p02-domain.pddl
+    summary = out.read_text().splitlines()[0]
+    assert summary.startswith("3 pairs: accepted 2, solved 2, plans valid 2")
+    if rows["store/p01"][6] == "yes":  # Fast Downward installed and solved it: the time ratio is reported
+        assert float(rows["store/p01"][11]) > 0 and "median" in summary and "worst" in summary
+
+
+# IPC-2008/2011 transport and elevators as stored in some public copies: the cost reads a function
+# ((road-length ?a ?b)) that (:functions ...) never declares; the problem's :init gives its values.
+ROADS = """\
+(define (domain roads)
+  (:requirements :typing :action-costs)
+  (:types place truck)
+  (:predicates (at ?t - truck ?p - place) (road ?a ?b - place))
+  (:functions (total-cost) - number)
+  (:action drive
+    :parameters (?t - truck ?a ?b - place)
+    :precondition (and (at ?t ?a) (road ?a ?b))
+    :effect (and (not (at ?t ?a)) (at ?t ?b) (increase (total-cost) (road-length ?a ?b)))))
+"""
+
+ROADS_P = """\
+(define (problem roads-1) (:domain roads)
+  (:objects t - truck x y z - place)
+  (:init (at t x) (road x y) (road y z) (road x z)
+         (= (road-length x y) 2) (= (road-length y z) 3) (= (road-length x z) 9)
+         (= (fuel-price x) 4) (= (total-cost) 0))
+  (:goal (at t z))
+  (:metric minimize (total-cost)))
+"""
+
+
+def test_undeclared_cost_function_is_declared_from_its_use(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                           caplog: pytest.LogCaptureFixture) -> None:
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    d.write_text(ROADS)
+    p.write_text(ROADS_P)
+    code = main(["plan", str(d), str(p), "--json", "--time-limit", "20"])
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    doc = json.loads(out.out)
+    assert doc["plan"] == ["(drive t x y)", "(drive t y z)"] and doc["cost"] == 5.0  # 2 + 3 < 9
+    msgs = [r.getMessage() for r in caplog.records]
+    assert any("'road-length' is used in the effect of action drive but not declared" in m for m in msgs)
+    assert any("'fuel-price', which the domain neither declares nor uses (ignored)" in m for m in msgs)
+
+
+def test_undeclared_function_keeps_its_arity(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The first use fixes the arity: a later use with another arity is still an error naming both."""
+    dom = ROADS.replace("(increase (total-cost) (road-length ?a ?b))",
+                        "(increase (total-cost) (road-length ?a ?b)) (increase (total-cost) (road-length ?a))")
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    d.write_text(dom)
+    p.write_text(ROADS_P)
+    assert main(["plan", str(d), str(p)]) == 2
+    err = capsys.readouterr().err
+    assert "function 'road-length' takes 2 argument(s)" in err and "Traceback" not in err
+
+
+# IPC-2011 floor-tile: the search's ties are broken by the order successors are generated in; in the domain's
+# order of actions (as planners generate them) lama-first expands 92 states on p02, in name order 19,246.
+TIES = """\
+(define (domain ties)
+  (:requirements :strips)
+  (:predicates (start) (done) (via-zulu) (via-alpha))
+  (:action zulu :parameters () :precondition (start) :effect (and (done) (via-zulu)))
+  (:action alpha :parameters () :precondition (start) :effect (and (done) (via-alpha))))
+"""
+
+TIES_P = """\
+(define (problem ties-1) (:domain ties)
+  (:init (start))
+  (:goal (done)))
+"""
+
+
+@pytest.mark.parametrize("search", ["lama", "gbfs"])
+def test_tied_successors_follow_the_domains_order_of_actions(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                             search: str) -> None:
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    d.write_text(TIES)
+    p.write_text(TIES_P)
+    assert main(["plan", str(d), str(p), "--search", search]) == 0
+    assert capsys.readouterr().out.split() == ["(zulu)"]  # declared first; "alpha" sorts first by name
+    d.write_text(TIES.replace("(:action zulu", "(:action zz").replace("(:action alpha", "(:action zulu")
+                 .replace("(:action zz", "(:action alpha"))
+    assert main(["plan", str(d), str(p), "--search", search]) == 0
+    assert capsys.readouterr().out.split() == ["(alpha)"]
+
+
+# IPC-2002 STRIPS problems (zenotravel, driverlog, depots ...) end with (:metric minimize (total-time)).
+def test_total_time_metric_is_ignored_with_a_warning(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                     caplog: pytest.LogCaptureFixture) -> None:
+    prob = STORE_P.replace("(:goal (on c s2)))", "(:goal (on c s2))\n  (:metric minimize (total-time)))")
+    assert "total-time" in prob
+    assert solve(tmp_path, STORE, prob, capsys) == ["(put h c s1 s2)"]
+    assert any("(:metric minimize (total-time)) is ignored" in r.getMessage() for r in caplog.records)
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    p.write_text(prob.replace("minimize (total-time)", "maximize (total-time)"))
+    assert main(["plan", str(d), str(p)]) == 2  # any other metric: still refused, naming it
+    assert "the metric (maximize ...) is not supported" in capsys.readouterr().err

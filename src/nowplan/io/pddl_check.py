@@ -221,9 +221,12 @@ class Checker:
                                            "action costs must not depend on the cost so far", path=path, line=x.line)
             decl = self.functions.get(x.name)
             if decl is None:
-                known = ", ".join(sorted(f for f in self.functions if f != TOTAL_COST)) or "none"
-                raise PDDLError(f"unknown function '{x.name}' in {where}; declared functions: {known}",
-                                path=path, line=x.line)
+                # Fast Downward's translator takes a function it was never told of (the values come from
+                # the problem's :init); declare it here, untyped, with the arity of this first use.
+                log.warning("%s:%d: the function '%s' is used in %s but not declared in (:functions ...) "
+                            "(accepted, untyped)", path, x.line, x.name, where)
+                decl = tuple(TypedName(f"?x{i + 1}", (), x.line) for i in range(len(x.args)))
+                self.functions[x.name] = decl
             if len(decl) != len(x.args):
                 raise PDDLError(f"function '{x.name}' takes {len(decl)} argument(s) but {where} gives "
                                 f"{len(x.args)}", path=path, line=x.line)

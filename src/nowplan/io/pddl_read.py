@@ -259,6 +259,11 @@ def _read_init(p: ProblemDef, d: DomainDef, checker: Checker, known: Mapping[str
             if fname == TOTAL_COST:
                 continue
             if fname not in checker.functions:
+                if fname and not any(isinstance(a, SList) for a in fn.items[1:]):
+                    # as Fast Downward: a value for a function no action reads is dropped
+                    log.warning("%s:%d: the initial state gives a value to '%s', which the domain neither declares "
+                                "nor uses (ignored)", p.path, line, fname)
+                    continue
                 raise PDDLError(f"unknown function '{fname or fn}' in the initial state; declared functions: "
                                 f"{', '.join(sorted(f for f in checker.functions if f != TOTAL_COST)) or 'none'}",
                                 path=p.path, line=line)
@@ -353,7 +358,13 @@ def load_pddl(
     checker.formula(p.goal, "the goal", {}, known, p.path)
     if p.metric is not None:
         direction, expr = p.metric
-        if direction != "minimize" or not (getattr(expr, "name", None) == TOTAL_COST and not getattr(expr, "args", ())):
+        if direction == "minimize" and getattr(expr, "name", None) == "total-time" and not getattr(expr, "args", ()):
+            # the IPC-2002 STRIPS problems (zenotravel, driverlog, depots ...): a sequential plan has no
+            # makespan to optimise, so the metric is dropped (Fast Downward refuses these files)
+            log.warning("%s:%d: (:metric minimize (total-time)) is ignored: nowplan plans sequentially (accepted)",
+                        p.path, p.metric_line)
+        elif direction != "minimize" or not (getattr(expr, "name", None) == TOTAL_COST
+                                             and not getattr(expr, "args", ())):
             raise UnsupportedPDDLError(f"the metric ({direction} ...) is not supported; only (:metric minimize "
                                        "(total-cost)) is", path=p.path, line=p.metric_line)
     world = World(known, frozenset((a.predicate, tuple(str(t) for t in a.args)) for a in init_atoms if a.value),

@@ -332,7 +332,11 @@ def _structure(domain: Domain, gr: Grounding, base: LevelMap, goal_negs: frozens
 def _build_structure(domain: Domain, gr: Grounding, base: LevelMap, goal_negs: frozenset[Atom]) -> _Structure:
     statics = gr.statics
     names = _axiom_names(domain)
-    ordered = sorted(gr.actions, key=lambda a: (a.name, repr(a.args)))
+    # canonical (the same call makes the same plan, whatever the cache saw) and in the domain's order of
+    # operators, as planners generate successors: the order breaks the search's ties (floor-tile: 92
+    # expansions in Fast Downward's order, 19,246 in name order)
+    rank = {op.name: i for i, op in enumerate(domain.operators)}
+    ordered = sorted(gr.actions, key=lambda a: (rank.get(a.operator.name, len(rank)), a.name, repr(a.args)))
     kept = [act for act in ordered if act.operator.name not in names]
     rules = [(act, [p for p in act.preconditions(base.level(act)) if p.predicate not in statics])
              for act in ordered if act.operator.name in names]
