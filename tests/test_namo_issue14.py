@@ -91,6 +91,9 @@ def test_the_move_request_bound_of_a_refinement_and_of_a_whole_problem_search() 
     assert not any(b.planning_loop(narrow) for _ in range(LOOP_LIMIT - 1)) and b.planning_loop(narrow)
     assert b.planning_gave_up(narrow) is None  # a restricted whole-problem pass searches on without moves
     assert isinstance(b, GivesUp)
+    # ... but says afterwards that its generator gave up (its exhausted space is then no proof)
+    assert "1500 move requests" in (b.generators_gave_up(narrow) or "")
+    assert b.generators_gave_up(wide) is None
 
 
 def _run(scenario: str, strategy: str, seed: int) -> dict[str, object]:

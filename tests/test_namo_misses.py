@@ -66,3 +66,27 @@ def test_a_missed_look_does_not_bar_the_only_view_of_an_object():
     apply_faults(ep, faults)
     m = run_episode(ep, parse_strategy("flat+flexible+serendipity", time_limit=60.0), seed=4)
     assert m.outcome is Outcome.REACHED, m.reason
+
+
+def test_a_move_whose_blocker_was_not_found_from_its_start_is_offered_from_halfway():
+    """An object whose shadow (not its body) lies in a move's way, and which a look from the move's
+    start failed to find (occluded from there), is looked for from elsewhere: the move is offered in
+    two, from a point halfway (sensor noise 0.2/m, seed 12: the look was repeated from the start,
+    then no plan)."""
+    from nowplan.core.atoms import Goal
+    from nowplan.domains.namo.generators import A, B, _unseen_blocker, gen_move, region
+
+    start, goal = Pt(1.0, 2.0), Pt(2.6, 2.0)  # one straight move
+    b = NamoBelief(GEOM, np.array([start.x, start.y]), sensor=replace(DEFAULT_SENSOR, miss_prob=0.0))
+    b.detect("box", 0.8, 0.75, 0.3, (0.4, 0.4))  # (1.8, 2.75), beside the way; its shadow reaches into it
+    b.observed[:] = True  # no fog
+    start = b.nominal()  # (the grid's point where the robot stands)
+    r = region(b, start, goal, False)
+    assert "box" in b.blockers(r, b.params.eps_clear) and not b.in_the_way(r, "box")
+    starts = [o[A] for o in gen_move({B: goal}, Goal(), b, None)]
+    assert starts == [start] and not _unseen_blocker(b, r)
+    b.futile_looks[(start, "box")] = b.percept  # a look from the start did not find it
+    assert _unseen_blocker(b, r)
+    starts = [o[A] for o in gen_move({B: goal}, Goal(), b, None)]
+    assert starts and start not in starts
+    assert all(abs(a.x - 1.8) < 0.3 for a in starts)  # halfway

@@ -66,3 +66,40 @@ def test_both_passes_failing_report_the_restricted_pass() -> None:
     p = _Planner(solves_when_restricted=False)
     res = _call(p, _Guarded())
     assert res.status is PlanStatus.NODE_LIMIT and "50000" in res.reason and len(p.calls) == 2
+
+
+class _Reporting(_Guarded):
+    """A guarded belief whose generators gave up on every call (or never)."""
+
+    def __init__(self, gave_up: bool) -> None:
+        self.gave_up = gave_up
+        self.asked: list[PlanningContext] = []
+
+    def generators_gave_up(self, context: Any) -> str | None:
+        self.asked.append(context)
+        return "its move generator gave up after 1500 move requests" if self.gave_up else None
+
+
+class _Exhausts(_Planner):
+    """The restricted pass exhausts its search space."""
+
+    def __call__(self, domain: Any, objects: Any, belief: Any, goal: Goal, levels: Any, config: PlannerConfig,
+                 context: PlanningContext, rng: random.Random) -> PlanResult:
+        if context.restricted:
+            self.calls.append((config.max_nodes, True))
+            return PlanResult(PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level",
+                              expanded=1_000, cpu_time_s=1.0)
+        return super().__call__(domain, objects, belief, goal, levels, config, context, rng)
+
+
+def test_a_restricted_pass_exhausted_after_its_generators_gave_up_is_no_proof() -> None:
+    """The restricted pass searches on without new moves once the generator gave up: its exhausted
+    space ends the call as a budget, with both reasons, not as 'unsolvable' (NAMO sigma 0.2, online)."""
+    belief = _Reporting(gave_up=True)
+    res = _call(_Exhausts(), belief)
+    assert res.status is PlanStatus.NODE_LIMIT
+    assert "search space exhausted" in res.reason and "gave up after 1500 move requests" in res.reason
+    assert len(belief.asked) == 1 and belief.asked[0].restricted
+    # a generator that did not give up: the exhausted space stands as a proof
+    assert _call(_Exhausts(), _Reporting(gave_up=False)).status is PlanStatus.UNSOLVABLE
+    assert _call(_Exhausts(), _Guarded()).status is PlanStatus.UNSOLVABLE  # a belief that does not report

@@ -33,6 +33,8 @@ from nowplan.errors import ModelError
 log = logging.getLogger(__name__)
 
 DEFAULT_PARTICLES = 100
+ROUGHEN_K = 0.2  # Gordon, Salmond & Smith's roughening constant
+RANGE_PER_STD = 4.0  # the spread E of a cloud in standard deviations (about ±2σ holds 95 %)
 
 
 @dataclass(frozen=True)
@@ -198,8 +200,28 @@ class PoseParticles:
             self.weights = np.full(n, 1.0 / n)
             return 0.0
         if self.ess() < len(self) / 2:
-            self.resample(rng, jitter=sensor.sigma / 2, supports=supports)
+            self.resample(rng, jitter=self.roughening(sensor), supports=supports)
         return evidence
+
+    def roughening(self, sensor: SensorModel) -> float:
+        """The xy jitter of a resampling after an update: Gordon et al.'s roughening, ``K·E·N^(-1/d)``
+        (``E`` the spread of the weighted cloud, ``d`` = 2, ``K`` = ``ROUGHEN_K``), at most half the
+        sensor's noise.
+
+        A jitter of half the sensor's noise, whatever the cloud's spread, put a floor under the
+        spread that repeated looks could not go below: with σ = 0.03 m about 0.024 m per axis, where
+        ``localized`` needs about 0.009 m, so a kitchen look was planned again and again (cook,
+        sensor sigma 0.03: 19 looks in 40 actions, the block never localised).  Proportional to the
+        spread, the floor is about ``K·N^(-1/2)`` of the noise."""
+        w = self.weights
+        xy = self.poses[:, :2]
+        mean = w @ xy
+        spread = float(np.sqrt(max(float(w @ ((xy - mean) ** 2).sum(axis=1)), 0.0)))
+        frames = set(self.frames.tolist())
+        if len(frames) > 1:  # poses in different frames are not comparable: keep the sensor's bound
+            return sensor.sigma / 2
+        e = RANGE_PER_STD * spread
+        return float(min(sensor.sigma / 2, ROUGHEN_K * e * len(self) ** -0.5))
 
     def resample(
         self, rng: np.random.Generator, jitter: float = 0.0, supports: Mapping[str, Region] | None = None

@@ -112,6 +112,15 @@ class GivesUp(Protocol):
 
 
 @runtime_checkable
+class ReportsGiveUp(Protocol):
+    """A :class:`GivesUp` belief that also says, after a planning call, whether its generators gave up
+    on it (``generators_gave_up(context)``: why, or None), also where the search went on without them
+    (a whole-problem call's restricted pass): such a search's exhausted space proves nothing."""
+
+    def generators_gave_up(self, context: Any) -> str | None: ...
+
+
+@runtime_checkable
 class AfterAction(Protocol):
     """``after_action(trace, action, observation)``: called by the online policy after each action."""
 

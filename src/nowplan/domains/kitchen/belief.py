@@ -14,6 +14,7 @@ streams.
 from __future__ import annotations
 
 import logging
+import math
 import random
 from collections.abc import Hashable
 from dataclasses import dataclass
@@ -21,7 +22,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from nowplan.belief.determinize import worst_case_visibility
+from nowplan.belief.determinize import epsilon_lower_bound, self_loop_cost, worst_case_visibility
 from nowplan.belief.particles import DEFAULT_PARTICLES, PoseParticles, Region, SensorModel
 from nowplan.core.operators import Action
 from nowplan.errors import ModelError
@@ -33,6 +34,7 @@ log = logging.getLogger(__name__)
 DELTA = 0.04  # radius of the δ-neighbourhood of a sampled pose (m)
 EPSILON = 0.1  # the ε of the BOccluded test
 LOCALIZED = 0.9  # mass within δ for a pose to be believed
+MIN_DETECT_P = 0.01  # detections less likely than this to succeed cost infinity
 PICK_MISS_SPREAD = 0.03  # std (m) added to an object's particles when a pick finds it elsewhere
 
 
@@ -260,6 +262,23 @@ class KitchenBelief:
             lj = worst_case_visibility(region, self.world_of(blocker), pj.weights, self.blocks(target, blocker))
             got = self._queries[key] = lj >= 1.0 - EPSILON
         return bool(got)
+
+    def look_cost(self, o: str, pose: Pose) -> float:
+        """The determinized cost of looking for ``o`` near ``pose`` (``detect``'s self-loop cost
+        ``c + c'/p − c'`` with p the ε form of eq. (2), c = c' = 1); infinite below
+        ``MIN_DETECT_P`` (the cost bound c*, applied per action)."""
+        mass = self.particles[o].mass_near(pose.frame, pose.rel(), DELTA)
+        prob = epsilon_lower_bound(self.sensor.p_fn, mass, EPSILON, len(self.objects))
+        return self_loop_cost(1.0, 1.0, prob) if prob >= MIN_DETECT_P else math.inf
+
+    def cheapest_look(self, o: str) -> float:
+        """:meth:`look_cost` at ``o``'s most supported pose (memoised per version): no look at ``o``
+        costs much less, as no δ-neighbourhood holds much more mass than the mode's."""
+        key = ("look", o, self.version)
+        got = self._queries.get(key)
+        if got is None:
+            got = self._queries[key] = self.look_cost(o, self.mode_pose(o))
+        return float(got)
 
     def localized_at(self, o: str, pose: Pose) -> bool:
         if pose.frame == "hand":

@@ -10,6 +10,7 @@ from typing import Any
 
 from nowplan.acting.online import OnlinePolicy
 from nowplan.domains.kitchen.render import data_uri, render_png
+from nowplan.domains.kitchen.heuristic import estimate_in_actions
 from nowplan.domains.kitchen.repro import CAP_S, kitchen_strategy
 from nowplan.domains.kitchen.tasks import make
 from nowplan.trace import Trace
@@ -44,6 +45,7 @@ def main(args: argparse.Namespace) -> int:
 
         ep.belief.after_action = after_action
         strategy = kitchen_strategy("online+reuse+deferred", CAP_S, max_actions=60)
+        ep.belief.planning_heuristic = estimate_in_actions  # the greedy search's estimate (as the reproduction's)
         metrics = OnlinePolicy(ep.problem, ep.world, ep.belief, strategy, seed=index, trace=trace).run()
         trace.emit("run_end", outcome=metrics.outcome.value, reason=metrics.reason, metrics=metrics.to_dict())
     header = (f"Kitchen, {task} (seed 004's SS-Replan): the fixed camera's view; dots are the belief's "

@@ -18,26 +18,24 @@ likely, so deferrable — moves carry an optimistic trajectory until bound).
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 
-from nowplan.belief.determinize import StochasticCost, epsilon_lower_bound, self_loop_cost
+from nowplan.belief.determinize import StochasticCost
 from nowplan.core.atoms import Var, atom
 from nowplan.core.domain import Domain, Predicate
 from nowplan.core.operators import Action, Generator, Operator, Precondition
 from nowplan.domains.kitchen import scene as S
 from nowplan.domains.kitchen.conflicts import CONFLICTS, Occludes
 from nowplan.domains.kitchen.heuristic import estimate
-from nowplan.domains.kitchen.belief import DELTA, EPSILON, Conf, KitchenBelief, Pose, Traj, pose_of
+from nowplan.domains.kitchen.belief import Conf, KitchenBelief, Pose, Traj, pose_of
 from nowplan.domains.kitchen.motion import DOWN, DOWN_TURNED, inverse_kinematics, rrt_connect, touching
 from nowplan.planning.streams import Stream, StreamSet
 
 O, P, F, G, Q, T, D, E, J, K = (Var(n) for n in ("o", "p", "f", "g", "q", "t", "d", "e", "j", "k"))
 PICK = StochasticCost(cost=1.0, recovery=1.0, success=0.95)
 GRASPS = {"top": DOWN, "top90": DOWN_TURNED}  # top-down grasps, the second turned 90° about the vertical
-MIN_DETECT_P = 0.01  # detections less likely than this to succeed cost infinity
 OVERLAP_MASS = 0.5  # belief mass of another object at a placement that makes it taken
 MOTION_ATTEMPTS = 3  # RRT-Connect runs (fresh random samples) before a motion counts as failed
 
@@ -421,12 +419,7 @@ class KitchenModel:
 
     # -- costs ----------------------------------------------------------------------
     def detect_cost(self, bind: Any, bel: KitchenBelief) -> float:
-        o, p = bind[O], bind[P]
-        mass = bel.particles[o].mass_near(p.frame, p.rel(), DELTA)
-        n = len(bel.objects)
-        prob = epsilon_lower_bound(bel.sensor.p_fn, mass, EPSILON, n)
-        # a look with almost no chance of success is pruned (the cost bound c*, applied per action)
-        return self_loop_cost(1.0, 1.0, prob) if prob >= MIN_DETECT_P else math.inf
+        return bel.look_cost(bind[O], bind[P])
 
     def _domain(self) -> Domain:
         pre = Precondition

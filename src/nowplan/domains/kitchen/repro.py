@@ -79,8 +79,10 @@ def trial(task: str, index: int, variant: str, cap: float, seed: int = 0, easy: 
     with ``easy`` the original one (:mod:`~nowplan.domains.kitchen.tasks`)."""
     from nowplan.acting.online import OnlinePolicy
     from nowplan.domains.kitchen import hard, tasks
+    from nowplan.domains.kitchen.heuristic import estimate_in_actions
 
     ep = (tasks.make if easy else hard.make)(task, index, seed)
+    ep.belief.planning_heuristic = estimate_in_actions  # (a greedy search's estimate: see its docstring)
     if max_actions is None:
         max_actions = MAX_ACTIONS if easy else HARD_MAX_ACTIONS
     strategy = kitchen_strategy(VARIANTS[variant], cap, max_actions)

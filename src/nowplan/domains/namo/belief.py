@@ -170,6 +170,13 @@ class NamoBelief:
             log.warning("planning loop: %d move requests in one planning call; its move generator gives up", n)
         return n >= limit
 
+    def generators_gave_up(self, call: object) -> str | None:
+        """Did the move generator give up on planning call ``call`` (whatever kind of call it is)?"""
+        hit = self.cache().get(("move_calls", id(call)))
+        if hit is None or hit[0] is not call or hit[1] < hit[2]:
+            return None
+        return f"its move generator gave up after {hit[1]} move requests"
+
     def planning_gave_up(self, call: object) -> str | None:
         """Why the search of refinement ``call`` should end: its move generator gave up on it (it would
         search on without moves, up to 45,000 nodes and 40 s, before the level above plans again:
