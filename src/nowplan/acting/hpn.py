@@ -492,6 +492,11 @@ class Executive:
                             continue
                         outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
                         reason = f"no plan for the goal ({self._last_failure})"
+                        if timed_out and self.remaining_time() <= 0.05:
+                            # the planner's limit was what remained of the run's: say so, not the
+                            # clamped figure (a held-out drone run said "time limit of 0.19 s" in a 20 s run)
+                            reason = (f"time limit of {self.strategy.time_limit:g} s for the run reached while "
+                                      f"planning ({self.metrics.world_summary()})")
                         break
                     if consecutive_failures > 3 * self.strategy.max_depth:
                         outcome, reason = Outcome.FAILED, f"repeated planning failures ({self._last_failure})"

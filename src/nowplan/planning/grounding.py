@@ -384,6 +384,11 @@ class Grounder:
             if all(v in cur for v in gen.outputs):
                 yield from rec(i + 1, cur)
                 return
+            if any(v not in cur for v in gen.inputs):
+                # its inputs are unbound (the effect that unified binds none of them): the generator
+                # cannot run, so this unification grounds no instance (it used to call it anyway, and a
+                # held-out domain's generator failed with KeyError on its own declared input)
+                return
             for n, vals in enumerate(gen.fn(dict(cur), goal, self.belief, self.context)):
                 if n >= self.max_generator_values:
                     break
