@@ -377,7 +377,8 @@ class Executive:
         now = self.situation()
         if now is None:
             return None
-        cyc = self.progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
+        failure = None if obs.success or self.last_action is None else (self.last_action.key, obs.info.get("reason"))
+        cyc = self.progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
         if self.progress.stalled >= self.strategy.max_stalls:
             return Outcome.FAILED, stall_reason(self.progress.stalled, self.last_action, obs)
         if cyc is None:

@@ -197,7 +197,8 @@ class OnlinePolicy:
                 self._committed = False
                 progress.forget(cycles=True)
                 self.trace.emit("note", text="progress: a belief not held before; the count of cycles restarts")
-        cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
+        failure = None if obs.success else (plan[0].key, obs.info.get("reason"))
+        cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
         if progress.stalled >= self.strategy.max_stalls:
             return Outcome.FAILED, stall_reason(progress.stalled, plan[0], obs)
         if cyc is None:

@@ -31,7 +31,9 @@ with no failed action reach ``max_cycles`` (default 3) without progress or an ex
 
 A loop can also stand still: an action that fails again and again and leaves the
 situation as it was (a door the belief thinks open, in a world that reports outcomes
-only).  Retrying is right while failures are chance; ``stalled`` counts the failures in a
+only), or fails the same way each time while the belief drifts on its own (a drone whose
+position estimate spreads a little every step, in gusts it does not feel, tried the same
+flight 114 times, each refused with "battery too low").  Retrying is right while failures are chance; ``stalled`` counts the failures in a
 row, and the executive gives up with its reason at ``Strategy.max_stalls`` (default 25: a
 chance of 0.5**25, about 3e-8, at a 50 % failure rate).  Likewise a loop whose every
 round has a failed action (re-grasp an object, drag it, the drag stopped by a wall, the
@@ -104,16 +106,23 @@ class CycleDetector:
         self._last_success = -1  # action count of the last successful action
         self._last_exogenous = -1  # action count of the last exogenous change
         self._last_failure = -1  # action count of the last failed action
-        self.stalled = 0  # failed actions in a row that left the situation as it was
+        self.stalled = 0  # failed actions in a row that left the situation as it was (or failed the same way)
         self._prev: Hashable | None = None
+        self._prev_failure: Hashable | None = None
 
     def start(self, situation: Hashable) -> None:
         """The situation before the first action."""
         self._last_visit[situation] = 0
         self._prev = situation
 
-    def observe(self, situation: Hashable, *, succeeded: bool, exogenous: bool) -> Cycle | None:
-        """The situation after one more action; a :class:`Cycle` if it closes one."""
+    def observe(self, situation: Hashable, *, succeeded: bool, exogenous: bool,
+                failure: Hashable | None = None) -> Cycle | None:
+        """The situation after one more action; a :class:`Cycle` if it closes one.
+
+        ``failure`` names a failed action and how it failed (e.g. its key and the world's reason): the
+        same action failing the same way again counts toward :attr:`stalled` even when the belief's
+        fingerprint drifted meanwhile (a belief that grows less sure with every step never repeats
+        one, and a world that changes by itself now and then never leaves one as it was)."""
         self._t += 1
         if succeeded:
             self._last_success = self._t
@@ -125,8 +134,10 @@ class CycleDetector:
             # any more (a lab door the world shut each time the robot opened it made the robot redo
             # its set-down three times: three cycles, each after the world's change, not a livelock)
             self.cycles = 0
-        self.stalled = self.stalled + 1 if (not succeeded and situation == self._prev) else 0
+        same = not succeeded and (situation == self._prev or (failure is not None and failure == self._prev_failure))
+        self.stalled = self.stalled + 1 if same else 0
         self._prev = situation
+        self._prev_failure = None if succeeded else failure
         prev = self._last_visit.get(situation)
         self._last_visit[situation] = self._t
         if prev is None or self._last_exogenous > prev or self._last_success <= prev:
@@ -157,8 +168,8 @@ def stall_reason(times: int, action: Action | None, obs: Observation) -> str:
     what = action.pddl() if action is not None else "the last action"
     why = obs.info.get("reason")
     return (f"stalled: {what} failed {times} times in a row and left the belief and the plan stack as "
-            f"they were{f' (last: {why})' if why else ''}; the world refuses it, or the belief is wrong "
-            "and the world reports outcomes only")
+            f"they were, or failed the same way each time{f' (last: {why})' if why else ''}; the world refuses "
+            "it, or the belief is wrong and the world reports outcomes only")
 
 
 def failed_cycles_reason(cyc: Cycle, times: int, failed: tuple[Action, Observation] | None) -> str:

@@ -1,0 +1,51 @@
+"""The same action failing the same way again and again is a stall, even while the belief drifts.
+
+Found by a held-out domain (examples/drone, failure 0.5, gusts 0.5): the drone's position estimate
+spreads a little every step, so its fingerprint never repeated; gusts (exogenous changes) came every
+other step; the same flight was refused 114 times ("battery too low") until the action budget ended
+the run, with no stated reason.
+"""
+
+from __future__ import annotations
+
+from nowplan.acting.progress import CycleDetector, stall_reason
+from nowplan.api import Observation, Operator, Var
+
+
+def test_a_drifting_situation_with_the_same_failure_counts_as_a_stall() -> None:
+    det = CycleDetector()
+    det.start(("belief", 0))
+    for i in range(1, 31):
+        det.observe(("belief", i), succeeded=False, exogenous=i % 2 == 0, failure=("fly", "battery too low"))
+    assert det.stalled == 29  # (the first failure has none before it to repeat)
+
+
+def test_different_failures_or_a_success_restart_the_count() -> None:
+    det = CycleDetector()
+    det.start(("belief", 0))
+    det.observe(("belief", 1), succeeded=False, exogenous=False, failure=("fly", "battery too low"))
+    det.observe(("belief", 2), succeeded=False, exogenous=False, failure=("fly", "battery too low"))
+    assert det.stalled == 1
+    det.observe(("belief", 3), succeeded=False, exogenous=False, failure=("pick", "slipped"))
+    assert det.stalled == 0
+    det.observe(("belief", 4), succeeded=True, exogenous=False)
+    det.observe(("belief", 5), succeeded=False, exogenous=False, failure=("pick", "slipped"))
+    assert det.stalled == 0
+
+
+def test_without_a_failure_key_only_an_unchanged_situation_stalls() -> None:
+    det = CycleDetector()
+    det.start("s")
+    for i in range(5):
+        det.observe(f"s{i}", succeeded=False, exogenous=False)
+    assert det.stalled == 0
+    for _ in range(5):
+        det.observe("same", succeeded=False, exogenous=False)
+    assert det.stalled == 4
+
+
+def test_the_stall_reason_says_it_failed_the_same_way() -> None:
+    fly = Operator("fly", (Var("a"),)).instantiate({Var("a"): "x"})
+    why = stall_reason(25, fly, Observation(False, info={"reason": "battery too low"}))
+    assert why.startswith("stalled: (fly x) failed 25 times in a row") and "the same way" in why
+    assert "battery too low" in why
