@@ -20,6 +20,12 @@ def maybe(belief: Any, args: tuple[Any, ...], value: Any) -> bool:
     return (p >= MAYBE) == bool(value)
 
 
+def maybe_gone(belief: Any, args: tuple[Any, ...], value: Any) -> bool:
+    """``maybe_gone(o, r)``: the belief gives the item a chance of MAYBE or more to be elsewhere."""
+    p: float = belief.probability(atom("at", args[0], args[1]))
+    return (p <= 1.0 - MAYBE) == bool(value)
+
+
 PREDICATES = {p.name: p for p in (
     Predicate("robot_in", 1, ("room",)),
     Predicate("at", 2, ("item", "room")),
@@ -30,6 +36,7 @@ PREDICATES = {p.name: p for p in (
     Predicate("portable", 1, ("item",)),  # static: carried in the gripper
     Predicate("bulky", 1, ("item",)),  # static: only pushed, through an open door
     Predicate("maybe", 2, ("item", "room"), test=maybe),
+    Predicate("maybe_gone", 2, ("item", "room"), test=maybe_gone),
 )}
 
 
@@ -63,7 +70,8 @@ OPERATORS = (
     # Their effects are what the robot hopes to learn (neither the world nor the belief applies them)
     Operator("seek", (o, r), (pre("maybe", o, r, crit=TASK), pre("robot_in", r, crit=REACH)),
              (atom("at", o, r),), cost=2.0, param_types=("item", "room")),
-    Operator("check_gone", (o, r), (pre("robot_in", r, crit=REACH),), (atom("at", o, r, value=False),),
+    Operator("check_gone", (o, r), (pre("maybe_gone", o, r, crit=TASK), pre("robot_in", r, crit=REACH)),
+             (atom("at", o, r, value=False),),
              cost=1.0, param_types=("item", "room")),
 )
 LOOKS = ("seek", "check_gone")
