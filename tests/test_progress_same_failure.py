@@ -49,3 +49,47 @@ def test_the_stall_reason_says_it_failed_the_same_way() -> None:
     why = stall_reason(25, fly, Observation(False, info={"reason": "battery too low"}))
     assert why.startswith("stalled: (fly x) failed 25 times in a row") and "the same way" in why
     assert "battery too low" in why
+
+
+# -- a belief with neither a fingerprint nor a state -------------------------------------------------
+
+class Blind:
+    """A belief with values only: the guard cannot tell its situations apart."""
+
+    def __init__(self) -> None:
+        self.tries = 0
+
+    def update(self, action: object, observation: object) -> None:
+        self.tries += 1
+
+    def value(self, key: object) -> object:
+        return False
+
+
+def test_a_belief_without_a_fingerprint_still_stalls_with_a_reason(caplog: object) -> None:
+    import logging  # noqa: PLC0415
+
+    import pytest  # noqa: PLC0415
+
+    from nowplan.api import (  # noqa: PLC0415
+        Domain, Episode, Goal, Outcome, Precondition, Predicate, Problem, SimulatedWorld, atom,
+        parse_strategy, run_episode,
+    )
+
+    class Jammed(SimulatedWorld):
+        def refuse(self, action: object) -> str | None:
+            return "jammed"
+
+        def apply(self, action: object) -> None:
+            pass
+
+    dom = Domain("jam", {"done": Predicate("done", 0), "ready": Predicate("ready", 0)},
+                 (Operator("push", (), (Precondition(atom("ready", value=False), 1),), (atom("done"),)),))
+    prob = Problem(dom, {}, None, Goal.of([atom("done")], dom.rules), "jam")
+    assert isinstance(caplog, pytest.LogCaptureFixture)
+    for strategy in ("hpn", "online"):
+        with caplog.at_level(logging.WARNING):
+            m = run_episode(Episode(prob, Jammed(), Blind(), "jammed"),
+                            parse_strategy(strategy, max_actions=200), seed=0)
+        assert m.outcome is Outcome.FAILED and m.reason.startswith("stalled: (push) failed 25 times"), m.reason
+        assert "progress guard sees no cycles" in caplog.text

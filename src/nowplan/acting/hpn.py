@@ -26,7 +26,7 @@ from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import (
-    Cycle, CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason,
+    Cycle, CycleDetector, blind_guard_warning, failed_cycles_reason, situation, situation_of, stall_reason,
 )
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
@@ -116,6 +116,9 @@ class Executive:
         self.achievers = Achievers()  # ground actions by effect, for refinements made directly
         check_supported(self.domain, strategy)
         check_belief(self.domain, belief)
+        blind = blind_guard_warning(belief)
+        if blind is not None:
+            log.warning(blind)
         for m in self.mechanisms:
             m.check(self)
         if strategy.domain_planner and self.domain.planner is None:
@@ -355,9 +358,7 @@ class Executive:
 
     def situation(self) -> Hashable | None:
         """The belief's fingerprint and the plan stack's goals (None: the belief has none)."""
-        fp = belief_fingerprint(self.belief)
-        if fp is None:
-            return None
+        fp = situation_of(self.belief)  # (a belief without a fingerprint: a situation never seen before)
         if fp not in self._beliefs_seen:
             self._beliefs_seen.add(fp)
             if self._committed:  # progress: a belief never held before ends the commitment

@@ -33,7 +33,9 @@ from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.reobserve import look_again
-from nowplan.acting.progress import CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason
+from nowplan.acting.progress import (
+    CycleDetector, blind_guard_warning, failed_cycles_reason, situation, situation_of, stall_reason,
+)
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.acting.whole import plan_whole_problem
@@ -98,6 +100,9 @@ class OnlinePolicy:
     ) -> None:
         check_supported(problem.domain, strategy)
         check_belief(problem.domain, belief)
+        blind = blind_guard_warning(belief)
+        if blind is not None:
+            log.warning(blind)
         self.problem = problem
         self.on_action = on_action  # observers (e.g. a renderer); never change control flow
         self.domain = problem.domain
@@ -222,8 +227,7 @@ class OnlinePolicy:
         return self.strategy.exhausted(self.metrics, self.clock() - t0)
 
     def _situation(self) -> Any:
-        fp = belief_fingerprint(self.belief)
-        return None if fp is None else situation(fp, (self.problem.goal,))
+        return situation(situation_of(self.belief), (self.problem.goal,))
 
     def _committed_step(self) -> Action | None:
         """After a cycle: the next action of the plan committed to, while its preconditions hold."""

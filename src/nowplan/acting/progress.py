@@ -62,6 +62,30 @@ class Fingerprinted(Protocol):
     def fingerprint(self) -> Hashable: ...
 
 
+class Unseen:
+    """A situation that never equals another: the fingerprint of a belief that has none.
+
+    With it the guard cannot see cycles, but still counts an action that fails the same way
+    again and again (:meth:`CycleDetector.observe`'s ``failure``)."""
+
+    __slots__ = ()
+
+
+def situation_of(belief: Any) -> Hashable:
+    """:func:`belief_fingerprint`, or a fresh :class:`Unseen` when the belief has none."""
+    fp = belief_fingerprint(belief)
+    return Unseen() if fp is None else fp
+
+
+def blind_guard_warning(belief: Any) -> str | None:
+    """A warning when the progress guard cannot tell the belief's situations apart (None: it can)."""
+    if belief_fingerprint(belief) is not None:
+        return None
+    return (f"the belief {type(belief).__name__} has neither fingerprint() nor a State as .state: the "
+            "progress guard sees no cycles (only an action failing the same way again and again); "
+            "define fingerprint() (see nowplan.api.Fingerprinted)")
+
+
 def belief_fingerprint(belief: Any) -> Hashable | None:
     """The belief's fingerprint: its own, or its point state's facts; None when it has neither."""
     if isinstance(belief, Fingerprinted):
