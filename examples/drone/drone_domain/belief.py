@@ -20,7 +20,7 @@ def dist(a: Pose, b: Pose) -> float:
 @dataclass(frozen=True)
 class Telemetry:
     """What the drone reads after an action: battery, what it carries, what the depot has received,
-    and a position fix (only after ``localize``, and ``None`` when the fix was missed)."""
+    and a position fix (only after a ``localize`` that succeeded)."""
 
     battery: float
     held: str | None

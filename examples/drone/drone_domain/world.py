@@ -47,6 +47,10 @@ class DroneWorld(SimulatedWorld):
     def fault(self, action: Action) -> str | None:
         if action.name == "pick" and self.rng.random() < self.slip:
             return "the grasp slipped"
+        if action.name == "localize" and self.rng.random() < self.miss:
+            # a missed fix is a localize that failed: reported as a success that taught nothing, three
+            # in a row looked like a loop to the progress guard (the belief was as it had been)
+            return "no position fix"
         return None
 
     def apply(self, action: Action) -> None:
@@ -77,7 +81,7 @@ class DroneWorld(SimulatedWorld):
 
     def observe(self, action: Action, success: bool) -> Any:
         fix = None
-        if action.name == "localize" and success and self.rng.random() >= self.miss:
+        if action.name == "localize" and success:
             s = self.fix_sigma / math.sqrt(2)
             fix = (self.pos[0] + self.rng.gauss(0, s), self.pos[1] + self.rng.gauss(0, s))
         return Telemetry(round(self.battery, 4), self.held, frozenset(self.delivered),
