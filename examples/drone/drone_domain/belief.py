@@ -45,7 +45,8 @@ class DroneBelief:
     def update(self, action: Action, observation: Observation) -> None:
         t = observation.data
         if action.name == "fly" and observation.success:
-            to: Pose = action.args[1]
+            args: Any = action.args
+            to: Pose = args[1]
             self.sigma = math.hypot(self.sigma, self.drift * dist(self.pos, to))
             self.pos = to
         elif action.name in ("pick", "drop", "charge") and not observation.success:
@@ -87,7 +88,8 @@ def drone_estimate(goal: Goal, belief: Any, holds: Callable[[Atom], bool]) -> fl
             continue
         steps += 1.0
         if a.predicate == "At" and a.value is True:
-            far = max(far, dist(belief.pos, a.args[0]))
+            pose: Any = a.args[0]
+            far = max(far, dist(belief.pos, pose))
         elif a.predicate in ("Holding", "Delivered") and a.value is True:
             where = belief.parcels.get(a.args[0])
             if where is not None:

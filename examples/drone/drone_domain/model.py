@@ -42,7 +42,7 @@ def t_battery(b: Any, args: tuple[Any, ...], value: Any) -> bool:
 
 
 def t_holding(b: Any, args: tuple[Any, ...], value: Any) -> bool:
-    return (b.held == args[0]) == bool(value)
+    return bool((b.held == args[0]) == bool(value))
 
 
 def t_hand_empty(b: Any, args: tuple[Any, ...], value: Any) -> bool:
@@ -139,7 +139,12 @@ OPERATORS = (
 def far_apart(a: Atom, b: Atom) -> bool:
     """The drone is not at two poses further apart than twice the tolerance."""
     return (a.predicate == b.predicate == "At" and a.value is True and b.value is True
-            and dist(a.args[0], b.args[0]) > 2 * NEAR)
+            and dist(pose_of(a), pose_of(b)) > 2 * NEAR)
+
+
+def pose_of(a: Atom) -> Pose:
+    pose: Any = a.args[0]
+    return (float(pose[0]), float(pose[1]))
 
 
 CONFLICTS = (

@@ -27,11 +27,12 @@ class DroneWorld(SimulatedWorld):
         self.drift, self.fix_sigma, self.miss, self.slip = drift, fix_sigma, miss, slip
 
     def refuse(self, action: Action) -> str | None:
+        args: Any = action.args  # (poses and parcel names: the operators' parameters)
         if action.name == "fly":
-            if self.battery < RATE * dist(self.pos, action.args[1]):
+            if self.battery < RATE * dist(self.pos, args[1]):
                 return "battery too low for the flight"
         elif action.name == "pick":
-            where = self.parcels.get(action.args[0])
+            where = self.parcels.get(args[0])
             if self.held is not None:
                 return "the hook is taken"
             if where is None or dist(where, self.pos) > GRAB:
@@ -54,8 +55,9 @@ class DroneWorld(SimulatedWorld):
         return None
 
     def apply(self, action: Action) -> None:
+        args: Any = action.args
         if action.name == "fly":
-            to: Pose = action.args[1]
+            to: Pose = args[1]
             d = dist(self.pos, to)
             self.battery = max(0.0, self.battery - RATE * d)
             s = self.drift * d / math.sqrt(2)
@@ -63,8 +65,8 @@ class DroneWorld(SimulatedWorld):
         elif action.name in ("charge", "call_crew"):
             self.battery = 1.0
         elif action.name == "pick":
-            self.held = action.args[0]
-            del self.parcels[action.args[0]]
+            self.held = args[0]
+            del self.parcels[args[0]]
         elif action.name == "drop":
             assert self.held is not None
             if dist(self.pos, DEPOT) <= DOCK:

@@ -27,7 +27,7 @@ def problem(seed: int) -> tuple[Problem, list[State]]:
         fixed += [atom("connects", door, a, b), atom("connects", door, b, a)]
     is_open = {d: rng.random() < 0.5 for d in DOORS}
     init = State(fixed + [atom("open", d) for d in DOORS if is_open[d]])
-    seen = set(doors_of(init, start))
+    seen = {str(x) for x in doors_of(init, start)}
     unseen = sorted(d for d in DOORS if d not in seen)
     known = [atom("open", d) for d in sorted(seen) if is_open[d]]
     particles = [State(fixed + known + [atom("open", d) for d, o in zip(unseen, combo) if o])
