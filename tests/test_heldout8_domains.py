@@ -91,3 +91,15 @@ def test_the_drone_world_tells_its_true_state(monkeypatch: pytest.MonkeyPatch) -
     assert isinstance(ep.world, Inspectable)
     truth = ep.world.true_state()
     assert not spec.model.satisfies(truth, ep.problem.goal)
+
+
+def test_a_shuttle_the_fingerprints_miss_is_a_stated_livelock(monkeypatch: pytest.MonkeyPatch) -> None:
+    """drone-clean, flat, seed 3: the second parcel lies 0.39 from the depot, closer than the model's
+    conflict rule separates two poses (2 x 0.25), so a flight to it and back looked free; the flat
+    planner flew depot -> parcel -> depot 133 times, every flight a success, each leaving the battery
+    and the spread a little different (no cycle), until the time limit.  The repeated block of actions
+    is now a livelock with its reason, within a few rounds."""
+    spec = _spec(monkeypatch, "drone")
+    m = run_episode(spec.scenario("deliver")(3), parse_strategy("flat", max_actions=300, time_limit=60.0), seed=3)
+    assert m.outcome is Outcome.LIVELOCK, (m.outcome, m.reason)
+    assert m.reason.startswith("livelock: the same 2 actions ((fly (0.5, 0.5) (0.52, 0.11)") and m.actions < 40

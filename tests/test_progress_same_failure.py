@@ -93,3 +93,32 @@ def test_a_belief_without_a_fingerprint_still_stalls_with_a_reason(caplog: objec
                             parse_strategy(strategy, max_actions=200), seed=0)
         assert m.outcome is Outcome.FAILED and m.reason.startswith("stalled: (push) failed 25 times"), m.reason
         assert "progress guard sees no cycles" in caplog.text
+
+
+# -- a loop the fingerprints miss: the same actions over and over ------------------------------------
+
+def test_the_same_block_of_actions_four_times_is_a_loop() -> None:
+    from nowplan.acting.progress import RepeatedActions  # noqa: PLC0415
+
+    r = RepeatedActions()
+    seen = [r.observe(a, succeeded=True, exogenous=False, achieved=0) for a in ["go", "back"] * 4]
+    assert seen[:-1] == [None] * 7 and seen[-1] == (2, ("go", "back"))
+
+
+def test_progress_a_failure_or_the_world_restart_the_watch() -> None:
+    from nowplan.acting.progress import RepeatedActions  # noqa: PLC0415
+
+    def run(events: list[tuple[str, bool, bool, int]]) -> object:
+        r = RepeatedActions()
+        out = None
+        for a, ok, exo, achieved in events:
+            out = r.observe(a, succeeded=ok, exogenous=exo, achieved=achieved) or out
+        return out
+
+    loop = [("go", True, False, 0), ("back", True, False, 0)]
+    assert run(loop * 4) is not None
+    assert run(loop * 2 + [("go", True, False, 1), ("back", True, False, 1)] + loop * 2) is None  # a goal atom
+    assert run(loop * 2 + [("go", False, False, 0)] + loop * 2) is None  # a failure
+    assert run(loop * 2 + [("go", True, True, 0)] + loop * 2) is None  # the world changed
+    assert run([("look", True, False, 0)] * 12) is None  # one action again and again: looks that sharpen
+

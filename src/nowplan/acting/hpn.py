@@ -26,7 +26,8 @@ from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import (
-    Cycle, CycleDetector, blind_guard_warning, failed_cycles_reason, situation, situation_of, stall_reason,
+    Cycle, CycleDetector, RepeatedActions, blind_guard_warning, failed_cycles_reason, repeated_actions_reason,
+    situation, situation_of, stall_reason,
 )
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
@@ -103,6 +104,7 @@ class Executive:
         self._refinements: Counter[Hashable] = Counter()
         # the progress guard: cycles across actions, and the plan committed to after one
         self.progress = CycleDetector(strategy.max_cycles)
+        self.repeats = RepeatedActions()  # loops the fingerprints miss (a belief that drifts)
         self._committed = False
         self._give_up: tuple[Outcome, str] | None = None  # a mechanism's reason to end the run
         self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
@@ -382,6 +384,12 @@ class Executive:
         cyc = self.progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
         if self.progress.stalled >= self.strategy.max_stalls:
             return Outcome.FAILED, stall_reason(self.progress.stalled, self.last_action, obs)
+        if self.last_action is not None:
+            achieved = sum(self.domain.holds(a, self.belief) for a in self.problem.goal.atoms)
+            loop = self.repeats.observe(self.last_action.pddl(), succeeded=obs.success,
+                                        exogenous=bool(obs.exogenous), achieved=achieved)
+            if loop is not None:
+                return Outcome.LIVELOCK, repeated_actions_reason(loop[0], loop[1], self.repeats.repeats)
         if cyc is None:
             return None
         self.metrics.cycles = self.progress.seen

@@ -34,7 +34,8 @@ from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.progress import (
-    CycleDetector, blind_guard_warning, failed_cycles_reason, situation, situation_of, stall_reason,
+    CycleDetector, RepeatedActions, blind_guard_warning, failed_cycles_reason, repeated_actions_reason, situation,
+    situation_of, stall_reason,
 )
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
@@ -206,6 +207,11 @@ class OnlinePolicy:
         cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
         if progress.stalled >= self.strategy.max_stalls:
             return Outcome.FAILED, stall_reason(progress.stalled, plan[0], obs)
+        achieved = sum(self.domain.holds(a, self.belief) for a in self.problem.goal.atoms)
+        loop = self._repeats.observe(plan[0].pddl(), succeeded=obs.success, exogenous=bool(obs.exogenous),
+                                     achieved=achieved)
+        if loop is not None:
+            return Outcome.LIVELOCK, repeated_actions_reason(loop[0], loop[1], self._repeats.repeats)
         if cyc is None:
             return None
         self.metrics.cycles = progress.seen
@@ -249,6 +255,7 @@ class OnlinePolicy:
         retries = 0
         looks = 0  # fresh looks since the last plan (acting/reobserve.py)
         progress = CycleDetector(self.strategy.max_cycles)
+        self._repeats = RepeatedActions()  # loops the fingerprints miss (a belief that drifts)
         self._tail = []
         start = self._situation()
         if start is not None:

@@ -209,3 +209,51 @@ def failed_cycles_reason(cyc: Cycle, times: int, failed: tuple[Action, Observati
 def situation(belief_fp: Hashable, goals: Iterable[Hashable]) -> Hashable:
     """The fingerprint the detector compares: the belief's and the plan stack's goals."""
     return (belief_fp, tuple(goals))
+
+
+class RepeatedActions:
+    """A loop the fingerprints miss: the same sequence of ground actions, over and over.
+
+    A belief that drifts on its own (a battery that drains on every flight, a position spread
+    that grows) is never in the same situation twice, so :class:`CycleDetector` sees no cycle:
+    a held-out drone flew between the depot and a parcel 266 times, every flight a success, until
+    the time limit.  This watches the actions instead: the same block of ``2..max_period`` ground
+    actions (not all one action: repeated looks that sharpen an estimate are progress) repeated
+    ``repeats`` times in a row, every action a success with no exogenous change, while no more of
+    the root goal's atoms held than before the block began.
+    """
+
+    def __init__(self, repeats: int = 4, max_period: int = 8) -> None:
+        if repeats < 2 or max_period < 2:
+            raise ValueError("repeats and max_period must be >= 2")
+        self.repeats, self.max_period = repeats, max_period
+        self._history: list[Hashable] = []
+        self._best = -1
+
+    def observe(self, action: Hashable, *, succeeded: bool, exogenous: bool, achieved: int) -> tuple[int, tuple[Hashable, ...]] | None:
+        """After one more action (``achieved``: how many root goal atoms hold now); the repeated
+        block's period and actions when the loop is complete, else None."""
+        if not succeeded or exogenous or achieved > self._best:
+            self._history.clear()
+            self._best = max(self._best, achieved)
+            if not succeeded or exogenous:
+                return None
+        h = self._history
+        h.append(action)
+        if len(h) > self.repeats * self.max_period:
+            del h[0]
+        for p in range(2, self.max_period + 1):
+            if len(h) < self.repeats * p:
+                break
+            block = h[-p:]
+            if len(set(block)) > 1 and all(h[-(k + 1) * p:len(h) - k * p] == block for k in range(1, self.repeats)):
+                return p, tuple(block)
+        return None
+
+
+def repeated_actions_reason(period: int, block: tuple[Hashable, ...], repeats: int) -> str:
+    """Why a run that kept repeating the same actions was given up."""
+    names = ", ".join(str(a) for a in block[:4]) + (", …" if len(block) > 4 else "")
+    return (f"livelock: the same {period} actions ({names}) repeated {repeats} times in a row, each a success "
+            "with no exogenous change, and no more goal atoms hold than before; the belief's fingerprint "
+            "did not repeat (it drifts), so no cycle was seen")
