@@ -100,16 +100,17 @@ def test_a_belief_without_a_fingerprint_still_stalls_with_a_reason(caplog: objec
 def test_the_same_block_of_actions_four_times_is_a_loop() -> None:
     from nowplan.acting.progress import RepeatedActions  # noqa: PLC0415
 
-    r = RepeatedActions()
+    r = RepeatedActions(repeats=4)
     seen = [r.observe(a, succeeded=True, exogenous=False, achieved=0) for a in ["go", "back"] * 4]
     assert seen[:-1] == [None] * 7 and seen[-1] == (2, ("go", "back"))
+    assert RepeatedActions().repeats == 8  # the default: 16 moves back and forth
 
 
 def test_progress_a_failure_or_the_world_restart_the_watch() -> None:
     from nowplan.acting.progress import RepeatedActions  # noqa: PLC0415
 
     def run(events: list[tuple[str, bool, bool, int]]) -> object:
-        r = RepeatedActions()
+        r = RepeatedActions(repeats=4)
         out = None
         for a, ok, exo, achieved in events:
             out = r.observe(a, succeeded=ok, exogenous=exo, achieved=achieved) or out
