@@ -70,7 +70,9 @@ def leg(a: Pose, b: Pose) -> float:
 def fly_from(bindings: Any, goal: Any, belief: Any, context: Any) -> Iterator[dict[Var, Any]]:
     """Where to fly to ``to`` from: here, a charger, the depot or a parcel; the battery it needs is
     what the goal asks for on arrival plus the leg."""
-    dest: Pose = bindings[to]
+    dest: Pose | None = bindings.get(to)
+    if dest is None:  # another effect (the battery left) unified with the goal: no destination, no flight
+        return
     want = goal.get(("Battery", ())) if goal is not None else None
     floor = 0.0 if dest in STATIONS else RESERVE  # a flight to a charger may land empty
     after = max(float(want.value), floor) if want is not None and want.value is not True else floor
