@@ -96,7 +96,7 @@ def charger(bindings: Any, goal: Any, belief: Any, context: Any) -> Iterator[dic
 
 def parcel_pose(bindings: Any, goal: Any, belief: Any, context: Any) -> Iterator[dict[Var, Any]]:
     """Where the parcel lies, as the dispatcher reports it."""
-    where = belief.parcels.get(bindings[p])
+    where = belief.parcels.get(bindings.get(p))  # (no parcel bound: another effect unified; nothing)
     if where is not None:
         yield {here: where}
 
