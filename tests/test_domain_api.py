@@ -15,6 +15,7 @@ from nowplan.api import (
     SymbolicWorld, Var, at_most_one, atom, capabilities, check_belief, exactly_one, excludes, static,
 )
 from nowplan.errors import ContradictoryGoalError
+from nowplan.belief.particle_belief import UNKNOWN
 
 x, y, h, o = Var("x"), Var("y"), Var("h"), Var("o")
 
@@ -195,7 +196,9 @@ def test_a_run_refuses_a_belief_without_update() -> None:
 def test_particle_belief_believes_what_is_likely_enough() -> None:
     door_open, door_shut = State([atom("open", "d"), atom("here", "r")]), State([atom("here", "r")])
     b = ParticleBelief([door_open] * 8 + [door_shut] * 2, threshold=0.9, seed=1)
-    assert b.value(("here", ("r",))) is True and b.value(("open", ("d",))) is False  # 0.8 < 0.9
+    # 0.8 < 0.9 and 0.2 < 0.9: the door is unknown either way (neither open(d) nor its negation holds)
+    assert b.value(("here", ("r",))) is True and b.value(("open", ("d",))) is UNKNOWN
+    assert b.unknowns() == frozenset({("open", ("d",))})
     assert b.probability(atom("open", "d")) == pytest.approx(0.8)
     assert b.probability(atom("open", "d", value=False)) == pytest.approx(0.2)
     assert isinstance(b, HasState) and b.state == door_shut

@@ -34,13 +34,17 @@ what it uses.
   (``failure_prob``, ``exogenous_prob``) as constructor options, ``refuse``,
   ``apply``, ``fault`` (a domain's own fault), ``exogenous_change``.
   :class:`SymbolicWorld` is one over a :class:`State`.  A real robot
-  implements :class:`World` (``execute(action) -> Observation``).
+  implements :class:`World` (``execute(action) -> Observation``).  A world
+  that can tell its true state (:class:`Inspectable`: ``true_state()``,
+  something the domain's predicates can test; a ``SymbolicWorld`` does)
+  has success judged in the world, not the belief.
 * :class:`Belief` (``update(action, observation)``) and its optional
   capabilities, each a ``Protocol`` checked once when a run starts:
   :class:`HasValues`, :class:`ListsFacts`, :class:`HasState`,
   :class:`Reobserves`, :class:`HasStreams`, :class:`HasHeuristic`,
   :class:`AfterAction`, :class:`Fingerprinted` (the progress guard's "same
-  situation").  Bases: :class:`SymbolicBelief` (an observed symbolic state that lists its facts) and :class:`ParticleBelief`
+  situation"), :class:`HasUnknowns` (fluents known neither way: neither they
+  nor their negations hold).  Bases: :class:`SymbolicBelief` (an observed symbolic state that lists its facts) and :class:`ParticleBelief`
   (weighted sampled states).
 
 **The plugin**
@@ -72,6 +76,7 @@ from nowplan.belief.protocols import (
     HasHeuristic,
     HasState,
     HasStreams,
+    HasUnknowns,
     HasValues,
     ListsFacts,
     Reobserves,
@@ -110,7 +115,7 @@ from nowplan.errors import ModelError, NowplanError, ScenarioError
 from nowplan.planning.plan import PlanResult, PlanStatus
 from nowplan.planning.regression import PlannerConfig, plan
 from nowplan.trace import Trace
-from nowplan.worlds.base import Belief, FaultInjection, Observation, SimulatedWorld, World
+from nowplan.worlds.base import Belief, FaultInjection, Inspectable, Observation, SimulatedWorld, World
 from nowplan.worlds.symbolic import SymbolicWorld
 
 __all__ = [
@@ -120,9 +125,9 @@ __all__ = [
     "reads_nothing", "Action", "at_most_one", "exactly_one", "excludes", "AtMostOne", "Excludes",
     "Domain", "Problem", "State",
     # the world and the belief
-    "World", "SimulatedWorld", "SymbolicWorld", "FaultInjection", "Observation",
+    "World", "SimulatedWorld", "SymbolicWorld", "FaultInjection", "Inspectable", "Observation",
     "Belief", "SymbolicBelief", "ParticleBelief", "HasValues", "ListsFacts", "HasState", "Reobserves",
-    "HasStreams", "HasHeuristic", "AfterAction", "Fingerprinted", "capabilities", "check_belief",
+    "HasStreams", "HasUnknowns", "HasHeuristic", "AfterAction", "Fingerprinted", "capabilities", "check_belief",
     # the plugin
     "DomainSpec", "Episode", "ScenarioFn", "ResourceModel", "MonitorSupport",
     # running

@@ -26,7 +26,8 @@ from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import (
-    Cycle, CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason,
+    Cycle, CycleDetector, RepeatedActions, blind_guard_warning, failed_cycles_reason, repeated_actions_reason,
+    situation, situation_of, stall_reason,
 )
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
@@ -104,6 +105,7 @@ class Executive:
         self._refinements: Counter[Hashable] = Counter()
         # the progress guard: cycles across actions, and the plan committed to after one
         self.progress = CycleDetector(strategy.max_cycles)
+        self.repeats = RepeatedActions()  # loops the fingerprints miss (a belief that drifts)
         self._committed = False
         self._give_up: tuple[Outcome, str] | None = None  # a mechanism's reason to end the run
         self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
@@ -117,6 +119,9 @@ class Executive:
         self.achievers = Achievers()  # ground actions by effect, for refinements made directly
         check_supported(self.domain, strategy)
         check_belief(self.domain, belief)
+        blind = blind_guard_warning(belief)
+        if blind is not None:
+            log.warning(blind)
         for m in self.mechanisms:
             m.check(self)
         if strategy.domain_planner and self.domain.planner is None:
@@ -364,9 +369,7 @@ class Executive:
 
     def situation(self) -> Hashable | None:
         """The belief's fingerprint and the plan stack's goals (None: the belief has none)."""
-        fp = belief_fingerprint(self.belief)
-        if fp is None:
-            return None
+        fp = situation_of(self.belief)  # (a belief without a fingerprint: a situation never seen before)
         if fp not in self._beliefs_seen:
             self._beliefs_seen.add(fp)
             if self._committed:  # progress: a belief never held before ends the commitment
@@ -386,9 +389,16 @@ class Executive:
         now = self.situation()
         if now is None:
             return None
-        cyc = self.progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
+        failure = None if obs.success or self.last_action is None else (self.last_action.key, obs.info.get("reason"))
+        cyc = self.progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
         if self.progress.stalled >= self.strategy.max_stalls:
             return Outcome.FAILED, stall_reason(self.progress.stalled, self.last_action, obs)
+        if self.last_action is not None:
+            achieved = sum(self.domain.holds(a, self.belief) for a in self.problem.goal.atoms)
+            loop = self.repeats.observe(self.last_action.pddl(), succeeded=obs.success,
+                                        exogenous=bool(obs.exogenous), achieved=achieved)
+            if loop is not None:
+                return Outcome.LIVELOCK, repeated_actions_reason(loop[0], loop[1], self.repeats.repeats)
         if cyc is None:
             return None
         self.metrics.cycles = self.progress.seen
@@ -502,6 +512,11 @@ class Executive:
                             continue
                         outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
                         reason = f"no plan for the goal ({self._last_failure})"
+                        if timed_out and self.remaining_time() <= 0.05:
+                            # the planner's limit was what remained of the run's: say so, not the
+                            # clamped figure (a held-out drone run said "time limit of 0.19 s" in a 20 s run)
+                            reason = (f"time limit of {self.strategy.time_limit:g} s for the run reached while "
+                                      f"planning ({self.metrics.world_summary()})")
                         break
                     if consecutive_failures > 3 * self.strategy.max_depth:
                         outcome, reason = Outcome.FAILED, f"repeated planning failures ({self._last_failure})"

@@ -33,7 +33,10 @@ from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.reobserve import look_again
-from nowplan.acting.progress import CycleDetector, belief_fingerprint, failed_cycles_reason, situation, stall_reason
+from nowplan.acting.progress import (
+    CycleDetector, RepeatedActions, blind_guard_warning, failed_cycles_reason, repeated_actions_reason, situation,
+    situation_of, stall_reason,
+)
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.acting.whole import plan_whole_problem
@@ -98,6 +101,9 @@ class OnlinePolicy:
     ) -> None:
         check_supported(problem.domain, strategy)
         check_belief(problem.domain, belief)
+        blind = blind_guard_warning(belief)
+        if blind is not None:
+            log.warning(blind)
         self.problem = problem
         self.on_action = on_action  # observers (e.g. a renderer); never change control flow
         self.domain = problem.domain
@@ -197,9 +203,15 @@ class OnlinePolicy:
                 self._committed = False
                 progress.forget(cycles=True)
                 self.trace.emit("note", text="progress: a belief not held before; the count of cycles restarts")
-        cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous))
+        failure = None if obs.success else (plan[0].key, obs.info.get("reason"))
+        cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
         if progress.stalled >= self.strategy.max_stalls:
             return Outcome.FAILED, stall_reason(progress.stalled, plan[0], obs)
+        achieved = sum(self.domain.holds(a, self.belief) for a in self.problem.goal.atoms)
+        loop = self._repeats.observe(plan[0].pddl(), succeeded=obs.success, exogenous=bool(obs.exogenous),
+                                     achieved=achieved)
+        if loop is not None:
+            return Outcome.LIVELOCK, repeated_actions_reason(loop[0], loop[1], self._repeats.repeats)
         if cyc is None:
             return None
         self.metrics.cycles = progress.seen
@@ -221,8 +233,7 @@ class OnlinePolicy:
         return self.strategy.exhausted(self.metrics, self.clock() - t0)
 
     def _situation(self) -> Any:
-        fp = belief_fingerprint(self.belief)
-        return None if fp is None else situation(fp, (self.problem.goal,))
+        return situation(situation_of(self.belief), (self.problem.goal,))
 
     def _committed_step(self) -> Action | None:
         """After a cycle: the next action of the plan committed to, while its preconditions hold."""
@@ -244,6 +255,7 @@ class OnlinePolicy:
         retries = 0
         looks = 0  # fresh looks since the last plan (acting/reobserve.py)
         progress = CycleDetector(self.strategy.max_cycles)
+        self._repeats = RepeatedActions()  # loops the fingerprints miss (a belief that drifts)
         self._tail = []
         start = self._situation()
         if start is not None:

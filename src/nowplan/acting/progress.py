@@ -31,7 +31,9 @@ with no failed action reach ``max_cycles`` (default 3) without progress or an ex
 
 A loop can also stand still: an action that fails again and again and leaves the
 situation as it was (a door the belief thinks open, in a world that reports outcomes
-only).  Retrying is right while failures are chance; ``stalled`` counts the failures in a
+only), or fails the same way each time while the belief drifts on its own (a drone whose
+position estimate spreads a little every step, in gusts it does not feel, tried the same
+flight 114 times, each refused with "battery too low").  Retrying is right while failures are chance; ``stalled`` counts the failures in a
 row, and the executive gives up with its reason at ``Strategy.max_stalls`` (default 25: a
 chance of 0.5**25, about 3e-8, at a 50 % failure rate).  Likewise a loop whose every
 round has a failed action (re-grasp an object, drag it, the drag stopped by a wall, the
@@ -58,6 +60,30 @@ class Fingerprinted(Protocol):
     """A belief that can say which situation it is in (equal fingerprints = same belief)."""
 
     def fingerprint(self) -> Hashable: ...
+
+
+class Unseen:
+    """A situation that never equals another: the fingerprint of a belief that has none.
+
+    With it the guard cannot see cycles, but still counts an action that fails the same way
+    again and again (:meth:`CycleDetector.observe`'s ``failure``)."""
+
+    __slots__ = ()
+
+
+def situation_of(belief: Any) -> Hashable:
+    """:func:`belief_fingerprint`, or a fresh :class:`Unseen` when the belief has none."""
+    fp = belief_fingerprint(belief)
+    return Unseen() if fp is None else fp
+
+
+def blind_guard_warning(belief: Any) -> str | None:
+    """A warning when the progress guard cannot tell the belief's situations apart (None: it can)."""
+    if belief_fingerprint(belief) is not None:
+        return None
+    return (f"the belief {type(belief).__name__} has neither fingerprint() nor a State as .state: the "
+            "progress guard sees no cycles (only an action failing the same way again and again); "
+            "define fingerprint() (see nowplan.api.Fingerprinted)")
 
 
 def belief_fingerprint(belief: Any) -> Hashable | None:
@@ -104,16 +130,23 @@ class CycleDetector:
         self._last_success = -1  # action count of the last successful action
         self._last_exogenous = -1  # action count of the last exogenous change
         self._last_failure = -1  # action count of the last failed action
-        self.stalled = 0  # failed actions in a row that left the situation as it was
+        self.stalled = 0  # failed actions in a row that left the situation as it was (or failed the same way)
         self._prev: Hashable | None = None
+        self._prev_failure: Hashable | None = None
 
     def start(self, situation: Hashable) -> None:
         """The situation before the first action."""
         self._last_visit[situation] = 0
         self._prev = situation
 
-    def observe(self, situation: Hashable, *, succeeded: bool, exogenous: bool) -> Cycle | None:
-        """The situation after one more action; a :class:`Cycle` if it closes one."""
+    def observe(self, situation: Hashable, *, succeeded: bool, exogenous: bool,
+                failure: Hashable | None = None) -> Cycle | None:
+        """The situation after one more action; a :class:`Cycle` if it closes one.
+
+        ``failure`` names a failed action and how it failed (e.g. its key and the world's reason): the
+        same action failing the same way again counts toward :attr:`stalled` even when the belief's
+        fingerprint drifted meanwhile (a belief that grows less sure with every step never repeats
+        one, and a world that changes by itself now and then never leaves one as it was)."""
         self._t += 1
         if succeeded:
             self._last_success = self._t
@@ -125,8 +158,10 @@ class CycleDetector:
             # any more (a lab door the world shut each time the robot opened it made the robot redo
             # its set-down three times: three cycles, each after the world's change, not a livelock)
             self.cycles = 0
-        self.stalled = self.stalled + 1 if (not succeeded and situation == self._prev) else 0
+        same = not succeeded and (situation == self._prev or (failure is not None and failure == self._prev_failure))
+        self.stalled = self.stalled + 1 if same else 0
         self._prev = situation
+        self._prev_failure = None if succeeded else failure
         prev = self._last_visit.get(situation)
         self._last_visit[situation] = self._t
         if prev is None or self._last_exogenous > prev or self._last_success <= prev:
@@ -157,8 +192,8 @@ def stall_reason(times: int, action: Action | None, obs: Observation) -> str:
     what = action.pddl() if action is not None else "the last action"
     why = obs.info.get("reason")
     return (f"stalled: {what} failed {times} times in a row and left the belief and the plan stack as "
-            f"they were{f' (last: {why})' if why else ''}; the world refuses it, or the belief is wrong "
-            "and the world reports outcomes only")
+            f"they were, or failed the same way each time{f' (last: {why})' if why else ''}; the world refuses "
+            "it, or the belief is wrong and the world reports outcomes only")
 
 
 def failed_cycles_reason(cyc: Cycle, times: int, failed: tuple[Action, Observation] | None) -> str:
@@ -174,3 +209,53 @@ def failed_cycles_reason(cyc: Cycle, times: int, failed: tuple[Action, Observati
 def situation(belief_fp: Hashable, goals: Iterable[Hashable]) -> Hashable:
     """The fingerprint the detector compares: the belief's and the plan stack's goals."""
     return (belief_fp, tuple(goals))
+
+
+class RepeatedActions:
+    """A loop the fingerprints miss: the same sequence of ground actions, over and over.
+
+    A belief that drifts on its own (a battery that drains on every flight, a position spread
+    that grows) is never in the same situation twice, so :class:`CycleDetector` sees no cycle:
+    a held-out drone flew between the depot and a parcel 266 times, every flight a success, until
+    the time limit.  This watches the actions instead: the same block of ``2..max_period`` ground
+    actions (not all one action: repeated looks that sharpen an estimate are progress) repeated
+    ``repeats`` times in a row, every action a success with no exogenous change, while no more of
+    the root goal's atoms held than before the block began.  At 4 repeats it ended two held-out
+    ward runs (a shuttle through a door while the knowledge of another door decayed) that the
+    world broke a few rounds later and that reached the goal; at 8 they reach it.
+    """
+
+    def __init__(self, repeats: int = 8, max_period: int = 8) -> None:
+        if repeats < 2 or max_period < 2:
+            raise ValueError("repeats and max_period must be >= 2")
+        self.repeats, self.max_period = repeats, max_period
+        self._history: list[Hashable] = []
+        self._best = -1
+
+    def observe(self, action: Hashable, *, succeeded: bool, exogenous: bool, achieved: int) -> tuple[int, tuple[Hashable, ...]] | None:
+        """After one more action (``achieved``: how many root goal atoms hold now); the repeated
+        block's period and actions when the loop is complete, else None."""
+        if not succeeded or exogenous or achieved > self._best:
+            self._history.clear()
+            self._best = max(self._best, achieved)
+            if not succeeded or exogenous:
+                return None
+        h = self._history
+        h.append(action)
+        if len(h) > self.repeats * self.max_period:
+            del h[0]
+        for p in range(2, self.max_period + 1):
+            if len(h) < self.repeats * p:
+                break
+            block = h[-p:]
+            if len(set(block)) > 1 and all(h[-(k + 1) * p:len(h) - k * p] == block for k in range(1, self.repeats)):
+                return p, tuple(block)
+        return None
+
+
+def repeated_actions_reason(period: int, block: tuple[Hashable, ...], repeats: int) -> str:
+    """Why a run that kept repeating the same actions was given up."""
+    names = ", ".join(str(a) for a in block[:4]) + (", …" if len(block) > 4 else "")
+    return (f"livelock: the same {period} actions ({names}) repeated {repeats} times in a row, each a success "
+            "with no exogenous change, and no more goal atoms hold than before; the belief's fingerprint "
+            "did not repeat (it drifts), so no cycle was seen")

@@ -35,6 +35,32 @@ log = logging.getLogger(__name__)
 Key = tuple[str, tuple[Term, ...]]
 
 
+class _Unknown:
+    """The value of a fluent the belief is sure of neither way: equal to no value, not ``False``."""
+
+    def __repr__(self) -> str:
+        return "UNKNOWN"
+
+    def __bool__(self) -> bool:
+        return False
+
+    # a value rule compares it with a wanted value: it entails none
+    def __ge__(self, other: object) -> bool:
+        return False
+
+    def __le__(self, other: object) -> bool:
+        return False
+
+    def __gt__(self, other: object) -> bool:
+        return False
+
+    def __lt__(self, other: object) -> bool:
+        return False
+
+
+UNKNOWN = _Unknown()
+
+
 class ParticleBelief:
     """Weighted sampled states; override ``likelihood`` (the sensor) and ``predict`` (noisy actions).
 
@@ -118,7 +144,20 @@ class ParticleBelief:
                 mass[(a.key, a.value)] = mass.get((a.key, a.value), 0.0) + w
         # the uncertain fluent values with their probabilities (rounded): what the believed state hides
         self._uncertain = frozenset((k, v, round(m, 3)) for (k, v), m in mass.items() if m < 1.0 - 1e-9)
-        return State({k: v for (k, v), m in mass.items() if m >= self.threshold - 1e-12})
+        believed = {k: v for (k, v), m in mass.items() if m >= self.threshold - 1e-12}
+        # a fluent no value of which is believed, and that is not believed absent either, is unknown:
+        # its negation does not hold (the closed-world state alone would say it does)
+        present: dict[Key, float] = {}
+        for (k, _), m in mass.items():
+            present[k] = present.get(k, 0.0) + m
+        self._unknowns = frozenset(k for k, m in present.items()
+                                   if k not in believed and 1.0 - m < self.threshold - 1e-12)
+        return State(believed)
+
+    def unknowns(self) -> frozenset[Key]:
+        """The fluents the belief is sure of neither way: no value reaches ``threshold``, nor does
+        their absence.  Neither they nor their negations hold (:meth:`value` says :data:`UNKNOWN`)."""
+        return self._unknowns
 
     def fingerprint(self) -> Hashable:
         """Which situation the belief is in, for the progress guard: the believed state and the
@@ -139,6 +178,8 @@ class ParticleBelief:
         return self._believed
 
     def value(self, key: Key) -> Any:
+        if key in self._unknowns:
+            return UNKNOWN
         return self._believed.value(key)
 
     def facts(self, predicate: str) -> list[tuple[Term, ...]]:

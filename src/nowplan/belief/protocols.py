@@ -13,6 +13,7 @@ capability             members                                           used by
 :class:`ListsFacts`    ``facts(predicate)``, ``atoms()``                 static facts at grounding, h_add / h_FF,
                                                                          forward search, mutex inference, PDDL out
 :class:`HasState`      ``state``: a point :class:`State`                 the expected-vs-observed monitor
+:class:`HasUnknowns`   ``unknowns()``: fluents unknown either way        negative literals (they do not hold)
 :class:`Reobserves`    ``reobserve()``: look again                       the monitor, when nothing can be planned
 :class:`HasStreams`    ``streams``: a :class:`StreamSet`                 the online policy (sampling pools grow)
 :class:`HasHeuristic`  ``planning_heuristic(goal, belief, holds)``       the online policy's planner
@@ -63,6 +64,15 @@ class ListsFacts(Protocol):
     def facts(self, predicate: str) -> Iterable[tuple[Term, ...]]: ...
 
     def atoms(self) -> Iterator[Atom]: ...
+
+
+@runtime_checkable
+class HasUnknowns(Protocol):
+    """``unknowns()``: the fluents the belief is sure of neither way (a particle belief's odds between
+    ``1 - threshold`` and ``threshold``).  Neither such a fluent nor its negation holds: without it, a
+    negative literal on a fluent the belief lists as absent holds (closed world)."""
+
+    def unknowns(self) -> frozenset[Key]: ...
 
 
 @runtime_checkable
@@ -132,6 +142,7 @@ CAPABILITIES: tuple[tuple[str, type], ...] = (
     ("value", HasValues),
     ("facts", ListsFacts),
     ("state", HasState),
+    ("unknowns", HasUnknowns),
     ("reobserve", Reobserves),
     ("streams", HasStreams),
     ("planning_heuristic", HasHeuristic),

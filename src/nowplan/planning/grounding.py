@@ -21,8 +21,9 @@ from typing import TYPE_CHECKING, Any
 from nowplan.core.atoms import Atom, Goal, Var
 from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
-from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
+from nowplan.core.operators import Action, Generator, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
+from nowplan.errors import ModelError, NowplanError
 from nowplan.planning.grounding_index import (
     _effects_by_predicate, _FillPlan, _is_plain, _per_atom, _per_state, _PerAtom, _PerState, _shared, completed,
     context_key, point_state, unify_effect,
@@ -384,9 +385,26 @@ class Grounder:
             if all(v in cur for v in gen.outputs):
                 yield from rec(i + 1, cur)
                 return
-            for n, vals in enumerate(gen.fn(dict(cur), goal, self.belief, self.context)):
-                if n >= self.max_generator_values:
+            # (a generator may run before its inputs are bound: an effect that binds none of them unified
+            # with the goal; NAMO's read them with bindings.get.  One that fails is a domain error in one
+            # line, not a traceback: a held-out drone's generator raised KeyError on its own input)
+            try:
+                values = iter(gen.fn(dict(cur), goal, self.belief, self.context))
+            except NowplanError:
+                raise
+            except Exception as e:  # the domain's code: name it and the fix
+                raise generator_error(gen, op, cur, e) from e
+            n = 0
+            while n < self.max_generator_values:
+                try:
+                    vals = next(values)
+                except StopIteration:
                     break
+                except NowplanError:
+                    raise
+                except Exception as e:
+                    raise generator_error(gen, op, cur, e) from e
+                n += 1
                 nxt = dict(cur)
                 if any(k in nxt and nxt[k] != v for k, v in vals.items()):
                     continue
@@ -493,3 +511,13 @@ class Grounder:
 
 
 _UNSET = object()
+
+
+def generator_error(gen: Generator, op: Operator, bound: Mapping[Var, Any], e: Exception) -> ModelError:
+    """A domain's generator that raised, in one line: which, where, and the likely fix."""
+    unbound = [str(v) for v in gen.inputs if v not in bound]
+    return ModelError(
+        f"generator {gen.name} of operator {op.name} raised {type(e).__name__}: {e}"
+        + (f" (its inputs {', '.join(unbound)} were unbound: a generator may run before they are bound; "
+           "read them with bindings.get and yield nothing then)" if unbound else "")
+    )

@@ -12,7 +12,7 @@ import logging
 from collections.abc import Callable, Hashable, Mapping, Sequence
 from typing import Any
 
-from nowplan.belief.protocols import GivesUp, ListsFacts
+from nowplan.belief.protocols import GivesUp, HasUnknowns, ListsFacts
 from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
@@ -118,6 +118,7 @@ class _Search:
         self._can_relax = self._no_relax is None
         # with a belief that lists its facts and boolean predicates without tests, truth is membership
         self._true_ids: frozenset[int] | None = None
+        self._unknowns: frozenset[Any] = belief.unknowns() if isinstance(belief, HasUnknowns) else frozenset()
         if self._can_relax:
             self.true_ids()
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
@@ -222,8 +223,9 @@ class _Search:
         if r is None:
             true = self._true_ids
             a = self.table.atoms[f]
-            if true is None or a.predicate not in self.domain.predicates:
-                r = self.holds(a)
+            if true is None or a.predicate not in self.domain.predicates or (
+                    a.value is False and a.key in self._unknowns):
+                r = self.holds(a)  # (a negative literal on a fluent the belief is unsure of: it does not hold)
             else:  # boolean predicates without tests: a lookup in the belief's facts
                 r = f in true if a.value is not False else self.table.by_key.get((a.predicate, a.args, True)) not in true
             self._fholds[f] = r

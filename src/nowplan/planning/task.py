@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal, KeyedRule
-from nowplan.belief.protocols import ListsFacts
+from nowplan.belief.protocols import HasUnknowns, ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
@@ -50,6 +50,8 @@ def forward_unsupported(domain: Domain, belief: Any) -> str | None:
     """Why forward search cannot run on this domain and belief, or ``None`` if it can."""
     if not isinstance(belief, ListsFacts):
         return "the belief does not list its facts"
+    if isinstance(belief, HasUnknowns) and belief.unknowns():
+        return "the belief is unsure of some fluents either way (a forward state is a closed world)"
     if any(op.generators for op in domain.operators):
         return "operators have generators"
     for p in domain.predicates.values():
