@@ -25,10 +25,8 @@ from typing import Any
 from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
-from nowplan.acting.progress import (
-    Cycle, CycleDetector, RepeatedActions, blind_guard_warning, failed_cycles_reason, repeated_actions_reason,
-    situation, situation_of, stall_reason,
-)
+from nowplan.acting.guard import ProgressGuard
+from nowplan.acting.progress import CycleDetector, blind_guard_warning
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
 from nowplan.acting.refine_flat import FlatSteps, refinement_key
@@ -104,11 +102,7 @@ class Executive:
         # action: the bound on re-planning a step that keeps failing while the belief does not change
         self._refinements: Counter[Hashable] = Counter()
         # the progress guard: cycles across actions, and the plan committed to after one
-        self.progress = CycleDetector(strategy.max_cycles)
-        self.repeats = RepeatedActions()  # loops the fingerprints miss (a belief that drifts)
-        self._committed = False
-        self._give_up: tuple[Outcome, str] | None = None  # a mechanism's reason to end the run
-        self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
+        self.guard = ProgressGuard(strategy.max_cycles)
         self.last_observation = Observation()
         self.last_action: Action | None = None
         self.last_failed: tuple[Action, Observation] | None = None  # the last action that failed
@@ -361,66 +355,27 @@ class Executive:
         self._pending_trigger = trigger
         self._pending_reason = reason
 
-    # -- the progress guard ------------------------------------------------------------
+    # -- the progress guard (acting/guard.py) ------------------------------------------
     @property
     def committed(self) -> bool:
         """After a cycle: reconsidering mechanisms keep the current plans until there is progress."""
-        return self._committed
+        return self.guard.committed
+
+    @property
+    def progress(self) -> CycleDetector:
+        return self.guard.cycles
 
     def situation(self) -> Hashable | None:
-        """The belief's fingerprint and the plan stack's goals (None: the belief has none)."""
-        fp = situation_of(self.belief)  # (a belief without a fingerprint: a situation never seen before)
-        if fp not in self._beliefs_seen:
-            self._beliefs_seen.add(fp)
-            if self._committed:  # progress: a belief never held before ends the commitment
-                self._committed = False
-                self.progress.forget(cycles=True)
-                self.trace.emit("note", text="progress: a belief not held before; commitment ends")
-        return situation(fp, (f.plan.goal for f in self.stack))
+        """The belief's fingerprint and the plan stack's goals."""
+        return self.guard.situation(self, self.belief, (f.plan.goal for f in self.stack))
 
     def give_up(self, outcome: Outcome, reason: str) -> None:
         """A mechanism ends the run after this action with ``reason`` (checked by :meth:`watch`)."""
-        self._give_up = (outcome, reason)
+        self.guard.give_up(outcome, reason)
 
     def watch(self, obs: Observation) -> tuple[Outcome, str] | None:
-        """After an action and the reconsiderations: a livelock's outcome, or None."""
-        if self._give_up is not None:
-            return self._give_up
-        now = self.situation()
-        if now is None:
-            return None
-        failure = None if obs.success or self.last_action is None else (self.last_action.key, obs.info.get("reason"))
-        cyc = self.progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
-        if self.progress.stalled >= self.strategy.max_stalls:
-            return Outcome.FAILED, stall_reason(self.progress.stalled, self.last_action, obs)
-        if self.last_action is not None:
-            achieved = sum(self.domain.holds(a, self.belief) for a in self.problem.goal.atoms)
-            loop = self.repeats.observe(self.last_action.pddl(), succeeded=obs.success,
-                                        exogenous=bool(obs.exogenous), achieved=achieved)
-            if loop is not None:
-                return Outcome.LIVELOCK, repeated_actions_reason(loop[0], loop[1], self.repeats.repeats)
-        if cyc is None:
-            return None
-        self.metrics.cycles = self.progress.seen
-        if self.progress.failed_cycles >= self.strategy.max_stalls:
-            return Outcome.FAILED, failed_cycles_reason(cyc, self.progress.failed_cycles, self.last_failed)
-        return self.on_cycle(cyc, now)
-
-    def on_cycle(self, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:
-        self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
-                        text=cyc.describe())
-        for m in self.mechanisms:
-            m.after_cycle(self, cyc)
-        if cyc.clean and self.progress.livelocked:
-            return Outcome.LIVELOCK, (
-                f"livelock: cycle {cyc.count} of at most {self.progress.max_cycles}: {cyc.describe()}, "
-                "although the executive had committed to its plan"
-            )
-        self._committed = True
-        self.progress.forget(keep=now)
-        self.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plans "
-                        "(no reconsideration until the belief is one not held before)")
-        return None
+        """After an action and the reconsiderations: a livelock's or a stall's outcome, or None."""
+        return self.guard.watch(self, obs)
 
     def goal_holds(self) -> bool:
         return self.domain.satisfies(self.truth, self.problem.goal)

@@ -1,0 +1,99 @@
+"""The executive's progress guard (issue 14): no loop that only a budget ends.
+
+After every action :meth:`ProgressGuard.watch` asks, in order:
+
+* did a mechanism give up (:meth:`ProgressGuard.give_up`, e.g. the monitor's escalation)?
+* has the same action failed the same way, or have actions made no progress, too often in a row
+  (``Strategy.max_stalls``; :class:`~nowplan.acting.progress.CycleDetector`)?
+* has a block of 2–8 actions been repeated, each succeeding, with no outside change and no goal
+  atom gained (:class:`~nowplan.acting.progress.RepeatedActions`: a loop the fingerprints miss
+  because the belief drifts)?
+* is the situation (the belief's fingerprint and the plan stack's goals) one held before?  Then a
+  cycle is reported to every mechanism and the executive *commits* to its current plans: the
+  reconsidering mechanisms (aggressive, selective, serendipity, the monitor) keep them until a
+  belief not held before ends the commitment.  A clean cycle while committed counts towards
+  ``Strategy.max_cycles``, after which the run ends as a livelock with the cycle named.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Iterable
+from typing import TYPE_CHECKING, Any
+
+from nowplan.acting.metrics import Outcome
+from nowplan.acting.progress import (
+    Cycle, CycleDetector, RepeatedActions, failed_cycles_reason, repeated_actions_reason, situation, situation_of,
+    stall_reason,
+)
+from nowplan.core.atoms import Goal
+from nowplan.worlds.base import Observation
+
+if TYPE_CHECKING:
+    from nowplan.acting.hpn import Executive
+
+
+class ProgressGuard:
+    """Cycles across actions, repeated blocks of actions, and the commitment after a cycle."""
+
+    def __init__(self, max_cycles: int) -> None:
+        self.cycles = CycleDetector(max_cycles)
+        self.repeats = RepeatedActions()  # loops the fingerprints miss (a belief that drifts)
+        self.committed = False
+        self._give_up: tuple[Outcome, str] | None = None  # a mechanism's reason to end the run
+        self._beliefs_seen: set[Hashable] = set()  # commitment ends at a belief not seen before
+
+    def give_up(self, outcome: Outcome, reason: str) -> None:
+        """A mechanism ends the run after this action with ``reason``."""
+        self._give_up = (outcome, reason)
+
+    def situation(self, ex: Executive, belief: Any, goals: Iterable[Goal]) -> Hashable:
+        """The belief's fingerprint and the plan stack's goals; a belief not held before ends a commitment."""
+        fp = situation_of(belief)  # (a belief without a fingerprint: a situation never seen before)
+        if fp not in self._beliefs_seen:
+            self._beliefs_seen.add(fp)
+            if self.committed:  # progress: a belief never held before ends the commitment
+                self.committed = False
+                self.cycles.forget(cycles=True)
+                ex.trace.emit("note", text="progress: a belief not held before; commitment ends")
+        return situation(fp, goals)
+
+    def watch(self, ex: Executive, obs: Observation) -> tuple[Outcome, str] | None:
+        """After an action and the reconsiderations: the run's end (outcome, reason), or None."""
+        if self._give_up is not None:
+            return self._give_up
+        now = ex.situation()
+        if now is None:
+            return None
+        last = ex.last_action
+        failure = None if obs.success or last is None else (last.key, obs.info.get("reason"))
+        cyc = self.cycles.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
+        if self.cycles.stalled >= ex.strategy.max_stalls:
+            return Outcome.FAILED, stall_reason(self.cycles.stalled, last, obs)
+        if last is not None:
+            achieved = sum(ex.domain.holds(a, ex.belief) for a in ex.problem.goal.atoms)
+            loop = self.repeats.observe(last.pddl(), succeeded=obs.success,
+                                        exogenous=bool(obs.exogenous), achieved=achieved)
+            if loop is not None:
+                return Outcome.LIVELOCK, repeated_actions_reason(loop[0], loop[1], self.repeats.repeats)
+        if cyc is None:
+            return None
+        ex.metrics.cycles = self.cycles.seen
+        if self.cycles.failed_cycles >= ex.strategy.max_stalls:
+            return Outcome.FAILED, failed_cycles_reason(cyc, self.cycles.failed_cycles, ex.last_failed)
+        return self._on_cycle(ex, cyc, now)
+
+    def _on_cycle(self, ex: Executive, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:
+        ex.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
+                      text=cyc.describe())
+        for m in ex.mechanisms:
+            m.after_cycle(ex, cyc)
+        if cyc.clean and self.cycles.livelocked:
+            return Outcome.LIVELOCK, (
+                f"livelock: cycle {cyc.count} of at most {self.cycles.max_cycles}: {cyc.describe()}, "
+                "although the executive had committed to its plan"
+            )
+        self.committed = True
+        self.cycles.forget(keep=now)
+        ex.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plans "
+                      "(no reconsideration until the belief is one not held before)")
+        return None
