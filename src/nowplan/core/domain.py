@@ -70,6 +70,13 @@ class Domain:
     # the domain's own planner, used by the executive under the ``domain-planner`` switch; it has
     # the signature of nowplan.planning.regression.plan and returns a PlanResult
     planner: Callable[..., Any] | None = field(default=None, hash=False, compare=False)
+    # a cheap proof that no plan reaches a goal at a level map from the belief:
+    # fn(goal, belief, levels, objects) -> why, or None (no proof); the regression planner asks it
+    # before searching and answers "unsolvable" with the reason.  It must answer only where the
+    # search itself would find no plan (e.g. an atom every achiever of which needs a fact that no
+    # operator sequence from the belief can make true at that level).
+    dead_end: Callable[[Any, Any, Any, Mapping[str, str | None]], str | None] | None = field(
+        default=None, hash=False, compare=False)
     # strategy switches that cannot work on this domain, each with the reason and what to use
     # instead; a strategy naming one is refused before the run starts
     unsupported: Mapping[str, str] = field(default_factory=dict, hash=False, compare=False)

@@ -47,6 +47,13 @@ class LevelMap:
                 return fl
         return lv
 
+    def level_of(self, key: ActionKey) -> int:
+        """:meth:`level` of the instance with this key (operator name, arguments), for a caller
+        that has no :class:`Action` built."""
+        lv: int = self._table.get(key, self.top)  # type: ignore[attr-defined]
+        fl = self._floors.get(key[0])  # type: ignore[attr-defined]
+        return fl if fl is not None and fl < lv else lv
+
     def floor(self, operator: str) -> int | None:
         """The most abstract level an instance of ``operator`` has here (None: no floor)."""
         return self._floors.get(operator)  # type: ignore[attr-defined, no-any-return]

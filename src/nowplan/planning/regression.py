@@ -149,16 +149,25 @@ def _plan(
         """An attempt's expansions: its own budget, within what is left of ``call_nodes``."""
         return nodes if config.call_nodes <= 0 else min(nodes, config.call_nodes - search.expanded)
 
+    order: list[Atom] | None = None
     if config.serialization and len(goal) > 1:
         order = sorted(goal.atoms, key=_atom_order)  # the atoms' own order, compared in C
         rng.shuffle(order)
+    # the domain's proof of no plan comes after the serialization's draw, so a call it answers
+    # leaves the random stream where the search would have left it
+    dead = domain.dead_end(goal, belief, levels, objects) if domain.dead_end is not None else None
+    if dead is not None:
+        result = (PlanStatus.UNSOLVABLE, None, dead)
+        attempts.append("dead_end:unsolvable")
+        method = "dead_end"
+    elif order is not None:
         search.use(config.shortcut_heuristic or config.heuristic)
         result = search.run(goal, budget(config.shortcut_nodes), order=order)
         search.use(config.heuristic)
         attempts.append(f"serialization:{result[0].value}")
         method = "serialization"
     spent = config.call_nodes > 0 and search.expanded >= config.call_nodes
-    if (result[0] is not PlanStatus.SOLVED and config.monotonic and len(goal) > 1 and unmet != list(goal.atoms)
+    if (dead is None and result[0] is not PlanStatus.SOLVED and config.monotonic and len(goal) > 1 and unmet != list(goal.atoms)
             and not spent):
         protect = frozenset(a for a in goal.atoms if search.holds(a))
         if search.now() < search.deadline:
@@ -166,7 +175,9 @@ def _plan(
             attempts.append(f"monotonic:{result[0].value}")
             method = "monotonic"
     spent = config.call_nodes > 0 and search.expanded >= config.call_nodes
-    if result[0] is not PlanStatus.SOLVED and spent:
+    if dead is not None:
+        pass
+    elif result[0] is not PlanStatus.SOLVED and spent:
         result = (PlanStatus.NODE_LIMIT, None,
                   f"expanded {search.expanded} nodes over the call's attempts without a plan (call_nodes)")
     elif result[0] is not PlanStatus.SOLVED and search.now() < search.deadline:

@@ -374,6 +374,9 @@ class PathCache:
         # the paths from each start, in the order they were found (``into`` reads one start's
         # paths only; scanning every cached path made it the loader's costliest call under RCHPN)
         self._by_start: dict[Config, list[list[Transition]]] = {}
+        # the keys whose ``None`` is a proof (every configuration reachable closed, or the
+        # infeasibility test), not a search stopped at its limit
+        self._impossible: set[tuple[Config, str]] = set()
         self.searches = 0
         self.relaxed_tests = 0  # searches that asked their infeasibility test, and were cut by it
         self.relaxed_proofs = 0
@@ -391,9 +394,10 @@ class PathCache:
             if len(self._paths) >= self.limit:
                 self._paths.clear()
                 self._by_start.clear()
+                self._impossible.clear()
             self.searches += 1
             if infeasible is None:
-                found = search(start, goal, h)
+                found, cut = search_status(start, goal, h)
             else:
                 astar = AStar(start, goal, h)
                 found, cut = astar.run(PROBE_NODES)
@@ -401,12 +405,20 @@ class PathCache:
                     self.relaxed_tests += 1
                     if infeasible(start):
                         self.relaxed_proofs += 1
+                        cut = False
                     else:
-                        found = astar.run(SEARCH_NODES)[0]  # on from where the probe stopped
+                        found, cut = astar.run(SEARCH_NODES)  # on from where the probe stopped
             self._paths[key] = found
+            if found is None and not cut:
+                self._impossible.add(key)
             if found:
                 self._by_start.setdefault(start, []).append(found)
         return self._paths[key]
+
+    def impossible(self, start: Config, mode: str) -> bool:
+        """Did :meth:`path` for ``mode`` from ``start`` prove that no path exists (False: it found
+        one, stopped at its limit, or was not asked)?"""
+        return (start, mode) in self._impossible
 
     def into(self, start: Config, target: Hold, status: str | None) -> Transition | None:
         """The transition of a known path from ``start`` that ends in ``target``."""

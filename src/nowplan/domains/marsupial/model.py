@@ -52,6 +52,7 @@ from nowplan.core.operators import (
 )
 from nowplan.domains.marsupial import loader as lp
 from nowplan.domains.marsupial.bay_relaxed import fetch_infeasible
+from nowplan.domains.marsupial.dead_ends import buried_package
 from nowplan.domains.marsupial.small_plans import small_plan
 from nowplan.domains.marsupial.grid import NONE, Door, Hold, can_share, door_package, is_packed
 from nowplan.planning.regression import PlannerConfig
@@ -372,7 +373,7 @@ def make_domain(reach: Mapping[str, frozenset[str]], plane: str = "plane") -> Do
 
     conflicts = (AtMostOne(("at", "in")), CityRule(reach))
     return Domain(NAME, PREDICATES, operators(Where(reach, plane)), TYPES, conflicts=conflicts,
-                  unsupported=UNSUPPORTED, resources=RESOURCES)
+                  unsupported=UNSUPPORTED, resources=RESOURCES, dead_end=buried_package)
 
 
 _FLAT_WHY = (
