@@ -10,26 +10,11 @@ mean actions, failure reasons, crashes.
 
 from __future__ import annotations
 
-import argparse
-import json
-import logging
-import signal
-import sys
-import time
-import traceback
-from collections import Counter, defaultdict
-from pathlib import Path
+from collections.abc import Callable, Mapping
 from typing import Any
 
-from nowplan.api import NowplanError, Outcome, parse_strategy, run_episode
+from heldout_runs import main as run_benchmark  # benchmarks/heldout_runs.py, beside this script
 
-STRATEGIES = [
-    "flat", "hpn", "hpn+aggressive", "hpn+flexible", "hpn+foresight", "hpn+monitor", "hpn+monitor-cost",
-    "hpn+monitor-goal", "hpn+monitor-restore", "hpn+monitor-rule-cost", "hpn+nodirect", "hpn+noshortcuts",
-    "hpn+peephole", "hpn+refine-flat", "hpn+selective", "hpn+serendipity", "online", "online+deferred",
-    "online+reuse", "online+reuse+deferred", "hpn+flexible+serendipity+selective+foresight",
-    "flat+flexible+serendipity", "hpn+peephole+flexible",
-]
 # name: (domain, scenario function keyword arguments)
 LEVELS: dict[str, tuple[str, dict[str, Any]]] = {
     "lab-clean": ("lab", {}),
@@ -48,109 +33,12 @@ LEVELS: dict[str, tuple[str, dict[str, Any]]] = {
 }
 
 
-class Hang(Exception):
-    pass
-
-
-def _alarm(signum: int, frame: Any) -> None:
-    raise Hang()
-
-
-def seeds(text: str) -> list[int]:
-    a, _, b = text.partition("-")
-    return list(range(int(a), int(b or a) + 1))
-
-
-def run_one(level: str, strategy: str, seed: int, max_actions: int, time_limit: float) -> dict[str, Any]:
+def episodes() -> Mapping[str, Callable[..., Any]]:
     from lab_domain.scenarios import episode as lab_episode
     from search_domain.scenarios import episode as search_episode
 
-    domain, kw = LEVELS[level]
-    row: dict[str, Any] = {"level": level, "domain": domain, "strategy": strategy, "seed": seed}
-    t0 = time.perf_counter()
-    signal.alarm(int(time_limit * 2 + 10))
-    try:
-        ep = (lab_episode if domain == "lab" else search_episode)(seed, **kw)
-        m = run_episode(ep, parse_strategy(strategy, max_actions=max_actions, time_limit=time_limit), seed=seed)
-        row.update(outcome=m.outcome.value, reason=m.reason, actions=m.actions, cycles=m.cycles,
-                   goal_in_world=m.goal_in_world, disagreement=list(m.disagreement))
-    except Hang:
-        row.update(outcome="hang", reason=f"no answer after {time_limit * 2 + 10:g} s", actions=None)
-    except NowplanError as e:  # refused before the run, with its one-line reason
-        row.update(outcome="refused", reason=str(e), actions=None)
-    except Exception as e:  # a crash is what this benchmark looks for
-        row.update(outcome="crash", reason=f"{type(e).__name__}: {e}", actions=None,
-                   traceback=traceback.format_exc())
-    finally:
-        signal.alarm(0)
-    row["wall_s"] = round(time.perf_counter() - t0, 3)
-    return row
-
-
-def table(rows: list[dict[str, Any]]) -> str:
-    groups: dict[tuple[str, str], list[dict[str, Any]]] = defaultdict(list)
-    for r in rows:
-        groups[(r["level"], r["strategy"])].append(r)
-    out = ["| level | strategy | runs | reached % | mean actions (reached) | failures (reason: count) |",
-           "|---|---|---|---|---|---|"]
-    for (level, strategy), rs in sorted(groups.items()):
-        ok = [r for r in rs if r["outcome"] == Outcome.REACHED.value]
-        acts = sum(r["actions"] for r in ok) / len(ok) if ok else float("nan")
-        why = Counter(f"{r['outcome']}: {r['reason'][:90]}" for r in rs if r["outcome"] != "reached")
-        out.append(f"| {level} | {strategy} | {len(rs)} | {100 * len(ok) / len(rs):.0f} | {acts:.1f} | "
-                   + "; ".join(f"{k} ({n})" for k, n in why.most_common()) + " |")
-    return "\n".join(out)
-
-
-def summary(rows: list[dict[str, Any]]) -> str:
-    """Per fault level, over every strategy that was not refused: reached %, crashes, hangs, livelocks."""
-    out = ["| level | runs (not refused) | reached % | mean actions | crashes | hangs | livelocks | other failures | refused |",
-           "|---|---|---|---|---|---|---|---|---|"]
-    for level in sorted({r["level"] for r in rows}):
-        rs = [r for r in rows if r["level"] == level]
-        run = [r for r in rs if r["outcome"] != "refused"]
-        ok = [r for r in run if r["outcome"] == "reached"]
-        n = Counter(r["outcome"] for r in run)
-        other = len(run) - len(ok) - n["crash"] - n["hang"] - n["livelock"]
-        acts = sum(r["actions"] for r in ok) / len(ok) if ok else float("nan")
-        out.append(f"| {level} | {len(run)} | {100 * len(ok) / max(len(run), 1):.1f} | {acts:.1f} | {n['crash']} | "
-                   f"{n['hang']} | {n['livelock']} | {other} | {len(rs) - len(run)} |")
-    return "\n".join(out)
-
-
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--levels", default=",".join(LEVELS))
-    ap.add_argument("--strategies", default=",".join(STRATEGIES))
-    ap.add_argument("--seeds", default="0-19")
-    ap.add_argument("--max-actions", type=int, default=300)
-    ap.add_argument("--time-limit", type=float, default=30.0)
-    ap.add_argument("--out", type=Path, help="JSONL; runs already in it are skipped (resume)")
-    ap.add_argument("--table", action="store_true", help="only print the table of --out")
-    a = ap.parse_args()
-    signal.signal(signal.SIGALRM, _alarm)
-    logging.getLogger("nowplan").setLevel(logging.ERROR)  # the runs' warnings are not the table's
-    done: list[dict[str, Any]] = []
-    if a.out and a.out.exists():
-        done = [json.loads(x) for x in a.out.read_text().splitlines() if x.strip()]
-    if not a.table:
-        have = {(r["level"], r["strategy"], r["seed"]) for r in done}
-        for level in a.levels.split(","):
-            for strategy in a.strategies.split(","):
-                for seed in seeds(a.seeds):
-                    if (level, strategy, seed) in have:
-                        continue
-                    row = run_one(level, strategy, seed, a.max_actions, a.time_limit)
-                    done.append(row)
-                    if a.out:
-                        with a.out.open("a") as fh:
-                            fh.write(json.dumps(row) + "\n")
-                    if row["outcome"] != "reached":
-                        print(f"{level} {strategy} s{seed}: {row['outcome']}: {row['reason'][:160]}",
-                              file=sys.stderr, flush=True)
-    print(summary(done) + "\n\n" + table(done))
-    return 0
+    return {"lab": lab_episode, "search": search_episode}
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    raise SystemExit(run_benchmark(__doc__ or "", LEVELS, episodes, 30.0))
