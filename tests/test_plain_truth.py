@@ -40,6 +40,8 @@ def test_the_lookup_answers_as_holds(state_map: dict, goal_map: dict) -> None:  
     slow = all(domain.holds(a, state) for a in goal.atoms)
     assert domain.satisfies(state, goal) == slow
     assert domain.satisfies(state, list(goal.atoms)) == slow  # (an iterable: atom by atom)
+    # the progress guard's count of goal atoms held, by the same lookup
+    assert domain.count_holding(state, goal.atoms) == sum(domain.holds(a, state) for a in goal.atoms)
 
 
 def test_a_tested_predicate_or_another_rule_is_not_plain() -> None:

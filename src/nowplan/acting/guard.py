@@ -70,7 +70,7 @@ class ProgressGuard:
         if self.cycles.stalled >= ex.strategy.max_stalls:
             return Outcome.FAILED, stall_reason(self.cycles.stalled, last, obs)
         if last is not None:
-            achieved = sum(ex.domain.holds(a, ex.belief) for a in ex.problem.goal.atoms)
+            achieved = ex.domain.count_holding(ex.truth, ex.problem.goal.atoms)
             loop = self.repeats.observe(last.pddl(), succeeded=obs.success,
                                         exogenous=bool(obs.exogenous), achieved=achieved)
             if loop is not None:

@@ -207,7 +207,7 @@ class OnlinePolicy:
         cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
         if progress.stalled >= self.strategy.max_stalls:
             return Outcome.FAILED, stall_reason(progress.stalled, plan[0], obs)
-        achieved = sum(self.domain.holds(a, self.belief) for a in self.problem.goal.atoms)
+        achieved = self.domain.count_holding(self.belief, self.problem.goal.atoms)
         loop = self._repeats.observe(plan[0].pddl(), succeeded=obs.success, exogenous=bool(obs.exogenous),
                                      achieved=achieved)
         if loop is not None:

@@ -206,6 +206,12 @@ class Domain:
         a fluent to be true holds in a :class:`State` exactly when the state maps its key to true."""
         return all(p.test is None and type(p.rule) is ValueRule for p in self.predicates.values())
 
+    def count_holding(self, belief: Any, atoms: Iterable[Atom]) -> int:
+        """How many of ``atoms`` hold in the state or belief (the progress guard's measure of the goal)."""
+        if self.plain_truth and isinstance(belief, State):  # one dictionary lookup per atom
+            return belief.count_holding(atoms)
+        return sum(self.holds(a, belief) for a in atoms)
+
     def satisfies(self, belief: Any, goal: Goal | Iterable[Atom]) -> bool:
         atoms = goal.atoms if isinstance(goal, Goal) else goal
         if self.plain_truth and isinstance(belief, State):  # one dictionary lookup per atom

@@ -44,6 +44,18 @@ class State:
     def holds(self, a: Atom) -> bool:
         return bool(self.value(a.key) == a.value)
 
+    def count_holding(self, atoms: Iterable[Atom]) -> int:
+        """How many of ``atoms`` hold here under plain truth (as :meth:`all_hold`, atom by atom)."""
+        get = self._map.get
+        n = 0
+        for a in atoms:
+            have = get((a.predicate, a.args), False)
+            if a.value is False:
+                n += have is False or have is None
+            else:
+                n += not (have is None or have is False or not have == a.value)
+        return n
+
     def all_hold(self, atoms: Iterable[Atom]) -> bool:
         """Every atom holds here under plain truth (no tests, equality rules): what ``Domain.holds``
         answers atom by atom, with one dictionary lookup each (``Domain.satisfies`` asks it)."""
