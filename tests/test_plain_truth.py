@@ -61,3 +61,14 @@ def test_the_executive_reads_the_state_of_a_plain_domain() -> None:
                    parse_strategy("hpn"))
     assert ex.truth is ex.belief.state
     assert ex.domain.satisfies(ex.truth, prob.goal) == ex.domain.satisfies(ex.belief, prob.goal)
+
+
+def test_the_online_policy_counts_the_goal_on_the_same_state() -> None:
+    from nowplan.belief.symbolic import truth_of
+
+    g = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl" / "gripper"
+    prob = load_pddl(g / "domain.pddl", g / "p01.pddl")
+    b = SymbolicBelief(prob.init)
+    assert truth_of(prob.domain, b) is b.state
+    assert prob.domain.count_holding(truth_of(prob.domain, b), prob.goal.atoms) == sum(
+        prob.domain.holds(a, b) for a in prob.goal.atoms)

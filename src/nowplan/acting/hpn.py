@@ -33,7 +33,7 @@ from nowplan.acting.refine_flat import FlatSteps, refinement_key
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.acting.whole import plan_whole_problem
 from nowplan.belief.protocols import HasHeuristic, check_belief
-from nowplan.belief.symbolic import SymbolicBelief
+from nowplan.belief.symbolic import truth_of
 from nowplan.core.atoms import TRUE, Goal
 from nowplan.core.domain import Problem
 from nowplan.core.levels import LevelMap, flat_levels
@@ -138,8 +138,7 @@ class Executive:
     def truth(self) -> Any:
         """What the executive's own tests of goals read: a symbolic belief's state where the domain's
         truth is plain (``Domain.satisfies`` then looks each atom up in it), else the belief."""
-        b = self.belief
-        return b.state if type(b) is SymbolicBelief and self.domain.plain_truth else b
+        return truth_of(self.domain, self.belief)
 
     # -- plan-stack operations ------------------------------------------------
     def applicable(self, f: Frame) -> bool:

@@ -41,6 +41,7 @@ from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.acting.whole import plan_whole_problem
 from nowplan.belief.protocols import check_belief
+from nowplan.belief.symbolic import truth_of
 from nowplan.belief.protocols import AfterAction, HasHeuristic, HasStreams
 from nowplan.core.domain import Problem
 from nowplan.core.levels import flat_levels
@@ -207,7 +208,7 @@ class OnlinePolicy:
         cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
         if progress.stalled >= self.strategy.max_stalls:
             return Outcome.FAILED, stall_reason(progress.stalled, plan[0], obs)
-        achieved = self.domain.count_holding(self.belief, self.problem.goal.atoms)
+        achieved = self.domain.count_holding(truth_of(self.domain, self.belief), self.problem.goal.atoms)
         loop = self._repeats.observe(plan[0].pddl(), succeeded=obs.success, exogenous=bool(obs.exogenous),
                                      achieved=achieved)
         if loop is not None:

@@ -9,12 +9,15 @@ the replanning mechanisms are for).
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nowplan.core.atoms import Atom, Term
 from nowplan.core.operators import Action
 from nowplan.core.state import State
 from nowplan.worlds.base import Observation
+
+if TYPE_CHECKING:
+    from nowplan.core.domain import Domain
 
 
 class SymbolicBelief:
@@ -47,3 +50,9 @@ class SymbolicBelief:
 
     def __repr__(self) -> str:
         return f"SymbolicBelief({self.state!r})"
+
+
+def truth_of(domain: Domain, belief: Any) -> Any:
+    """What goal tests should read: a symbolic belief's state where the domain's truth is plain
+    (``Domain.satisfies`` and ``count_holding`` then look each atom up in it), else the belief."""
+    return belief.state if type(belief) is SymbolicBelief and domain.plain_truth else belief
