@@ -30,29 +30,34 @@ def brute_force(domain, objects, init: set[Atom], level: int) -> set[tuple[str, 
     relaxed-reachable and whose negative static conditions hold, by enumeration."""
     statics = domain.static_predicates
     by_type = _objects_by_type(domain, objects)
-    reached = set(init)
     static_facts = {a for a in init if a.predicate in statics}
+    # every type-consistent binding once, with the facts it needs (the static conditions, which
+    # rule out most bindings, bound and tested first, each as soon as it is bound)
+    candidates: list[tuple[Action, frozenset[Atom]]] = []
+    for op in domain.operators:
+        types = op.param_types or [None] * len(op.params)
+        conds = sorted(op.preconditions, key=lambda pc: pc.atom.predicate not in statics)
+        for args in itertools.product(*(by_type.get(t, []) for t in types)):
+            b = dict(zip(op.params, args, strict=True))
+            needs: set[Atom] = set()
+            for pc in conds:
+                p = pc.atom.bind(b)
+                if p.value is True and p.predicate in statics and p not in static_facts:
+                    break
+                if p.value is False and p.predicate in statics and Atom(p.predicate, p.args, True) in static_facts:
+                    break
+                if p.value is True and p.predicate not in statics and pc.criticality > level:
+                    needs.add(p)
+            else:
+                candidates.append((Action(op, args), frozenset(needs)))
+    reached = set(init)
     found: set[tuple[str, tuple[str, ...]]] = set()
     changed = True
     while changed:  # each round adds an action or stops: bounded by the finite bindings
         changed = False
-        for op in domain.operators:
-            types = op.param_types or [None] * len(op.params)
-            for args in itertools.product(*(by_type.get(t, []) for t in types)):
-                if (op.name, args) in found:
-                    continue
-                act = Action(op, args)
-                ok = True
-                for p, pc in zip(act.preconditions(None), op.preconditions, strict=True):
-                    if p.value is True and (p.predicate in statics or pc.criticality > level):
-                        ok = p in reached
-                    elif p.value is False and p.predicate in statics:
-                        ok = Atom(p.predicate, p.args, True) not in static_facts
-                    if not ok:
-                        break
-                if not ok:
-                    continue
-                found.add((op.name, args))
+        for act, needs in candidates:
+            if act.key not in found and needs <= reached:
+                found.add(act.key)
                 changed = True
                 reached |= {e for e in act.effects() if e.value is True}
     return found
