@@ -50,6 +50,9 @@ class DomainDef:
     actions: list[ActionDef] = field(default_factory=list)
     derived: list[DerivedDef] = field(default_factory=list)
     line: int = 1
+    # evaluate every derived predicate by rules, even without recursion (set by load_pddl when
+    # substituting their definitions exceeds a compilation bound)
+    native_axioms: bool = False
 
 
 @dataclass

@@ -1,0 +1,69 @@
+"""Constructs of the IPC files of benchmarks/results/ipc_check_ipc9.md that nowplan first failed on.
+
+Each test is a small file written here that reproduces the construct of an IPC
+domain; every plan replays on the original semantics (tests/pddl_sim.py).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from nowplan.cli import main
+from nowplan.io import pddl_adl
+from nowplan.io.pddl_read import load_pddl
+
+from pddl_sim import check_plan
+
+
+def solve(tmp_path: Path, domain: str, problem: str, capsys: pytest.CaptureFixture[str]) -> list[str]:
+    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    d.write_text(domain)
+    p.write_text(problem)
+    code = main(["plan", str(d), str(p), "--time-limit", "20"])
+    out = capsys.readouterr()
+    assert code == 0, out.out + out.err
+    steps = out.out.splitlines()
+    check_plan(domain, problem, steps)
+    return steps
+
+
+# IPC-2004 philosophers (promela): the goal is one non-recursive derived atom per process, each defined
+# by a disjunction; substituted, the goal's normal form is the product of the disjunctions.
+DONE = """\
+(define (domain done)
+  (:requirements :typing :derived-predicates :negative-preconditions)
+  (:types job)
+  (:predicates (red ?j - job) (green ?j - job) (blue ?j - job) (finished ?j - job))
+  (:derived (finished ?j - job) (or (red ?j) (green ?j) (blue ?j)))
+  (:action paint-red :parameters (?j - job) :precondition (not (finished ?j)) :effect (red ?j))
+  (:action paint-green :parameters (?j - job) :precondition (not (finished ?j)) :effect (green ?j))
+  (:action paint-blue :parameters (?j - job) :precondition (not (finished ?j)) :effect (blue ?j)))
+"""
+
+
+def done_problem(n: int) -> str:
+    jobs = " ".join(f"j{i}" for i in range(n))
+    goal = " ".join(f"(finished j{i})" for i in range(n))
+    return f"(define (problem done-{n}) (:domain done) (:objects {jobs} - job) (:init) (:goal (and {goal})))\n"
+
+
+def test_a_goal_of_derived_atoms_too_large_to_substitute_is_evaluated_by_rules(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    n = 6  # 3**6 = 729 disjuncts once substituted, over the bound
+    assert 3 ** n > pddl_adl.MAX_DISJUNCTS
+    (tmp_path / "d.pddl").write_text(DONE)
+    (tmp_path / "p.pddl").write_text(done_problem(n))
+    prob = load_pddl(tmp_path / "d.pddl", tmp_path / "p.pddl")
+    assert set(prob.domain.derived) == {"finished"}  # kept as a derived predicate, evaluated by rules
+    assert [a.predicate for a in prob.goal.atoms] == ["finished"] * n
+    steps = solve(tmp_path, DONE, done_problem(n), capsys)
+    assert len(steps) == n
+
+
+def test_a_small_goal_of_derived_atoms_is_still_substituted(tmp_path: Path) -> None:
+    (tmp_path / "d.pddl").write_text(DONE)
+    (tmp_path / "p.pddl").write_text(done_problem(2))
+    prob = load_pddl(tmp_path / "d.pddl", tmp_path / "p.pddl")
+    assert not prob.domain.derived  # substituted: the regression planner and HPN can use the domain
