@@ -67,3 +67,40 @@ def test_a_small_goal_of_derived_atoms_is_still_substituted(tmp_path: Path) -> N
     (tmp_path / "p.pddl").write_text(done_problem(2))
     prob = load_pddl(tmp_path / "d.pddl", tmp_path / "p.pddl")
     assert not prob.domain.derived  # substituted: the regression planner and HPN can use the domain
+
+
+# IPC-1998 ADL files (mystery, mystery prime) are PDDL 1.x: they open with the Lisp directive
+# (in-package "PDDL") and bind extra variables with :vars.
+PACKAGE = """\
+(in-package "PDDL")
+
+(define (domain lamp)
+  (:requirements :strips)
+  (:predicates (off ?l) (on ?l))
+  (:action switch :parameters (?l) :precondition (off ?l) :effect (and (on ?l) (not (off ?l)))))
+"""
+LAMP_P = "(define (problem lamp-1) (:domain lamp) (:objects a b) (:init (off a) (off b)) (:goal (and (on a) (on b))))\n"
+
+
+def test_the_lisp_in_package_directive_is_ignored(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert sorted(solve(tmp_path, PACKAGE, LAMP_P, capsys)) == ["(switch a)", "(switch b)"]
+
+
+def test_lines_after_the_in_package_directive_keep_their_numbers(tmp_path: Path,
+                                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    bad = PACKAGE.replace("(off ?l) :effect", "(offf ?l) :effect")  # line 6
+    (tmp_path / "d.pddl").write_text(bad)
+    (tmp_path / "p.pddl").write_text(LAMP_P)
+    assert main(["plan", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"{tmp_path / 'd.pddl'}:6:" in err[0] and "offf" in err[0]
+
+
+def test_pddl1_vars_are_refused_in_one_line_naming_the_fix(tmp_path: Path,
+                                                           capsys: pytest.CaptureFixture[str]) -> None:
+    vars_domain = PACKAGE.replace(":parameters (?l) :precondition", ":parameters () :vars (?l) :precondition")
+    (tmp_path / "d.pddl").write_text(vars_domain)
+    (tmp_path / "p.pddl").write_text(LAMP_P)
+    assert main(["plan", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and ":6:" in err[0] and ":vars" in err[0] and ":parameters" in err[0]

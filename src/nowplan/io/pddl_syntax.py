@@ -12,6 +12,7 @@ with a line naming them; unknown sections are errors with their line.
 from __future__ import annotations
 
 import logging
+import re
 from dataclasses import dataclass, field
 
 from nowplan.io.pddl_ast import TOTAL_COST, Effect, Formula, NExpr, Reader, TypedName
@@ -70,7 +71,18 @@ class ProblemDef:
     metric_line: int = 1
 
 
+# PDDL 1.x files (IPC-1998) open with the Lisp directive (in-package "PDDL") before (define ...)
+_IN_PACKAGE = re.compile(r'\A((?:\s|;[^\n]*)*)\(\s*in-package\s+("[^"\n]*"|[^\s()]+)\s*\)', re.IGNORECASE)
+
+
 def _define(r: Reader, text: str, kind: str) -> tuple[SList, str, int]:
+    m = _IN_PACKAGE.match(text)
+    if m is not None:
+        line = m.group(1).count("\n") + 1
+        log.warning("%s:%d: the Lisp directive (in-package %s) before (define ...) is ignored (accepted)",
+                    r.path, line, m.group(2))
+        blank = "".join(c if c == "\n" else " " for c in text[m.end(1):m.end()])
+        text = text[:m.end(1)] + blank + text[m.end():]  # same length: the lines of the rest stay right
     items = parse_sexprs(text, r.path)
     if not items:
         raise r.error(f"the file is empty: expected (define ({kind} NAME) ...)", None)
@@ -191,6 +203,11 @@ def _action(r: Reader, sec: SList) -> ActionDef:
             pre = r.formula(val, f"the precondition of {where}")
         elif k == ":effect":
             eff = r.effect(val, f"the effect of {where}")
+        elif k == ":vars":
+            # PDDL 1.x (IPC-1998 ADL files): variables bound by the precondition, not listed in plans
+            raise r.refuse(f"{where} declares :vars (PDDL 1.x variables bound by the precondition), which "
+                           "is not supported; declare them in :parameters instead",
+                           key.line if isinstance(key, Token) else sec.line)
         else:
             raise r.error(f"unknown keyword {k} in {where}; expected :parameters, :precondition or :effect",
                           key.line if isinstance(key, Token) else sec.line)
