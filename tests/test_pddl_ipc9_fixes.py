@@ -104,3 +104,20 @@ def test_pddl1_vars_are_refused_in_one_line_naming_the_fix(tmp_path: Path,
     assert main(["plan", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and ":6:" in err[0] and ":vars" in err[0] and ":parameters" in err[0]
+
+
+def test_a_long_comment_banner_before_define_reads_in_linear_time(tmp_path: Path,
+                                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    # IPC-2000 blocks opens with ;;;;...;;;; banner lines: looking for (in-package ...) past them must
+    # not backtrack (a regular expression over the comments took minutes on this file)
+    banner = (";" * 40 + "\n") + ";;; 4 Op-blocks world\n" + (";" * 40 + "\n") + "\n"
+    import time
+    t0 = time.process_time()
+    steps = solve(tmp_path, banner + PACKAGE.split("\n", 2)[2], LAMP_P, capsys)
+    assert sorted(steps) == ["(switch a)", "(switch b)"]
+    assert time.process_time() - t0 < 10
+
+
+def test_comments_may_precede_the_in_package_directive(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    text = ";; mystery, ADL version\n;;;;;;;;;;;;;;;;\n" + PACKAGE
+    assert sorted(solve(tmp_path, text, LAMP_P, capsys)) == ["(switch a)", "(switch b)"]

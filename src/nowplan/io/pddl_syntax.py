@@ -72,17 +72,32 @@ class ProblemDef:
 
 
 # PDDL 1.x files (IPC-1998) open with the Lisp directive (in-package "PDDL") before (define ...)
-_IN_PACKAGE = re.compile(r'\A((?:\s|;[^\n]*)*)\(\s*in-package\s+("[^"\n]*"|[^\s()]+)\s*\)', re.IGNORECASE)
+_IN_PACKAGE = re.compile(r'\(\s*in-package\s+("[^"\n]*"|[^\s()]+)\s*\)', re.IGNORECASE)
+
+
+def _lisp_prefix_end(text: str) -> int:
+    """Where the first form starts: past leading whitespace and ``;`` comments (a scan, no backtracking)."""
+    pos, n = 0, len(text)
+    while pos < n:
+        if text[pos].isspace():
+            pos += 1
+        elif text[pos] == ";":
+            end = text.find("\n", pos)
+            pos = n if end < 0 else end
+        else:
+            break
+    return pos
 
 
 def _define(r: Reader, text: str, kind: str) -> tuple[SList, str, int]:
-    m = _IN_PACKAGE.match(text)
+    start = _lisp_prefix_end(text)
+    m = _IN_PACKAGE.match(text, start)
     if m is not None:
-        line = m.group(1).count("\n") + 1
+        line = text.count("\n", 0, start) + 1
         log.warning("%s:%d: the Lisp directive (in-package %s) before (define ...) is ignored (accepted)",
-                    r.path, line, m.group(2))
-        blank = "".join(c if c == "\n" else " " for c in text[m.end(1):m.end()])
-        text = text[:m.end(1)] + blank + text[m.end():]  # same length: the lines of the rest stay right
+                    r.path, line, m.group(1))
+        blank = "".join(c if c == "\n" else " " for c in text[start:m.end()])
+        text = text[:start] + blank + text[m.end():]  # same length: the lines of the rest stay right
     items = parse_sexprs(text, r.path)
     if not items:
         raise r.error(f"the file is empty: expected (define ({kind} NAME) ...)", None)
