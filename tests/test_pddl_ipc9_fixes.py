@@ -121,3 +121,45 @@ def test_a_long_comment_banner_before_define_reads_in_linear_time(tmp_path: Path
 def test_comments_may_precede_the_in_package_directive(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     text = ";; mystery, ADL version\n;;;;;;;;;;;;;;;;\n" + PACKAGE
     assert sorted(solve(tmp_path, text, LAMP_P, capsys)) == ["(switch a)", "(switch b)"]
+
+
+# IPC-2006 trucks: a load needs every area closer to the door free; with a static `closer` the
+# (forall (imply ...)) compiles to variants that may also require areas `closer` excuses.
+TRUCK = """\
+(define (domain truck)
+  (:requirements :typing :adl)
+  (:types area crate)
+  (:predicates (free ?a - area) (closer ?a1 ?a2 - area) (in ?c - crate ?a - area) (ready ?c - crate))
+  (:action load
+    :parameters (?c - crate ?a1 - area)
+    :precondition (and (ready ?c) (free ?a1)
+                       (forall (?a2 - area) (imply (closer ?a2 ?a1) (free ?a2))))
+    :effect (and (not (free ?a1)) (not (ready ?c)) (in ?c ?a1))))
+"""
+TRUCK_P = """\
+(define (problem truck-1) (:domain truck)
+  (:objects c1 c2 c3 - crate a1 a2 a3 - area)
+  (:init (free a1) (free a2) (free a3) (closer a1 a2) (closer a1 a3) (closer a2 a3)
+         (ready c1) (ready c2) (ready c3))
+  (:goal (and (in c1 a3) (in c2 a2) (in c3 a1))))
+"""
+
+
+def test_dominated_variants_of_one_action_instance_are_grounded_once(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from collections import Counter
+
+    from nowplan.planning.task_grounding import clear_cache, grounding
+
+    (tmp_path / "d.pddl").write_text(TRUCK)
+    (tmp_path / "p.pddl").write_text(TRUCK_P)
+    prob = load_pddl(tmp_path / "d.pddl", tmp_path / "p.pddl")
+    assert len({op.name for op in prob.domain.operators if op.pddl_name == "load"}) > 1  # compiled to variants
+    clear_cache()
+    g = grounding(prob.domain, prob.objects, prob.init, 0)
+    per_instance = Counter((a.operator.pddl_name, a.args) for a in g.actions)
+    assert per_instance and max(per_instance.values()) == 1
+    assert len(per_instance) == 9  # 3 crates x 3 areas
+    # the variant kept needs only the areas `closer` names: a3 (behind a1 and a2) is loaded first, a1 last
+    steps = solve(tmp_path, TRUCK, TRUCK_P, capsys)
+    assert steps[-1] == "(load c3 a1)"
