@@ -30,7 +30,8 @@ def parse(text: str) -> Tree:
             stack[-1].append(done)
         else:
             stack[-1].append(tok)
-    return stack[0][0]
+    # a file's (define ...) form (PDDL 1.x files put (in-package "PDDL") before it), else the first item
+    return next((x for x in stack[0] if isinstance(x, list) and x and x[0] == "define"), stack[0][0])
 
 
 def typed(items: list[Tree]) -> list[tuple[str, tuple[str, ...]]]:

@@ -38,6 +38,10 @@ class UnsupportedPDDLError(PDDLError):
     """The file is valid PDDL but uses a requirement outside nowplan's fragment."""
 
 
+class CompilationBoundError(UnsupportedPDDLError):
+    """Compiling ADL to STRIPS exceeds a bound (disjuncts, operators, quantifier instances)."""
+
+
 class ScenarioError(NowplanError):
     """An unknown or malformed domain / scenario / strategy name or parameter."""
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 from nowplan.core.atoms import Atom, Term, Var
 from nowplan.core.operators import Operator, Precondition
-from nowplan.errors import PDDLError, UnsupportedPDDLError
+from nowplan.errors import CompilationBoundError, PDDLError, UnsupportedPDDLError
 from nowplan.io import pddl_adl as adl
 from nowplan.io.pddl_ast import TRUE
 from nowplan.io.pddl_check import EQUALITY, Checker
@@ -102,13 +102,13 @@ def compile_action(act: ActionDef, d: DomainDef, checker: Checker, static: froze
                                    "objects: read the domain together with a problem (load_pddl)",
                                    path=d.path, line=act.line) from None
     except adl.TooLarge as exc:
-        raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=d.path, line=act.line) from None
+        raise CompilationBoundError(f"{exc}; it is not compiled", path=d.path, line=act.line) from None
     pinned = False
     try:
         variants = adl.compile_action(pre, flat, where)
     except adl.TooLarge as exc:
         if world is None or not act.params:
-            raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=d.path, line=act.line) from None
+            raise CompilationBoundError(f"{exc}; it is not compiled", path=d.path, line=act.line) from None
         variants = _per_binding(act, d, objs, value, derived, str(exc))
         pinned = True
     if not pinned and world is not None and act.params and flat.conditional and len(variants) > LIFTED_ENOUGH:
@@ -178,7 +178,7 @@ def _per_binding(act: ActionDef, d: DomainDef, objs: Callable[[tuple[str, ...]],
     for pool in pools:
         n *= len(pool)
     if n > MAX_BINDINGS:
-        raise UnsupportedPDDLError(f"{why}; compiled per binding of its parameters it would need {n} bindings "
+        raise CompilationBoundError(f"{why}; compiled per binding of its parameters it would need {n} bindings "
                                    f"(bound {MAX_BINDINGS}); it is not compiled", path=d.path, line=act.line)
     out: list[adl.Variant] = []
     for combo in itertools.product(*pools):
@@ -191,12 +191,12 @@ def _per_binding(act: ActionDef, d: DomainDef, objs: Callable[[tuple[str, ...]],
             flat = adl.flatten_effects(act.effect, objs, value, where, derived, sub)
             variants = adl.compile_action(pre, flat, f"{where} ({act.name} {shown})")
         except adl.TooLarge as exc:
-            raise UnsupportedPDDLError(f"{exc}, even compiled per binding of its parameters; it is not compiled",
+            raise CompilationBoundError(f"{exc}, even compiled per binding of its parameters; it is not compiled",
                                        path=d.path, line=act.line) from None
         pins = frozenset((EQUALITY, (v, o), True) for v, o in sub.items())
         out.extend(adl.Variant(v.pre | pins, v.effects) for v in variants)
         if len(out) > adl.MAX_OPERATORS * 16:
-            raise UnsupportedPDDLError(f"{why}; compiled per binding of its parameters it needs more than "
+            raise CompilationBoundError(f"{why}; compiled per binding of its parameters it needs more than "
                                        f"{adl.MAX_OPERATORS * 16} operators; it is not compiled",
                                        path=d.path, line=act.line)
     return out

@@ -42,18 +42,21 @@ class Strata:
 
     stratum: Mapping[str, int]
     recursive: frozenset[str]
+    forced: bool = False  # DomainDef.native_axioms: rules although nothing is recursive
 
     @property
     def native(self) -> frozenset[str]:
-        """The derived predicates evaluated by rules: all of them once one is recursive, else none.
+        """The derived predicates evaluated by rules: all of them once one is recursive (or forced), else none.
 
         Without recursion every derived atom is replaced by its definition
         (exact, and the regression planner and HPN can use the domain); with
         recursion the search evaluates rules anyway, and substituting the
         non-recursive ones into each other (PSR's ``fed`` over ``upstream``)
-        can blow up the disjunctive normal forms.
+        can blow up the disjunctive normal forms.  ``forced`` is the same choice made
+        for a problem whose substituted definitions exceed a bound (IPC-2004
+        philosophers: the goal's seven ``blocked`` atoms, each a disjunction).
         """
-        return frozenset(self.stratum) if self.recursive else frozenset()
+        return frozenset(self.stratum) if self.recursive or self.forced else frozenset()
 
 
 def polarities(f: Formula, positive: bool = True) -> set[tuple[str, bool]]:
@@ -105,7 +108,7 @@ def stratify(d: DomainDef) -> Strata:
 
     for p in sorted(derived):
         level(p, 0)
-    return Strata(stratum, frozenset(recursive))
+    return Strata(stratum, frozenset(recursive), d.native_axioms)
 
 
 def _components(nodes: list[str], succ: Mapping[str, list[str]]) -> dict[str, int]:

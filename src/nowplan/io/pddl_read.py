@@ -40,7 +40,7 @@ from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain, Predicate, Problem
 from nowplan.core.operators import Operator, Precondition
 from nowplan.core.state import State
-from nowplan.errors import ContradictoryGoalError, PDDLError, UnsupportedPDDLError
+from nowplan.errors import CompilationBoundError, ContradictoryGoalError, PDDLError, UnsupportedPDDLError
 from nowplan.io import pddl_adl as adl
 from nowplan.io.pddl_ast import TOTAL_COST, EAnd, Reader, Effect, EForall, ELit, EWhen, FAnd, FAtom, FNot, Formula
 from nowplan.io.pddl_check import EQUALITY, Checker, warn_undeclared
@@ -346,6 +346,21 @@ def load_pddl(
     added to ``domain.conflicts``, so regression prunes impossible subgoals.
     """
     d, checker = _read_domain_def(domain_path)
+    try:
+        return _load_problem(d, checker, problem_path, criticality_path, mutexes)
+    except CompilationBoundError as exc:
+        if not d.derived or stratify(d).native:
+            raise
+        # substituting the derived predicates' definitions blew up a disjunctive normal form (IPC-2004
+        # philosophers: a goal of seven derived atoms, each a disjunction): evaluate them by rules instead,
+        # as for recursive ones, which keeps every derived atom a single fact
+        log.info("%s; evaluating the derived predicates by rules instead of substituting them", exc)
+        return _load_problem(with_auxiliaries(replace(d, native_axioms=True)), checker, problem_path,
+                             criticality_path, mutexes)
+
+
+def _load_problem(d: DomainDef, checker: Checker, problem_path: str | Path, criticality_path: str | Path | None,
+                  mutexes: bool) -> Problem:
     src = read_source(problem_path)
     p = parse_problem(src.text, src.path)
     if p.domain_name and p.domain_name != d.name:
@@ -386,7 +401,7 @@ def load_pddl(
             nnf = adl.to_nnf(p.goal, {}, objects_of(checker, world), value, derived=_derived_map(d))
             disjuncts = adl.dnf(nnf, "the goal")
         except adl.TooLarge as exc:
-            raise UnsupportedPDDLError(f"{exc}; it is not compiled", path=p.path, line=p.goal_line) from None
+            raise CompilationBoundError(f"{exc}; it is not compiled", path=p.path, line=p.goal_line) from None
         if len(disjuncts) == 1:
             goal_atoms = [atom_of(lit) for lit in sorted(disjuncts[0])]
         else:

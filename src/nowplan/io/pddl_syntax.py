@@ -12,6 +12,7 @@ with a line naming them; unknown sections are errors with their line.
 from __future__ import annotations
 
 import logging
+import re
 from dataclasses import dataclass, field
 
 from nowplan.io.pddl_ast import TOTAL_COST, Effect, Formula, NExpr, Reader, TypedName
@@ -50,6 +51,9 @@ class DomainDef:
     actions: list[ActionDef] = field(default_factory=list)
     derived: list[DerivedDef] = field(default_factory=list)
     line: int = 1
+    # evaluate every derived predicate by rules, even without recursion (set by load_pddl when
+    # substituting their definitions exceeds a compilation bound)
+    native_axioms: bool = False
 
 
 @dataclass
@@ -67,7 +71,33 @@ class ProblemDef:
     metric_line: int = 1
 
 
+# PDDL 1.x files (IPC-1998) open with the Lisp directive (in-package "PDDL") before (define ...)
+_IN_PACKAGE = re.compile(r'\(\s*in-package\s+("[^"\n]*"|[^\s()]+)\s*\)', re.IGNORECASE)
+
+
+def _lisp_prefix_end(text: str) -> int:
+    """Where the first form starts: past leading whitespace and ``;`` comments (a scan, no backtracking)."""
+    pos, n = 0, len(text)
+    while pos < n:
+        if text[pos].isspace():
+            pos += 1
+        elif text[pos] == ";":
+            end = text.find("\n", pos)
+            pos = n if end < 0 else end
+        else:
+            break
+    return pos
+
+
 def _define(r: Reader, text: str, kind: str) -> tuple[SList, str, int]:
+    start = _lisp_prefix_end(text)
+    m = _IN_PACKAGE.match(text, start)
+    if m is not None:
+        line = text.count("\n", 0, start) + 1
+        log.warning("%s:%d: the Lisp directive (in-package %s) before (define ...) is ignored (accepted)",
+                    r.path, line, m.group(1))
+        blank = "".join(c if c == "\n" else " " for c in text[start:m.end()])
+        text = text[:start] + blank + text[m.end():]  # same length: the lines of the rest stay right
     items = parse_sexprs(text, r.path)
     if not items:
         raise r.error(f"the file is empty: expected (define ({kind} NAME) ...)", None)
@@ -188,6 +218,11 @@ def _action(r: Reader, sec: SList) -> ActionDef:
             pre = r.formula(val, f"the precondition of {where}")
         elif k == ":effect":
             eff = r.effect(val, f"the effect of {where}")
+        elif k == ":vars":
+            # PDDL 1.x (IPC-1998 ADL files): variables bound by the precondition, not listed in plans
+            raise r.refuse(f"{where} declares :vars (PDDL 1.x variables bound by the precondition), which "
+                           "is not supported; declare them in :parameters instead",
+                           key.line if isinstance(key, Token) else sec.line)
         else:
             raise r.error(f"unknown keyword {k} in {where}; expected :parameters, :precondition or :effect",
                           key.line if isinstance(key, Token) else sec.line)

@@ -15,6 +15,7 @@ grounding into an integer task.
 from __future__ import annotations
 
 import itertools
+import logging
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -22,6 +23,8 @@ from typing import Any
 from nowplan.core.atoms import Atom, Var
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator
+
+log = logging.getLogger(__name__)
 
 
 @dataclass
@@ -216,7 +219,45 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
             facts.setdefault(e.predicate, set()).add(e.args)
             changed.add(e.predicate)
         index.extend(new)
-    return Grounding(actions, reached, statics, operators)
+    return Grounding(_undominated(actions, statics, level), reached, statics, operators)
+
+
+def _undominated(actions: list[Action], statics: frozenset[str], level: int) -> list[Action]:
+    """``actions`` without the dominated variants of one PDDL action instance.
+
+    An ADL action compiled to several operators (``NAME-v1``, ``NAME-v2``, ...) can give, for one
+    binding of its parameters, variants with the same effects whose preconditions differ only in
+    literals of static predicates: IPC-2006 trucks' ``(forall (?a2) (imply (closer ?a2 ?a1)
+    (free ?a2 ?t)))`` is a disjunction per area, ``(not (closer ?a2 ?a1))`` or ``(free ?a2 ?t)``, so
+    a variant may require ``free`` of an area that the static ``closer`` already excuses.  Grounding
+    kept every such variant (336 loads for 72 bindings in trucks p07), which multiplies successors
+    and achievers.  A variant is dropped when another of the same instance, with the same effects
+    and cost, needs a subset of its non-static preconditions at this level (the statics of a
+    grounded action hold): every plan using it can use the other one instead.
+    """
+    groups: dict[tuple[str, tuple[Any, ...]], list[Action]] = {}
+    for act in actions:
+        name = act.operator.pddl_name
+        if name and act.cost_is_state_free:
+            groups.setdefault((name, act.args), []).append(act)
+    dropped: set[int] = set()
+    for group in groups.values():
+        if len(group) < 2:
+            continue
+        conds = [frozenset(a for a in act.preconditions(level) if a.predicate not in statics) for act in group]
+        effs = [frozenset(act.effects()) for act in group]
+        costs = [act.cost() for act in group]
+        for i, act in enumerate(group):
+            for j in range(len(group)):
+                if j == i or id(group[j]) in dropped or effs[j] != effs[i] or costs[j] != costs[i]:
+                    continue
+                if conds[j] < conds[i] or (conds[j] == conds[i] and j < i):
+                    dropped.add(id(act))
+                    break
+    if not dropped:
+        return actions
+    log.debug("grounding: %d dominated action variants dropped", len(dropped))
+    return [a for a in actions if id(a) not in dropped]
 
 
 def _negative_statics_hold(act: Action, statics: frozenset[str], facts: Mapping[str, set[Any]]) -> bool:
