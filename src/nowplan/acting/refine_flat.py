@@ -11,8 +11,8 @@ actions since the last news (a failed action or an exogenous change).
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import replace
 from collections.abc import Hashable
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from nowplan.belief.symbolic import SymbolicBelief
@@ -25,8 +25,8 @@ if TYPE_CHECKING:
 
 CYCLE_VISITS = 3  # visits of one symbolic state that count as a cycle
 # the part of the run's remaining time the root's abstract plan may take under refine-flat: the rest
-# is left to the concrete plan made when no abstract one is found (IPC floor-tile: the top level is as
-# hard as the whole problem, and its search used to take the run's whole budget)
+# is left to the concrete plan made when no abstract one is found (with `nowplan plan`'s node budget a
+# hard top level, IPC floor-tile's is nearly the whole problem, can search until the run's time is out)
 ROOT_ABSTRACT_SHARE = 0.5
 
 
