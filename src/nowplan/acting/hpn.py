@@ -29,7 +29,7 @@ from nowplan.acting.guard import ProgressGuard
 from nowplan.acting.progress import CycleDetector, blind_guard_warning
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
-from nowplan.acting.refine_flat import FlatSteps, refinement_key
+from nowplan.acting.refine_flat import FlatSteps, call_config, refinement_key, root_time_share
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.acting.whole import plan_whole_problem
 from nowplan.belief.protocols import HasHeuristic, check_belief
@@ -224,9 +224,11 @@ class Executive:
         """What the planner reported for a plan made but not pushed yet (method, cpu_s, expanded)."""
         return self._made.get(id(plan), {})
 
-    def make_plan(self, goal: Goal, levels: LevelMap, parent: Frame, max_nodes: int | None = None) -> Plan | None:
+    def make_plan(self, goal: Goal, levels: LevelMap, parent: Frame, max_nodes: int | None = None,
+                  time_share: float = 1.0) -> Plan | None:
         """Plan for ``goal`` at ``levels`` from the current belief (at most ``max_nodes`` expansions
-        if given); ``None`` on failure (traced)."""
+        if given, ``time_share`` of the run's remaining time); ``None`` on failure (traced).  Below
+        the root, forward searches keep the regression budget (refine_flat.call_config)."""
         if self._pending_trigger is not None:
             self.metrics.replans += 1
             self.trace.emit(
@@ -241,6 +243,7 @@ class Executive:
             cfg = m.planner_config(self, parent, goal, cfg) or cfg
         if max_nodes is not None and max_nodes < cfg.max_nodes:
             cfg = replace(cfg, max_nodes=max_nodes, shortcut_nodes=min(cfg.shortcut_nodes, max_nodes))
+        cfg, remaining = call_config(cfg, parent.root, remaining * time_share)
         if remaining < cfg.time_limit:
             cfg = replace(cfg, time_limit=max(remaining, 0.01))
         if cfg.relevant_to is None:  # every call serves the problem's goal: ground what it needs, once
@@ -447,7 +450,8 @@ class Executive:
                     new = self.direct_plan(step.goal, levels, action,
                                            f.plan.levels.floored([action]) is f.plan.levels)
                 if new is None:
-                    new = self.make_plan(step.goal, levels, f)
+                    share = root_time_share(self, f, key, levels)
+                    new = self.make_plan(step.goal, levels, f, time_share=share)
                     if new is not None and action is not None:
                         new = refine_without_swaps(self, new, step.goal, levels, f, action)
                 if new is None:

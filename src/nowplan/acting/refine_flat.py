@@ -12,14 +12,40 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Hashable
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from nowplan.belief.symbolic import SymbolicBelief
+from nowplan.core.levels import LevelMap
+from nowplan.planning.config import PlannerConfig
+from nowplan.planning.regression import concrete
 
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame
 
 CYCLE_VISITS = 3  # visits of one symbolic state that count as a cycle
+# the part of the run's remaining time the root's abstract plan may take under refine-flat: the rest
+# is left to the concrete plan made when no abstract one is found (with `nowplan plan`'s node budget a
+# hard top level, IPC floor-tile's is nearly the whole problem, can search until the run's time is out)
+ROOT_ABSTRACT_SHARE = 0.5
+
+
+def root_time_share(ex: Executive, f: Frame, key: Hashable, levels: LevelMap) -> float:
+    """``ROOT_ABSTRACT_SHARE`` for the root's first, abstract plan under refine-flat, else 1."""
+    if not (f.root and ex.strategy.refine_flat and key not in ex._flat_steps):
+        return 1.0
+    return 1.0 if concrete(ex.domain, levels) else ROOT_ABSTRACT_SHARE
+
+
+def call_config(cfg: PlannerConfig, root: bool, remaining: float) -> tuple[PlannerConfig, float]:
+    """A planner call's settings: below the root (a refinement), a forward search keeps the
+    regression search's node budget ``max_nodes`` even where the strategy gives forward searches a
+    larger one (a PDDL run gets ``nowplan plan``'s, which the time limit ends): a refinement that
+    cannot be made is given up as soon as before, and the executive backtracks, while the root's
+    plans, the whole goal's, get the budget ``nowplan plan`` would."""
+    if not root and cfg.forward_max_nodes is not None and cfg.forward_max_nodes > cfg.max_nodes:
+        cfg = replace(cfg, forward_max_nodes=cfg.max_nodes)
+    return cfg, remaining
 
 
 def refinement_key(f: Frame) -> Hashable:

@@ -112,6 +112,7 @@ def run(args: argparse.Namespace) -> int:
                 " (or 'flat')"
             )
     t0 = time.perf_counter()
+    c0 = time.process_time()
     if args.engine == "fd":
         from nowplan.planning.fd import solve_fd
 
@@ -135,6 +136,7 @@ def run(args: argparse.Namespace) -> int:
         levels = flat_levels() if level is None else LevelMap(level)
         result = plan(domain, problem.objects, problem.init, problem.goal, levels, config)
     elapsed = time.perf_counter() - t0
+    cpu = time.process_time() - c0
     # auxiliary operators (reaching a disjunctive goal) print as "" and are left out
     actions = [s for s in (a.pddl() for a in result.plan.actions) if s] if result.plan is not None else []
     if args.json:
@@ -143,6 +145,7 @@ def run(args: argparse.Namespace) -> int:
             "cost": result.plan.cost(problem.init) if result.plan is not None else None,
             "status": result.status.value,
             "planning_time_s": round(elapsed, 6),
+            "planning_cpu_s": round(cpu, 6),  # this process's CPU in the planner call (parse excluded)
             "method": f"fd:{result.method}" if args.engine == "fd" else result.method or args.engine,
             "engine": args.engine,
             "level": "flat" if level is None else level,
