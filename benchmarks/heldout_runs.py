@@ -124,12 +124,26 @@ def main(doc: str, levels: Mapping[str, tuple[str, dict[str, Any]]],
     ap.add_argument("--time-limit", type=float, default=time_limit)
     ap.add_argument("--out", type=Path, help="JSONL; runs already in it are skipped (resume)")
     ap.add_argument("--table", action="store_true", help="only print the table of --out")
+    ap.add_argument("--recheck", type=Path, help="re-run every run of --out that ended 'limit' with --time-limit, "
+                    "writing the rows here (resumable): was it the machine's load or the run?")
     a = ap.parse_args()
     signal.signal(signal.SIGALRM, _alarm)
     logging.getLogger("nowplan").setLevel(logging.ERROR)  # the runs' warnings are not the table's
     done: list[dict[str, Any]] = []
     if a.out and a.out.exists():
         done = [json.loads(x) for x in a.out.read_text().splitlines() if x.strip()]
+    if a.recheck:
+        eps = episodes()
+        again = [json.loads(x) for x in a.recheck.read_text().splitlines() if x.strip()] if a.recheck.exists() else []
+        seen = {(r["level"], r["strategy"], r["seed"]) for r in again}
+        for r in done:
+            if r["outcome"] == "limit" and (r["level"], r["strategy"], r["seed"]) not in seen:
+                row = run_one(levels, eps, r["level"], r["strategy"], r["seed"], a.max_actions, a.time_limit)
+                again.append(row)
+                with a.recheck.open("a") as fh:
+                    fh.write(json.dumps(row) + "\n")
+        print(verdicts(again) + "\n\n" + table(again))
+        return 0
     if not a.table:
         eps = episodes()
         have = {(r["level"], r["strategy"], r["seed"]) for r in done}
