@@ -1,4 +1,4 @@
-"""What the held-out benchmarks (`heldout7.py`, `heldout8.py`) share: the strategies, one guarded run,
+"""What the held-out benchmarks (`heldout7.py`, `heldout8.py`, `heldout9.py`) share: the strategies, one guarded run,
 the tables and the resumable loop.  Each benchmark names its fault levels and its domains' episodes.
 """
 
@@ -94,6 +94,25 @@ def summary(rows: list[dict[str, Any]]) -> str:
     return "\n".join(out)
 
 
+def verdicts(rows: list[dict[str, Any]]) -> str:
+    """Per fault level: reached and checked in the world, belief-world disagreements, livelocks,
+    crashes, hangs, budget ends (time or actions), other failures, refusals."""
+    out = ["| level | runs (not refused) | reached in the world | reached, world unchecked or false | "
+           "belief-world disagreement | livelock | crash | hang | limit | other failed | refused |",
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for level in sorted({r["level"] for r in rows}):
+        rs = [r for r in rows if r["level"] == level]
+        run = [r for r in rs if r["outcome"] != "refused"]
+        ok = [r for r in run if r["outcome"] == "reached" and r.get("goal_in_world") is True]
+        n = Counter(r["outcome"] for r in run)
+        dis = [r for r in run if r["outcome"] != "reached" and r.get("disagreement")]
+        other = n["failed"] - len([r for r in dis if r["outcome"] == "failed"])
+        out.append(f"| {level} | {len(run)} | {len(ok)} ({100 * len(ok) / max(len(run), 1):.1f} %) | "
+                   f"{n['reached'] - len(ok)} | {len(dis)} | {n['livelock']} | {n['crash']} | {n['hang']} | "
+                   f"{n['limit']} | {other} | {len(rs) - len(run)} |")
+    return "\n".join(out)
+
+
 def main(doc: str, levels: Mapping[str, tuple[str, dict[str, Any]]],
          episodes: Callable[[], Mapping[str, Callable[..., Any]]], time_limit: float) -> int:
     """The benchmark's command line; ``episodes()`` imports the domains' scenario functions."""
@@ -105,12 +124,26 @@ def main(doc: str, levels: Mapping[str, tuple[str, dict[str, Any]]],
     ap.add_argument("--time-limit", type=float, default=time_limit)
     ap.add_argument("--out", type=Path, help="JSONL; runs already in it are skipped (resume)")
     ap.add_argument("--table", action="store_true", help="only print the table of --out")
+    ap.add_argument("--recheck", type=Path, help="re-run every run of --out that ended 'limit' with --time-limit, "
+                    "writing the rows here (resumable): was it the machine's load or the run?")
     a = ap.parse_args()
     signal.signal(signal.SIGALRM, _alarm)
     logging.getLogger("nowplan").setLevel(logging.ERROR)  # the runs' warnings are not the table's
     done: list[dict[str, Any]] = []
     if a.out and a.out.exists():
         done = [json.loads(x) for x in a.out.read_text().splitlines() if x.strip()]
+    if a.recheck:
+        eps = episodes()
+        again = [json.loads(x) for x in a.recheck.read_text().splitlines() if x.strip()] if a.recheck.exists() else []
+        seen = {(r["level"], r["strategy"], r["seed"]) for r in again}
+        for r in done:
+            if r["outcome"] == "limit" and (r["level"], r["strategy"], r["seed"]) not in seen:
+                row = run_one(levels, eps, r["level"], r["strategy"], r["seed"], a.max_actions, a.time_limit)
+                again.append(row)
+                with a.recheck.open("a") as fh:
+                    fh.write(json.dumps(row) + "\n")
+        print(verdicts(again) + "\n\n" + table(again))
+        return 0
     if not a.table:
         eps = episodes()
         have = {(r["level"], r["strategy"], r["seed"]) for r in done}
@@ -127,5 +160,5 @@ def main(doc: str, levels: Mapping[str, tuple[str, dict[str, Any]]],
                     if row["outcome"] != "reached":
                         print(f"{level} {strategy} s{seed}: {row['outcome']}: {row['reason'][:160]}",
                               file=sys.stderr, flush=True)
-    print(summary(done) + "\n\n" + table(done))
+    print(verdicts(done) + "\n\n" + summary(done) + "\n\n" + table(done))
     return 0

@@ -22,6 +22,7 @@ import logging
 import random
 import time
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal
@@ -29,6 +30,8 @@ from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.config import PlannerConfig
+from nowplan.planning.forward import plan_forward
+from nowplan.planning.task import forward_unsupported
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.preimage import achieves, preimage, regress_through, static_drop
@@ -47,6 +50,7 @@ __all__ = [
 ]
 
 log = logging.getLogger(__name__)
+SHORTCUT_SHARE = 0.25  # of a call's time limit, for the shortcuts when the forward search may follow them
 
 
 def axioms_refusal(domain: Domain) -> str:
@@ -75,6 +79,27 @@ def context_allows_forward(context: PlanningContext | None) -> bool:
     """A domain's own estimate (``context.extras["heuristic"]``) and forbidden first steps are for the regression search."""
     return context is None or (context.extras.get("heuristic") is None and not context.extras.get("forbidden_first"))
 
+
+
+def forward_fallback_applies(domain: Domain, levels: LevelMap, config: PlannerConfig,
+                             context: PlanningContext | None) -> bool:
+    """Whether a hierarchical call whose shortcuts failed tries the forward search before the full
+    regression: ``engine="auto"``, an abstract level (a concrete one searched forward already) and
+    a context the forward search may serve."""
+    return config.engine == "auto" and not concrete(domain, levels) and context_allows_forward(context)
+
+
+def _forward_fallback(domain: Domain, objects: Mapping[str, str | None], belief: Any, goal: Goal,
+                      levels: LevelMap, config: PlannerConfig, left: float) -> PlanResult | None:
+    """The forward search at ``levels`` in half the time left (``None``: it does not apply here).
+
+    Seed 002's shortcuts find most hierarchical plans by regression in a few nodes; when both fail,
+    the full regression search can be hopeless where a forward search is quick: a goal that asks
+    for boxes dug out of stacks has subgoals that grow with every box moved aside and a branching
+    of every place a box may be put (the warehouse held-out domain, issue 14: 2,000 regression
+    nodes in ~9 CPU s without a plan, the forward search at the same level in 8 expansions).
+    """
+    return plan_forward(domain, objects, belief, goal, levels, replace(config, time_limit=max(left / 2, 0.01)))
 
 
 def _atom_order(a: Atom) -> tuple[Any, ...]:
@@ -126,8 +151,6 @@ def _plan(
     if config.engine == "forward" or (
         config.engine == "auto" and context_allows_forward(context) and concrete(domain, levels)
     ):
-        from nowplan.planning.forward import plan_forward
-
         forward = plan_forward(domain, objects, belief, goal, levels, config)
         if forward is not None:
             return forward
@@ -149,6 +172,13 @@ def _plan(
         """An attempt's expansions: its own budget, within what is left of ``call_nodes``."""
         return nodes if config.call_nodes <= 0 else min(nodes, config.call_nodes - search.expanded)
 
+    # a hierarchical call that may fall back on the forward search keeps most of its time for it:
+    # the shortcuts, meant to be quick, get a quarter (they ran into the call's whole time limit);
+    # a goal of one atom, which has no shortcuts, gets a full search within their budget instead
+    fallback = forward_fallback_applies(domain, levels, config, context) and forward_unsupported(domain, belief) is None
+    deadline = search.deadline
+    if fallback:
+        search.deadline = min(deadline, search.now() + config.time_limit * SHORTCUT_SHARE)
     order: list[Atom] | None = None
     if config.serialization and len(goal) > 1:
         order = sorted(goal.atoms, key=_atom_order)  # the atoms' own order, compared in C
@@ -175,7 +205,25 @@ def _plan(
             attempts.append(f"monotonic:{result[0].value}")
             method = "monotonic"
     spent = config.call_nodes > 0 and search.expanded >= config.call_nodes
-    if dead is not None:
+    proved = False  # a bounded full search that ran out of subgoals: no plan at these levels
+    if fallback and dead is None and not attempts and not spent and search.now() < search.deadline:
+        # no shortcut ran (a goal of one atom): a full search within the shortcuts' budget stands in
+        result = search.run(goal, budget(config.shortcut_nodes))
+        attempts.append(f"bounded:{result[0].value}")
+        proved = result[0] is PlanStatus.UNSOLVABLE
+    spent = config.call_nodes > 0 and search.expanded >= config.call_nodes
+    search.deadline = deadline
+    if (dead is None and result[0] is not PlanStatus.SOLVED and attempts and not spent and fallback
+            and not proved and search.now() < search.deadline):
+        forward = _forward_fallback(domain, objects, belief, goal, levels, config, search.deadline - search.now())
+        if forward is not None:
+            attempts.append(forward.attempts[-1] if forward.attempts else "forward")
+            if forward.solved:
+                expanded = forward.expanded + search.expanded
+                search.release()
+                return replace(forward, attempts=tuple(attempts), expanded=expanded,
+                               cpu_time_s=time.process_time() - t_cpu)
+    if dead is not None or proved:
         pass
     elif result[0] is not PlanStatus.SOLVED and spent:
         result = (PlanStatus.NODE_LIMIT, None,
