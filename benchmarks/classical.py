@@ -83,7 +83,8 @@ def _row(domain: str, problem: Path, run: Run) -> dict[str, Any]:
                         run.cost, cost)
     return {"domain": domain, "instance": problem.stem, "planner": run.planner, "solved": solved,
             "wall_s": round(run.wall_s, 4), "cost": cost, "expansions": run.expansions, "method": run.method,
-            "status": status, "planning_s": run.planning_s, "valid": valid, "cpu_s": run.cpu_s}
+            "status": status, "planning_s": run.planning_s, "valid": valid, "cpu_s": run.cpu_s,
+            "evaluated": run.evaluated}
 
 
 def _describe(r: dict[str, Any]) -> str:

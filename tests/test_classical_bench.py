@@ -17,7 +17,7 @@ import pytest
 
 from benchmarks.classical.generate import DOMAINS, GENERATORS, INSTANCES, domain_file, generate, instance_files, \
     write_instances
-from benchmarks.classical.harness import check_plan, fd_expansions, parse_action, read_fd_plan
+from benchmarks.classical.harness import check_plan, fd_evaluated, fd_expansions, parse_action, read_fd_plan
 from benchmarks.classical.summary import FD, OURS, markdown, read_csv, write_csv
 from nowplan.io.pddl_read import load_pddl
 
@@ -107,6 +107,16 @@ def test_parsing_helpers(tmp_path: Path) -> None:
     assert fd_expansions("no search") is None
 
 
+def test_fd_evaluated_is_read_apart_from_expanded() -> None:
+    # FD's lazy search counts dead ends as evaluated, not expanded; nowplan's lazy "expanded" counts them
+    # (IPC-2006 trucks p07, lama-first: benchmarks/results/trucks_hff)
+    log = ("Expanded 5041 state(s).\nReopened 0 state(s).\nEvaluated 24572 state(s).\n"
+           "Generated 112108 state(s).\nDead ends: 19530 state(s).\n")
+    assert fd_expansions(log) == 5041
+    assert fd_evaluated(log) == 24572
+    assert fd_evaluated("no search") is None
+
+
 def _row(inst: str, planner: str, solved: bool, wall: float, cost: float | None, exp: int | None) -> dict[str, object]:
     return {"domain": "toy", "instance": inst, "planner": planner, "solved": solved, "wall_s": wall, "cost": cost,
             "expansions": exp, "method": "x:y" if planner == OURS else "lama-first", "status": "solved",
@@ -120,6 +130,7 @@ def test_summary_is_computed_from_the_rows(tmp_path: Path) -> None:
     write_csv(rows, tmp_path / "c.csv")
     back = read_csv(tmp_path / "c.csv")
     assert back[0]["solved"] is True and back[4]["cost"] is None and back[1]["expansions"] == 50
+    assert back[1]["evaluated"] is None  # (no such column in the rows: read as absent)
     text = markdown(back, {"command": "x", "time_limit": 30})
     assert "| toy | 3 | 2 | 3 | 2 | 2.00× | 4.00× | 1.100 | 1.200 |" in text
     assert "nowplan solves 2 of 3, lama-first 3 — **not met**" in text

@@ -5,7 +5,12 @@
   JSON; :func:`solve_in_process` calls the same command in this process.
 * :func:`run_fd` runs Fast Downward's driver from the ``up_fast_downward``
   package (``--alias lama-first`` by default) and reads its plan file and its
-  ``Expanded N state(s)`` line.
+  ``Expanded N state(s)`` and ``Evaluated N state(s)`` lines.  Compare
+  nowplan's lazy searches (gbfs, lama) with FD's *Evaluated* count: nowplan's
+  ``expanded`` counts every new state taken out of the open lists, dead ends
+  (h = inf) included, which is FD's lazy search's evaluated count; FD's
+  *Expanded* leaves the dead ends out (IPC-2006 trucks p07, lama-first: 5,041
+  expanded, 24,572 evaluated, 19,530 dead ends; benchmarks/results/trucks_hff).
 * :func:`check_plan` replays a plan in nowplan's core model (every
   precondition, then the goal) and returns its cost.
 
@@ -39,6 +44,7 @@ log = logging.getLogger(__name__)
 ROOT = Path(__file__).resolve().parents[2]
 SRC = ROOT / "src"
 _EXPANDED = re.compile(r"Expanded (\d+) state\(s\)\.")
+_EVALUATED = re.compile(r"Evaluated (\d+) state\(s\)\.")
 _PLANNER_TIME = re.compile(r"Planner time: ([0-9.]+)s")
 _ACTION = re.compile(r"^\(\s*([^\s()]+)((?:\s+[^\s()]+)*)\s*\)$")
 
@@ -57,6 +63,7 @@ class Run:
     method: str = ""
     planning_s: float | None = None  # the planner's own time, without process start, if it reports one
     cpu_s: float | None = None  # user + system CPU of the process and the children it waited for
+    evaluated: int | None = None  # FD only: states evaluated (its lazy search's new states, dead ends included)
 
 
 def fd_driver() -> Path | None:
@@ -161,6 +168,12 @@ def fd_expansions(stdout: str) -> int | None:
     return int(found[-1]) if found else None
 
 
+def fd_evaluated(stdout: str) -> int | None:
+    """The last ``Evaluated N state(s).`` count of a Fast Downward log: like nowplan's lazy ``expanded``."""
+    found = _EVALUATED.findall(stdout)
+    return int(found[-1]) if found else None
+
+
 def run_fd(domain: Path, problem: Path, time_limit: float, *, alias: str = "lama-first",
            memory_mb: int | None = None) -> Run:
     """Fast Downward ``--alias ALIAS`` in a temporary directory, killed after ``time_limit`` seconds."""
@@ -177,17 +190,18 @@ def run_fd(domain: Path, problem: Path, time_limit: float, *, alias: str = "lama
         code, out, _err, wall = _timed(cmd, time_limit, cwd=Path(tmp))
         cpu = _last_cpu[0]
         actions, cost = read_fd_plan(plan_file)
-    expansions = fd_expansions(out)
+    expansions, evaluated = fd_expansions(out), fd_evaluated(out)
     took = _PLANNER_TIME.findall(out)
     planning_s = float(took[-1]) if took else None
     if code is None:
-        return Run(name, False, "time_limit (killed)", wall, expansions=expansions, method=alias, cpu_s=cpu)
+        return Run(name, False, "time_limit (killed)", wall, expansions=expansions, method=alias, cpu_s=cpu,
+                   evaluated=evaluated)
     if not actions and code != 0:
         status = {11: "unsolvable", 12: "unsolved (incomplete search)", 22: "memory_limit", 23: "time_limit",
                   24: "time_limit"}.get(code, f"no plan (exit {code})")
-        return Run(name, False, status, wall, expansions=expansions, method=alias, cpu_s=cpu)
+        return Run(name, False, status, wall, expansions=expansions, method=alias, cpu_s=cpu, evaluated=evaluated)
     return Run(name, True, "solved", wall, actions, cost if cost is not None else float(len(actions)),
-               expansions, alias, planning_s, cpu)
+               expansions, alias, planning_s, cpu, evaluated)
 
 
 def parse_action(text: str) -> tuple[str, list[str]]:

@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 FIELDS = ["domain", "instance", "planner", "solved", "wall_s", "cost", "expansions", "method", "status",
-          "planning_s", "valid", "cpu_s"]
+          "planning_s", "valid", "cpu_s", "evaluated"]  # evaluated: FD's count, like nowplan's lazy expanded
 OURS, FD = "nowplan", "fd-lama-first"
 WALL_FACTOR, COST_FACTOR, EXPANSIONS, FAST_S = 2.0, 1.10, 1000, 1.0
 
@@ -55,6 +55,7 @@ def read_csv(path: Path) -> list[Row]:
                 "expansions": _num(r["expansions"], int),
                 "planning_s": _num(r.get("planning_s", ""), float),
                 "cpu_s": _num(r.get("cpu_s", ""), float),
+                "evaluated": _num(r.get("evaluated", "") or "", int),  # (absent in older files)
             })
     return rows
 
