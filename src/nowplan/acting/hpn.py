@@ -26,7 +26,7 @@ from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.guard import ProgressGuard
-from nowplan.acting.progress import CycleDetector, blind_guard_warning
+from nowplan.acting.progress import Cycle, blind_guard_warning
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
 from nowplan.acting.refine_flat import FlatSteps, refinement_key
@@ -360,13 +360,14 @@ class Executive:
         """After a cycle: reconsidering mechanisms keep the current plans until there is progress."""
         return self.guard.committed
 
-    @property
-    def progress(self) -> CycleDetector:
-        return self.guard.cycles
-
     def situation(self) -> Hashable | None:
         """The belief's fingerprint and the plan stack's goals."""
         return self.guard.situation(self, self.belief, (f.plan.goal for f in self.stack))
+
+    def after_cycle(self, cyc: Cycle) -> None:
+        """A cycle closed: every mechanism hears of it (the guard then commits to the current plans)."""
+        for m in self.mechanisms:
+            m.after_cycle(self, cyc)
 
     def give_up(self, outcome: Outcome, reason: str) -> None:
         """A mechanism ends the run after this action with ``reason`` (checked by :meth:`watch`)."""
@@ -390,9 +391,7 @@ class Executive:
         stages = tuple(PlanStep(None, g) for g in self.problem.stages)
         root_plan = Plan((PlanStep(None, TRUE), *stages, PlanStep(None, goal)), self.base_levels)
         self.push(root_plan, None, root=True)
-        start = self.situation()
-        if start is not None:
-            self.progress.start(start)
+        self.guard.start(self)
         outcome, reason = Outcome.REACHED, ""
         consecutive_failures = 0
         looks = 0  # fresh looks since the last plan (acting/reobserve.py)
