@@ -11,11 +11,19 @@ The plan-stack executive (:mod:`nowplan.acting.hpn`) and the online policy
   atom gained (:class:`~nowplan.acting.progress.RepeatedActions`: a loop the fingerprints miss
   because the belief drifts)?
 * is the situation (the belief's fingerprint and the plan stack's goals) one held before?  Then a
-  cycle is reported to the host (:meth:`GuardHost.after_cycle`) and it *commits* to its current
-  plans: the executive's reconsidering mechanisms (aggressive, selective, serendipity, the monitor)
-  keep them, the online policy follows its plan's rest instead of replanning, until a belief not
-  held before ends the commitment.  A clean cycle while committed counts towards
-  ``Strategy.max_cycles``, after which the run ends as a livelock with the cycle named.
+  cycle is reported to the host (:meth:`GuardHost.after_cycle`); unless it is the clean cycle that
+  reaches ``Strategy.max_cycles`` since the last progress (the run then ends as a livelock with the
+  cycle named), the host *commits* to its current plans (:meth:`GuardHost.commit`): the
+  executive's reconsidering mechanisms (aggressive, selective, serendipity, the monitor) keep them,
+  the online policy follows the rest of the plan it acted on instead of replanning.  The situations
+  seen before are forgotten: only cycles made while committed count.
+
+Progress — a belief never held before, reached while committed — ends the commitment
+(:attr:`ProgressGuard.committed`: the executive's mechanisms reconsider again) and restarts the
+count of cycles and of failed cycles, for both hosts (:meth:`GuardHost.end_commitment` names what
+that means for the host's trace: the online policy still follows the rest of its plan, until it is
+done or its next step is not applicable).  The count of stalls is not restarted: a failure is never
+progress.
 """
 
 from __future__ import annotations
@@ -58,12 +66,25 @@ class GuardHost(Protocol):
     @property
     def last_failed(self) -> tuple[Action, Observation] | None: ...
 
+    @property
+    def actor(self) -> str:
+        """Who had committed, in a livelock's reason ("the executive", "the policy")."""
+        ...
+
     def situation(self) -> Hashable | None:
         """The guard's situation now (:meth:`ProgressGuard.situation`), or None without a fingerprint."""
         ...
 
     def after_cycle(self, cyc: Cycle) -> None:
-        """A cycle closed and the host is about to commit to its current plans."""
+        """A cycle closed (before the guard decides between a livelock and a commitment)."""
+        ...
+
+    def commit(self, cyc: Cycle) -> str:
+        """Commit to the current plans after ``cyc``; what was committed to, for the trace's note."""
+        ...
+
+    def end_commitment(self) -> str:
+        """Progress ended the commitment; what that means for the host, for the trace's note."""
         ...
 
 
@@ -89,7 +110,7 @@ class ProgressGuard:
             if self.committed:  # progress: a belief never held before ends the commitment
                 self.committed = False
                 self.cycles.forget(cycles=True)
-                ex.trace.emit("note", text="progress: a belief not held before; commitment ends")
+                ex.trace.emit("note", text=f"progress: a belief not held before; {ex.end_commitment()}")
         return situation(fp, goals)
 
     def start(self, ex: GuardHost) -> None:
@@ -130,10 +151,9 @@ class ProgressGuard:
         if cyc.clean and self.cycles.livelocked:
             return Outcome.LIVELOCK, (
                 f"livelock: cycle {cyc.count} of at most {self.cycles.max_cycles}: {cyc.describe()}, "
-                "although the acting loop had committed to its plan"
+                f"although {ex.actor} had committed to its plan"
             )
         self.committed = True
         self.cycles.forget(keep=now)
-        ex.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plans "
-                      "(no reconsideration or replanning until the belief is one not held before)")
+        ex.trace.emit("note", text=f"progress: {cyc.describe()}; {ex.commit(cyc)}")
         return None

@@ -364,10 +364,19 @@ class Executive:
         """The belief's fingerprint and the plan stack's goals."""
         return self.guard.situation(self, self.belief, (f.plan.goal for f in self.stack))
 
+    actor = "the executive"  # who had committed, in a livelock's reason
+
     def after_cycle(self, cyc: Cycle) -> None:
-        """A cycle closed: every mechanism hears of it (the guard then commits to the current plans)."""
+        """A cycle closed: every mechanism hears of it (before the guard's livelock check)."""
         for m in self.mechanisms:
             m.after_cycle(self, cyc)
+
+    def commit(self, cyc: Cycle) -> str:
+        """The guard commits: the reconsidering mechanisms read :attr:`committed` and keep the plans."""
+        return "committing to the current plans (no reconsideration until the belief is one not held before)"
+
+    def end_commitment(self) -> str:
+        return "commitment ends"
 
     def give_up(self, outcome: Outcome, reason: str) -> None:
         """A mechanism ends the run after this action with ``reason`` (checked by :meth:`watch`)."""

@@ -205,12 +205,21 @@ class OnlinePolicy:
         """The belief's fingerprint and the goal."""
         return self.guard.situation(self, self.belief, (self.problem.goal,))
 
+    actor = "the policy"  # who had committed, in a livelock's reason
+
     def after_cycle(self, cyc: Cycle) -> None:
-        """A cycle closed: commit to the rest of the plan just acted on instead of replanning."""
+        """A cycle closed: nothing to tell (the policy has no reconsidering mechanisms)."""
+
+    def commit(self, cyc: Cycle) -> str:
+        """Commit to the rest of the plan just acted on instead of replanning after every action."""
         plan = self._acting
         self._tail = plan[1:] if self._acted_ok else plan  # a failed first action is tried again
-        self.trace.emit("note", text=f"commitment: the current plan's {len(self._tail)} remaining action(s) "
-                        "instead of replanning after every action")
+        return (f"committing to the current plan ({len(self._tail)} action(s)) instead of replanning after "
+                "every action")
+
+    def end_commitment(self) -> str:
+        # the guard's count restarts; the rest of the plan committed to is still followed (see _committed_step)
+        return "the count of cycles restarts"
 
     def _watch(self, obs: Observation, plan: list[Action]) -> tuple[Outcome, str] | None:
         """The progress guard after ``plan``'s first action: commit to its rest on a cycle; the run's end."""
