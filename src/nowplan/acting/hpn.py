@@ -354,7 +354,9 @@ class Executive:
         self._pending_trigger = trigger
         self._pending_reason = reason
 
-    # -- the progress guard (acting/guard.py) ------------------------------------------
+    # -- the progress guard's host (acting/guard.py) ------------------------------------
+    actor = "the executive"  # who had committed, in a livelock's reason
+
     @property
     def committed(self) -> bool:
         """After a cycle: reconsidering mechanisms keep the current plans until there is progress."""
@@ -364,27 +366,20 @@ class Executive:
         """The belief's fingerprint and the plan stack's goals."""
         return self.guard.situation(self, self.belief, (f.plan.goal for f in self.stack))
 
-    actor = "the executive"  # who had committed, in a livelock's reason
-
     def after_cycle(self, cyc: Cycle) -> None:
         """A cycle closed: every mechanism hears of it (before the guard's livelock check)."""
         for m in self.mechanisms:
             m.after_cycle(self, cyc)
 
-    def commit(self, cyc: Cycle) -> str:
-        """The guard commits: the reconsidering mechanisms read :attr:`committed` and keep the plans."""
+    def commit(self, cyc: Cycle) -> str:  # the reconsidering mechanisms read :attr:`committed`
         return "committing to the current plans (no reconsideration until the belief is one not held before)"
 
     def end_commitment(self) -> str:
         return "commitment ends"
 
     def give_up(self, outcome: Outcome, reason: str) -> None:
-        """A mechanism ends the run after this action with ``reason`` (checked by :meth:`watch`)."""
+        """A mechanism ends the run after this action with ``reason`` (checked by the guard's watch)."""
         self.guard.give_up(outcome, reason)
-
-    def watch(self, obs: Observation) -> tuple[Outcome, str] | None:
-        """After an action and the reconsiderations: a livelock's or a stall's outcome, or None."""
-        return self.guard.watch(self, obs)
 
     def goal_holds(self) -> bool:
         return self.domain.satisfies(self.truth, self.problem.goal)
@@ -495,7 +490,7 @@ class Executive:
                 self.reconsider()
                 if self.strategy.refine_flat:
                     self._flat_steps.check_cycle(self)
-                stop = self.watch(self.last_observation)
+                stop = self.guard.watch(self, self.last_observation)  # a livelock's or a stall's end
                 if stop is not None:
                     outcome, reason = stop
                     break
