@@ -1,6 +1,8 @@
-"""The executive's progress guard (issue 14): no loop that only a budget ends.
+"""The progress guard of both acting loops (issue 14): no loop that only a budget ends.
 
-After every action :meth:`ProgressGuard.watch` asks, in order:
+The plan-stack executive (:mod:`nowplan.acting.hpn`) and the online policy
+(:mod:`nowplan.acting.online`) each hold one :class:`ProgressGuard` and are its
+:class:`GuardHost`.  After every action :meth:`ProgressGuard.watch` asks, in order:
 
 * did a mechanism give up (:meth:`ProgressGuard.give_up`, e.g. the monitor's escalation)?
 * has the same action failed the same way, or have actions made no progress, too often in a row
@@ -9,27 +11,81 @@ After every action :meth:`ProgressGuard.watch` asks, in order:
   atom gained (:class:`~nowplan.acting.progress.RepeatedActions`: a loop the fingerprints miss
   because the belief drifts)?
 * is the situation (the belief's fingerprint and the plan stack's goals) one held before?  Then a
-  cycle is reported to every mechanism and the executive *commits* to its current plans: the
-  reconsidering mechanisms (aggressive, selective, serendipity, the monitor) keep them until a
-  belief not held before ends the commitment.  A clean cycle while committed counts towards
-  ``Strategy.max_cycles``, after which the run ends as a livelock with the cycle named.
+  cycle is reported to the host (:meth:`GuardHost.after_cycle`); unless it is the clean cycle that
+  reaches ``Strategy.max_cycles`` since the last progress (the run then ends as a livelock with the
+  cycle named), the host *commits* to its current plans (:meth:`GuardHost.commit`): the
+  executive's reconsidering mechanisms (aggressive, selective, serendipity, the monitor) keep them,
+  the online policy follows the rest of the plan it acted on instead of replanning.  The situations
+  seen before are forgotten: only cycles made while committed count.
+
+Progress — a belief never held before, reached while committed — ends the commitment
+(:attr:`ProgressGuard.committed`: the executive's mechanisms reconsider again) and restarts the
+count of cycles and of failed cycles, for both hosts (:meth:`GuardHost.end_commitment` names what
+that means for the host's trace: the online policy still follows the rest of its plan, until it is
+done or its next step is not applicable).  The count of stalls is not restarted: a failure is never
+progress.
 """
 
 from __future__ import annotations
 
 from collections.abc import Hashable, Iterable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
-from nowplan.acting.metrics import Outcome
+from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.progress import (
     Cycle, CycleDetector, RepeatedActions, failed_cycles_reason, repeated_actions_reason, situation, situation_of,
     stall_reason,
 )
 from nowplan.core.atoms import Goal
+from nowplan.trace import Trace
 from nowplan.worlds.base import Observation
 
 if TYPE_CHECKING:
-    from nowplan.acting.hpn import Executive
+    from nowplan.acting.strategy import Strategy
+    from nowplan.core.domain import Domain, Problem
+    from nowplan.core.operators import Action
+
+
+class GuardHost(Protocol):
+    """What the guard reads of an acting loop (the executive, the online policy)."""
+
+    @property
+    def trace(self) -> Trace: ...
+    @property
+    def metrics(self) -> Metrics: ...
+    @property
+    def strategy(self) -> Strategy: ...
+    @property
+    def domain(self) -> Domain: ...
+    @property
+    def problem(self) -> Problem: ...
+    @property
+    def truth(self) -> Any: ...
+    @property
+    def last_action(self) -> Action | None: ...
+    @property
+    def last_failed(self) -> tuple[Action, Observation] | None: ...
+
+    @property
+    def actor(self) -> str:
+        """Who had committed, in a livelock's reason ("the executive", "the policy")."""
+        ...
+
+    def situation(self) -> Hashable | None:
+        """The guard's situation now (:meth:`ProgressGuard.situation`), or None without a fingerprint."""
+        ...
+
+    def after_cycle(self, cyc: Cycle) -> None:
+        """A cycle closed (before the guard decides between a livelock and a commitment)."""
+        ...
+
+    def commit(self, cyc: Cycle) -> str:
+        """Commit to the current plans after ``cyc``; what was committed to, for the trace's note."""
+        ...
+
+    def end_commitment(self) -> str:
+        """Progress ended the commitment; what that means for the host, for the trace's note."""
+        ...
 
 
 class ProgressGuard:
@@ -46,7 +102,7 @@ class ProgressGuard:
         """A mechanism ends the run after this action with ``reason``."""
         self._give_up = (outcome, reason)
 
-    def situation(self, ex: Executive, belief: Any, goals: Iterable[Goal]) -> Hashable:
+    def situation(self, ex: GuardHost, belief: Any, goals: Iterable[Goal]) -> Hashable:
         """The belief's fingerprint and the plan stack's goals; a belief not held before ends a commitment."""
         fp = situation_of(belief)  # (a belief without a fingerprint: a situation never seen before)
         if fp not in self._beliefs_seen:
@@ -54,10 +110,16 @@ class ProgressGuard:
             if self.committed:  # progress: a belief never held before ends the commitment
                 self.committed = False
                 self.cycles.forget(cycles=True)
-                ex.trace.emit("note", text="progress: a belief not held before; commitment ends")
+                ex.trace.emit("note", text=f"progress: a belief not held before; {ex.end_commitment()}")
         return situation(fp, goals)
 
-    def watch(self, ex: Executive, obs: Observation) -> tuple[Outcome, str] | None:
+    def start(self, ex: GuardHost) -> None:
+        """The situation before the first action."""
+        start = ex.situation()
+        if start is not None:
+            self.cycles.start(start)
+
+    def watch(self, ex: GuardHost, obs: Observation) -> tuple[Outcome, str] | None:
         """After an action and the reconsiderations: the run's end (outcome, reason), or None."""
         if self._give_up is not None:
             return self._give_up
@@ -82,18 +144,16 @@ class ProgressGuard:
             return Outcome.FAILED, failed_cycles_reason(cyc, self.cycles.failed_cycles, ex.last_failed)
         return self._on_cycle(ex, cyc, now)
 
-    def _on_cycle(self, ex: Executive, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:
+    def _on_cycle(self, ex: GuardHost, cyc: Cycle, now: Hashable) -> tuple[Outcome, str] | None:
         ex.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
                       text=cyc.describe())
-        for m in ex.mechanisms:
-            m.after_cycle(ex, cyc)
+        ex.after_cycle(cyc)
         if cyc.clean and self.cycles.livelocked:
             return Outcome.LIVELOCK, (
                 f"livelock: cycle {cyc.count} of at most {self.cycles.max_cycles}: {cyc.describe()}, "
-                "although the executive had committed to its plan"
+                f"although {ex.actor} had committed to its plan"
             )
         self.committed = True
         self.cycles.forget(keep=now)
-        ex.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plans "
-                      "(no reconsideration until the belief is one not held before)")
+        ex.trace.emit("note", text=f"progress: {cyc.describe()}; {ex.commit(cyc)}")
         return None

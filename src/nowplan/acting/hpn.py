@@ -26,7 +26,7 @@ from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.guard import ProgressGuard
-from nowplan.acting.progress import CycleDetector, blind_guard_warning
+from nowplan.acting.progress import Cycle, blind_guard_warning
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
 from nowplan.acting.refine_flat import FlatSteps, call_config, refinement_key, root_time_share
@@ -357,27 +357,32 @@ class Executive:
         self._pending_trigger = trigger
         self._pending_reason = reason
 
-    # -- the progress guard (acting/guard.py) ------------------------------------------
+    # -- the progress guard's host (acting/guard.py) ------------------------------------
+    actor = "the executive"  # who had committed, in a livelock's reason
+
     @property
     def committed(self) -> bool:
         """After a cycle: reconsidering mechanisms keep the current plans until there is progress."""
         return self.guard.committed
 
-    @property
-    def progress(self) -> CycleDetector:
-        return self.guard.cycles
-
     def situation(self) -> Hashable | None:
         """The belief's fingerprint and the plan stack's goals."""
         return self.guard.situation(self, self.belief, (f.plan.goal for f in self.stack))
 
-    def give_up(self, outcome: Outcome, reason: str) -> None:
-        """A mechanism ends the run after this action with ``reason`` (checked by :meth:`watch`)."""
-        self.guard.give_up(outcome, reason)
+    def after_cycle(self, cyc: Cycle) -> None:
+        """A cycle closed: every mechanism hears of it (before the guard's livelock check)."""
+        for m in self.mechanisms:
+            m.after_cycle(self, cyc)
 
-    def watch(self, obs: Observation) -> tuple[Outcome, str] | None:
-        """After an action and the reconsiderations: a livelock's or a stall's outcome, or None."""
-        return self.guard.watch(self, obs)
+    def commit(self, cyc: Cycle) -> str:  # the reconsidering mechanisms read :attr:`committed`
+        return "committing to the current plans (no reconsideration until the belief is one not held before)"
+
+    def end_commitment(self) -> str:
+        return "commitment ends"
+
+    def give_up(self, outcome: Outcome, reason: str) -> None:
+        """A mechanism ends the run after this action with ``reason`` (checked by the guard's watch)."""
+        self.guard.give_up(outcome, reason)
 
     def goal_holds(self) -> bool:
         return self.domain.satisfies(self.truth, self.problem.goal)
@@ -393,9 +398,7 @@ class Executive:
         stages = tuple(PlanStep(None, g) for g in self.problem.stages)
         root_plan = Plan((PlanStep(None, TRUE), *stages, PlanStep(None, goal)), self.base_levels)
         self.push(root_plan, None, root=True)
-        start = self.situation()
-        if start is not None:
-            self.progress.start(start)
+        self.guard.start(self)
         outcome, reason = Outcome.REACHED, ""
         consecutive_failures = 0
         looks = 0  # fresh looks since the last plan (acting/reobserve.py)
@@ -491,7 +494,7 @@ class Executive:
                 self.reconsider()
                 if self.strategy.refine_flat:
                     self._flat_steps.check_cycle(self)
-                stop = self.watch(self.last_observation)
+                stop = self.guard.watch(self, self.last_observation)  # a livelock's or a stall's end
                 if stop is not None:
                     outcome, reason = stop
                     break

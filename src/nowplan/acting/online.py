@@ -24,7 +24,7 @@ import logging
 import math
 import random
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Hashable
 from dataclasses import replace
 from typing import Any
 
@@ -33,10 +33,8 @@ from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.reobserve import look_again
-from nowplan.acting.progress import (
-    CycleDetector, RepeatedActions, blind_guard_warning, failed_cycles_reason, repeated_actions_reason, situation,
-    situation_of, stall_reason,
-)
+from nowplan.acting.guard import ProgressGuard
+from nowplan.acting.progress import Cycle, blind_guard_warning
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.acting.whole import plan_whole_problem
@@ -125,12 +123,15 @@ class OnlinePolicy:
         self.streams = belief.streams if isinstance(belief, HasStreams) else None
         self.levels = flat_levels()
         self._tail: list[Action] = []  # after a cycle: the rest of the plan committed to
-        # progress ends a commitment's count of cycles: a situation never held before, reached while
-        # committed (as the plan-stack executive does); without it, cycles made before and after a
-        # long stretch of progress added up to a livelock (a held-out lab domain, online, seed 12)
-        self._seen: set[Any] = set()
-        self._committed = False
-        self._last_failed: tuple[Action, Observation] | None = None  # the last action that failed
+        # the progress guard (acting/guard.py), shared with the plan-stack executive: progress (a
+        # belief never held before, reached while committed) ends a commitment's count of cycles;
+        # without it, cycles made before and after a long stretch of progress added up to a
+        # livelock (a held-out lab domain, online, seed 12)
+        self.guard = ProgressGuard(strategy.max_cycles)
+        self.last_action: Action | None = None
+        self.last_failed: tuple[Action, Observation] | None = None  # the last action that failed
+        self._acting: list[Action] = []  # the plan whose first action was just executed
+        self._acted_ok = True  # whether that action succeeded
         self.planning_s = 0.0  # time (on :attr:`clock`) spent planning and binding streams
         self.constrained_ok = 0
         self.constrained_tried = 0
@@ -176,8 +177,9 @@ class OnlinePolicy:
                         cost=first.cost(self.belief), n=self.metrics.actions)
         obs: Observation = self.world.execute(first)
         self.metrics.actions += 1
+        self.last_action = first
         if not obs.success:
-            self._last_failed = (first, obs)
+            self.last_failed = (first, obs)
         self.metrics.action_counts[first.name] += 1
         self.metrics.execution_cost += first.cost(self.belief)
         self.belief.update(first, obs)
@@ -193,48 +195,40 @@ class OnlinePolicy:
             self.on_action(self, first)
         return obs
 
-    def _watch(self, progress: CycleDetector, obs: Observation, plan: list[Action]) -> tuple[Outcome, str] | None:
-        """The progress guard after an action: commit to ``plan``'s rest on a cycle; a livelock's outcome."""
-        now = self._situation()
-        if now is None:
-            return None
-        if now not in self._seen:
-            self._seen.add(now)
-            if self._committed:
-                self._committed = False
-                progress.forget(cycles=True)
-                self.trace.emit("note", text="progress: a belief not held before; the count of cycles restarts")
-        failure = None if obs.success else (plan[0].key, obs.info.get("reason"))
-        cyc = progress.observe(now, succeeded=obs.success, exogenous=bool(obs.exogenous), failure=failure)
-        if progress.stalled >= self.strategy.max_stalls:
-            return Outcome.FAILED, stall_reason(progress.stalled, plan[0], obs)
-        achieved = self.domain.count_holding(truth_of(self.domain, self.belief), self.problem.goal.atoms)
-        loop = self._repeats.observe(plan[0].pddl(), succeeded=obs.success, exogenous=bool(obs.exogenous),
-                                     achieved=achieved)
-        if loop is not None:
-            return Outcome.LIVELOCK, repeated_actions_reason(loop[0], loop[1], self._repeats.repeats)
-        if cyc is None:
-            return None
-        self.metrics.cycles = progress.seen
-        if progress.failed_cycles >= self.strategy.max_stalls:
-            return Outcome.FAILED, failed_cycles_reason(cyc, progress.failed_cycles, self._last_failed)
-        self.trace.emit("cycle", n=cyc.visit, length=cyc.length, count=cyc.count, clean=cyc.clean,
-                        text=cyc.describe())
-        if cyc.clean and progress.livelocked:
-            return Outcome.LIVELOCK, (f"livelock: cycle {cyc.count} of at most {progress.max_cycles}: "
-                                      f"{cyc.describe()}, although the policy had committed to its plan")
-        self._tail = plan[1:] if obs.success else plan
-        self._committed = True
-        progress.forget(keep=now)
-        self.trace.emit("note", text=f"progress: {cyc.describe()}; committing to the current plan "
-                        f"({len(self._tail)} action(s)) instead of replanning after every action")
-        return None
+    # -- the progress guard's host (acting/guard.py) ------------------------------------------
+    @property
+    def truth(self) -> Any:
+        """What the goal tests read (:func:`~nowplan.belief.symbolic.truth_of`)."""
+        return truth_of(self.domain, self.belief)
+
+    def situation(self) -> Hashable | None:
+        """The belief's fingerprint and the goal."""
+        return self.guard.situation(self, self.belief, (self.problem.goal,))
+
+    actor = "the policy"  # who had committed, in a livelock's reason
+
+    def after_cycle(self, cyc: Cycle) -> None:
+        """A cycle closed: nothing to tell (the policy has no reconsidering mechanisms)."""
+
+    def commit(self, cyc: Cycle) -> str:
+        """Commit to the rest of the plan just acted on instead of replanning after every action."""
+        plan = self._acting
+        self._tail = plan[1:] if self._acted_ok else plan  # a failed first action is tried again
+        return (f"committing to the current plan ({len(self._tail)} action(s)) instead of replanning after "
+                "every action")
+
+    def end_commitment(self) -> str:
+        # the guard's count restarts; the rest of the plan committed to is still followed (see _committed_step)
+        return "the count of cycles restarts"
+
+    def _watch(self, obs: Observation, plan: list[Action]) -> tuple[Outcome, str] | None:
+        """The progress guard after ``plan``'s first action: commit to its rest on a cycle; the run's end."""
+        self._acting = plan
+        self._acted_ok = obs.success
+        return self.guard.watch(self, obs)
 
     def _budget_left(self, t0: float) -> tuple[Outcome, str] | None:
         return self.strategy.exhausted(self.metrics, self.clock() - t0)
-
-    def _situation(self) -> Any:
-        return situation(situation_of(self.belief), (self.problem.goal,))
 
     def _committed_step(self) -> Action | None:
         """After a cycle: the next action of the plan committed to, while its preconditions hold."""
@@ -255,13 +249,8 @@ class OnlinePolicy:
         outcome, reason = Outcome.FAILED, ""
         retries = 0
         looks = 0  # fresh looks since the last plan (acting/reobserve.py)
-        progress = CycleDetector(self.strategy.max_cycles)
-        self._repeats = RepeatedActions()  # loops the fingerprints miss (a belief that drifts)
         self._tail = []
-        start = self._situation()
-        if start is not None:
-            progress.start(start)
-            self._seen.add(start)
+        self.guard.start(self)
         while True:
             if self.domain.satisfies(self.belief, self.problem.goal):
                 outcome, reason = Outcome.REACHED, ""
@@ -276,7 +265,7 @@ class OnlinePolicy:
                 obs = self._act(committed, self._plan_id - 1)
                 # a failed step is retried while its preconditions hold
                 self._tail = rest if obs.success else [committed, *rest]
-                stop = self._watch(progress, obs, [committed, *rest])
+                stop = self._watch(obs, [committed, *rest])
                 if stop is not None:
                     outcome, reason = stop
                     break
@@ -338,7 +327,7 @@ class OnlinePolicy:
             self._plan_id += 1
             first = actions[0]
             obs = self._act(first, self._plan_id - 1)
-            stop = self._watch(progress, obs, list(actions))
+            stop = self._watch(obs, list(actions))
             if stop is not None:
                 outcome, reason = stop
                 break
