@@ -14,19 +14,7 @@ from nowplan.cli import main
 from nowplan.io import pddl_adl
 from nowplan.io.pddl_read import load_pddl
 
-from pddl_sim import check_plan
-
-
-def solve(tmp_path: Path, domain: str, problem: str, capsys: pytest.CaptureFixture[str]) -> list[str]:
-    d, p = tmp_path / "d.pddl", tmp_path / "p.pddl"
-    d.write_text(domain)
-    p.write_text(problem)
-    code = main(["plan", str(d), str(p), "--time-limit", "20"])
-    out = capsys.readouterr()
-    assert code == 0, out.out + out.err
-    steps = out.out.splitlines()
-    check_plan(domain, problem, steps)
-    return steps
+from test_pddl_ipc_fixes import solve  # (write the files, plan with the CLI, check the plan)
 
 
 # IPC-2004 philosophers (promela): the goal is one non-recursive derived atom per process, each defined
