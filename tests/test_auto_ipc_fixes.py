@@ -107,9 +107,9 @@ def test_refinements_keep_the_regression_budget_and_the_root_abstract_plan_half_
     from nowplan.planning.config import PlannerConfig
 
     cfg = PlannerConfig(max_nodes=50_000, forward_max_nodes=20_000_000)
-    assert call_config(cfg, True, 10.0)[0].forward_max_nodes == 20_000_000  # the whole goal's plan
-    assert call_config(cfg, False, 10.0)[0].forward_max_nodes == 50_000  # a refinement
-    assert call_config(PlannerConfig(max_nodes=7), False, 1.0)[0].forward_max_nodes is None
+    assert call_config(cfg, True).forward_max_nodes == 20_000_000  # the whole goal's plan
+    assert call_config(cfg, False).forward_max_nodes == 50_000  # a refinement
+    assert call_config(PlannerConfig(max_nodes=7), False).forward_max_nodes is None
     prob = load_pddl(*_files(tmp_path, SHUTTLE, SHUTTLE_P), "auto")
     ex = SimpleNamespace(strategy=SimpleNamespace(refine_flat=True), _flat_steps=set(), domain=prob.domain)
     root, key = SimpleNamespace(root=True), ("root", 1)

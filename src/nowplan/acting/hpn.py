@@ -237,13 +237,13 @@ class Executive:
             )
             self._pending_trigger = None
             self._pending_reason = ""
-        remaining = self.remaining_time()
+        remaining = self.remaining_time() * time_share
         cfg = self.strategy.planner
         for m in self.mechanisms:
             cfg = m.planner_config(self, parent, goal, cfg) or cfg
         if max_nodes is not None and max_nodes < cfg.max_nodes:
             cfg = replace(cfg, max_nodes=max_nodes, shortcut_nodes=min(cfg.shortcut_nodes, max_nodes))
-        cfg, remaining = call_config(cfg, parent.root, remaining * time_share)
+        cfg = call_config(cfg, parent.root)
         if remaining < cfg.time_limit:
             cfg = replace(cfg, time_limit=max(remaining, 0.01))
         if cfg.relevant_to is None:  # every call serves the problem's goal: ground what it needs, once

@@ -37,7 +37,7 @@ def root_time_share(ex: Executive, f: Frame, key: Hashable, levels: LevelMap) ->
     return 1.0 if concrete(ex.domain, levels) else ROOT_ABSTRACT_SHARE
 
 
-def call_config(cfg: PlannerConfig, root: bool, remaining: float) -> tuple[PlannerConfig, float]:
+def call_config(cfg: PlannerConfig, root: bool) -> PlannerConfig:
     """A planner call's settings: below the root (a refinement), a forward search keeps the
     regression search's node budget ``max_nodes`` even where the strategy gives forward searches a
     larger one (a PDDL run gets ``nowplan plan``'s, which the time limit ends): a refinement that
@@ -45,7 +45,7 @@ def call_config(cfg: PlannerConfig, root: bool, remaining: float) -> tuple[Plann
     plans, the whole goal's, get the budget ``nowplan plan`` would."""
     if not root and cfg.forward_max_nodes is not None and cfg.forward_max_nodes > cfg.max_nodes:
         cfg = replace(cfg, forward_max_nodes=cfg.max_nodes)
-    return cfg, remaining
+    return cfg
 
 
 def refinement_key(f: Frame) -> Hashable:
