@@ -103,11 +103,10 @@ def build_episode(args: argparse.Namespace, hierarchical: bool = True) -> Episod
             from nowplan.planning.abstraction import prepare_problem
 
             prob = prepare_problem(prob)  # reachability statics and goal stages (docs/pddl.md)
-        closure = None
-        if prob.domain.axioms:  # derived predicates evaluated by rules: recomputed after every action
-            from nowplan.planning.derived_state import DerivedClosure
+        from nowplan.planning.derived_state import derived_closure
 
-            closure = DerivedClosure(prob.domain, prob.objects)
+        # derived predicates evaluated by rules: recomputed after every action (None without them)
+        closure = derived_closure(prob.domain, prob.objects)
         world = SymbolicWorld(prob.domain, prob.init, seed=args.seed, closure=closure)
         return Episode(prob, world, SymbolicBelief(prob.init, closure), f"PDDL {args.pddl[1]}")
     if not args.domain:

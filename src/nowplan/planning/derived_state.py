@@ -20,6 +20,7 @@ is grounded again from it.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import Any
 
 from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
@@ -150,4 +151,18 @@ def derived_cones(domain: Domain) -> DerivedCones:
     hit = store.get("derived cones")
     if not isinstance(hit, DerivedCones) or hit.domain is not domain:
         hit = store["derived cones"] = DerivedCones(domain)
+    return hit
+
+
+def derived_closure(domain: Domain, objects: Mapping[str, str | None]) -> DerivedClosure | None:
+    """The :class:`DerivedClosure` of ``domain`` over ``objects`` (made once per domain and objects), or
+    ``None`` for a domain without rules: what the executive's own projections of states (the monitor's
+    expected states) apply after each action's effects."""
+    if not domain.axioms:
+        return None
+    store: dict[Any, DerivedClosure] = domain.facts.derived.setdefault("derived closures", {})
+    key = tuple(sorted(objects.items()))
+    hit = store.get(key)
+    if hit is None or hit.domain is not domain:
+        hit = store[key] = DerivedClosure(domain, objects)
     return hit
