@@ -134,13 +134,14 @@ def test_unstratifiable_axioms_are_refused_in_one_line(capsys: pytest.CaptureFix
     assert "doors-bad-domain.pddl:4" in err and "not stratifiable" in err and "win" in err
 
 
-def test_regression_and_the_executive_refuse_with_the_fix(capsys: pytest.CaptureFixture[str]) -> None:
+def test_regression_refuses_with_the_fix(capsys: pytest.CaptureFixture[str]) -> None:
+    """(``nowplan run`` runs such domains: tests/test_axioms_run.py.)"""
     dom, prob = files("doors-p01")
     problem = load_pddl(dom, prob)
     with pytest.raises(ModelError, match="forward engine"):
         plan(problem.domain, problem.objects, problem.init, problem.goal, flat_levels(),
              PlannerConfig(engine="regression"))
-    for args in (["plan", str(dom), str(prob), "--engine", "regression"], ["run", str(dom), str(prob)],
+    for args in (["plan", str(dom), str(prob), "--engine", "regression"],
                  ["plan", str(dom), str(prob), "--engine", "fd"]):
         assert main(args) == 2
         err = capsys.readouterr().err

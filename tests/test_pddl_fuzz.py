@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from nowplan.errors import NowplanError
 from nowplan.io.pddl_read import load_pddl
 
-AXIOM_CASES = 2  # the last PAIRS: recursive derived predicates
+AXIOM_CASES = 4  # the last PAIRS: recursive derived predicates
 
 ROOT = Path(__file__).resolve().parent
 PAIRS = [(ROOT / "data" / "pddl_ipc_style" / f"{n}-domain.pddl", ROOT / "data" / "pddl_ipc_style" / f"{n}-p01.pddl")
@@ -28,6 +28,8 @@ DATA = ROOT.parent / "src" / "nowplan" / "data" / "pddl"
 PAIRS += [(DATA / n / "domain.pddl", DATA / n / "p01.pddl") for n in ("logistics", "lights", "gripper")]
 AXIOMS = ROOT / "data" / "pddl_axioms"  # recursive derived predicates
 PAIRS += [(AXIOMS / f"{n}-domain.pddl", AXIOMS / f"{n}-p02.pddl") for n in ("doors", "grid")]
+AXIOMS_RUN = ROOT / "data" / "pddl_axioms_run"  # what nowplan run is tested on (tests/test_axioms_run.py)
+PAIRS += [(AXIOMS_RUN / f"{n}-domain.pddl", AXIOMS_RUN / f"{n}-p01.pddl") for n in ("courier", "blocks-above")]
 TOKENS = re.compile(r"\(|\)|[^\s()]+")
 
 
@@ -69,6 +71,12 @@ def _read_and_ground(tmp: Path, domain: str, problem: str) -> None:
             from nowplan.planning.task import build_task
 
             build_task(prob.domain, prob.objects, prob.init, prob.goal, flat_levels(), lambda a: 1.0)
+            # what `nowplan run` adds: the world's closure of the initial state, the automatic hierarchy
+            from nowplan.planning.abstraction import derive_hierarchy
+            from nowplan.planning.derived_state import DerivedClosure
+
+            DerivedClosure(prob.domain, prob.objects)(prob.init)
+            derive_hierarchy(prob.domain)
     except NowplanError as exc:
         assert "\n" not in str(exc)
 

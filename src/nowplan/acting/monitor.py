@@ -56,6 +56,7 @@ from nowplan.core.atoms import entails
 from nowplan.core.domain import Domain
 from nowplan.core.state import State
 from nowplan.errors import ModelError, ScenarioError
+from nowplan.planning.derived_state import derived_closure
 from nowplan.planning.plan import Plan
 
 if TYPE_CHECKING:
@@ -155,6 +156,9 @@ class Monitor(MonitorPlanning, Mechanism):
         if f.root or action is None:
             return
         expected = prev.apply(action.effects())
+        closure = derived_closure(ex.domain, ex.problem.objects)  # (derived predicates: recomputed)
+        if closure is not None:
+            expected = closure(expected)
         self.escalation.note(ex.domain, expected)
         observed = state_of(ex.belief)
         dm = float(self.support.distance(expected, observed))
@@ -278,7 +282,7 @@ class Monitor(MonitorPlanning, Mechanism):
             return  # only primitive plans have intermediate states to store
         init = state_of(ex.belief)
         actions = list(plan.actions)
-        states = simulate(ex.domain, init, actions)
+        states = simulate(ex.domain, init, actions, derived_closure(ex.domain, ex.problem.objects))
         if states is None:
             return
         if self.library is not None and self.config.library_write:

@@ -27,6 +27,7 @@ from nowplan.acting.plan_library import StoredPlan, state_key
 from nowplan.core.atoms import Goal, entails
 from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.state import State
+from nowplan.planning.derived_state import derived_closure
 from nowplan.planning.plan import PlanResult, PlanStatus
 from nowplan.planning.regression import PlannerConfig
 from nowplan.planning.regression import plan as regression_plan
@@ -128,7 +129,8 @@ class MonitorPlanning:
         key = state_key(state)
         for sp in sorted((p for p in self.plans if p.init_key == key), key=lambda p: p.cost):
             plan = plan_from_actions(ex.domain, sp.rebuild(ex.domain), goal)
-            if plan is not None and simulate(ex.domain, state, plan.actions) is not None:
+            if plan is not None and simulate(ex.domain, state, plan.actions,
+                                             derived_closure(ex.domain, ex.problem.objects)) is not None:
                 self.stats.reuses += 1
                 return PlanResult(PlanStatus.SOLVED, plan, "", method="library")
         return None
@@ -190,7 +192,7 @@ class MonitorPlanning:
         actions = list(res.plan.actions) + list(tail)
         if self.support.adapt is not None:
             actions = self.support.adapt(actions, observed)
-        states = simulate(dom, observed, actions)
+        states = simulate(dom, observed, actions, derived_closure(dom, ex.problem.objects))
         if states is None:
             return None
         plan = plan_from_actions(dom, actions, goal)

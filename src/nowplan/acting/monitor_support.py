@@ -67,13 +67,17 @@ def state_of(belief: Any) -> State:
     )
 
 
-def simulate(domain: Domain, state: State, actions: Sequence[Action]) -> list[State] | None:
-    """``[s0, s1, …, sn]`` applying each action's effects; ``None`` if a precondition fails."""
+def simulate(domain: Domain, state: State, actions: Sequence[Action],
+             closure: Callable[[State], State] | None = None) -> list[State] | None:
+    """``[s0, s1, …, sn]`` applying each action's effects (and ``closure``, the derived atoms recomputed:
+    :func:`nowplan.planning.derived_state.derived_closure`); ``None`` if a precondition fails."""
     states = [state]
     for act in actions:
         if not all(domain.holds(p, state) for p in act.preconditions(None)):
             return None
         state = state.apply(act.effects())
+        if closure is not None:
+            state = closure(state)
         states.append(state)
     return states
 

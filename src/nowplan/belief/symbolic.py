@@ -3,12 +3,14 @@
 With full observations it adopts the observed state; with outcome-only
 observations it applies the action's expected effects when the action is
 reported successful (its model may then drift from the world, which is what
-the replanning mechanisms are for).
+the replanning mechanisms are for).  With derived predicates a ``closure``
+recomputes the derived atoms after each expected update (an observed state
+is the world's, closed already).
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any
 
 from nowplan.core.atoms import Atom, Term
@@ -27,8 +29,9 @@ class SymbolicBelief:
     :mod:`nowplan.belief.protocols`); derive from it to add a domain's own update.
     """
 
-    def __init__(self, state: State) -> None:
-        self.state = state
+    def __init__(self, state: State, closure: Callable[[State], State] | None = None) -> None:
+        self.closure = closure
+        self.state = state if closure is None else closure(state)
 
     def value(self, key: tuple[str, tuple[Term, ...]]) -> Any:
         return self.state.value(key)
@@ -43,10 +46,13 @@ class SymbolicBelief:
         if isinstance(observation.data, State):
             self.state = observation.data
         elif observation.success:
-            self.state = self.state.apply(action.effects())
+            state = self.state.apply(action.effects())
+            self.state = state if self.closure is None else self.closure(state)
 
     def copy(self) -> SymbolicBelief:
-        return SymbolicBelief(self.state)
+        out = SymbolicBelief(self.state)
+        out.closure = self.closure
+        return out
 
     def __repr__(self) -> str:
         return f"SymbolicBelief({self.state!r})"

@@ -10,11 +10,12 @@ from pathlib import Path
 from typing import Any
 
 from nowplan.acting.run import run_episode
-from nowplan.acting.strategy import parse_strategy, strategy_names
+from nowplan.acting.strategy import Strategy, parse_strategy, strategy_names
 from nowplan.commands.plan import FORWARD_NODES
 from nowplan.commands.common import (
     criticality_arg, existing_file, nonneg_int, positive_float, positive_int, probability,
 )
+from nowplan.core.domain import Domain
 from nowplan.domains.registry import Episode, get_domain
 from nowplan.errors import UsageError
 from nowplan.trace import Trace
@@ -74,6 +75,19 @@ def pddl_action_budget(objects: Sized, floor: int) -> int:
     return max(floor, ACTIONS_PER_OBJECT * len(objects))
 
 
+def axiom_strategy(domain: Domain, strategy: Strategy) -> Strategy:
+    """The strategy for a domain whose derived predicates are evaluated by rules: its planner calls
+    search forward at every level (the regression search cannot regress through a derived atom:
+    ``axioms_refusal``); a planner set to regress is refused in one line."""
+    if strategy.planner.engine == "regression":
+        from nowplan.planning.regression import axioms_refusal
+
+        raise UsageError(f"{axioms_refusal(domain)}; drop the switch that sets the regression engine")
+    if strategy.planner.engine == "auto":
+        strategy = replace(strategy, planner=replace(strategy.planner, engine="forward"))
+    return strategy
+
+
 def build_episode(args: argparse.Namespace, hierarchical: bool = True) -> Episode:
     if args.pddl:
         if args.domain:
@@ -85,17 +99,16 @@ def build_episode(args: argparse.Namespace, hierarchical: bool = True) -> Episod
         from nowplan.worlds.symbolic import SymbolicWorld
 
         prob = load_pddl(args.pddl[0], args.pddl[1], args.criticality)
-        if prob.domain.axioms:
-            from nowplan.planning.regression import axioms_refusal
-
-            raise UsageError(f"{axioms_refusal(prob.domain)}; the executive's world and belief "
-                             "do not evaluate derived predicates either")
         if args.criticality == "auto" and hierarchical:
             from nowplan.planning.abstraction import prepare_problem
 
             prob = prepare_problem(prob)  # reachability statics and goal stages (docs/pddl.md)
-        world = SymbolicWorld(prob.domain, prob.init, seed=args.seed)
-        return Episode(prob, world, SymbolicBelief(prob.init), f"PDDL {args.pddl[1]}")
+        from nowplan.planning.derived_state import derived_closure
+
+        # derived predicates evaluated by rules: recomputed after every action (None without them)
+        closure = derived_closure(prob.domain, prob.objects)
+        world = SymbolicWorld(prob.domain, prob.init, seed=args.seed, closure=closure)
+        return Episode(prob, world, SymbolicBelief(prob.init, closure), f"PDDL {args.pddl[1]}")
     if not args.domain:
         raise UsageError("give --domain NAME (e.g. --domain logistics) or DOMAIN.pddl PROBLEM.pddl")
     spec = get_domain(args.domain)
@@ -129,6 +142,8 @@ def main(args: argparse.Namespace) -> int:
     if args.trace is not None and args.trace.is_dir():
         raise UsageError(f"--trace {args.trace} is a directory; give a file path, e.g. {args.trace / 'trace.jsonl'}")
     episode = build_episode(args, strategy.hierarchical)
+    if episode.problem.domain.axioms:
+        strategy = axiom_strategy(episode.problem.domain, strategy)
     if args.pddl and args.max_actions is None:
         strategy = replace(strategy, max_actions=pddl_action_budget(episode.problem.objects, strategy.max_actions))
     if args.failure_prob is not None or args.exogenous_prob is not None:

@@ -233,6 +233,9 @@ def hierarchy_text(domain: Domain) -> str:
     ]
     for lvl, classes in sorted(h.by_level().items(), reverse=True):
         lines.append(f"# level {lvl} (criticality {lvl + 1}): " + ", ".join(str(c) for c in classes))
+    if h.derived:
+        lines.append("# derived (at the highest level of the literals their rules read): " + ", ".join(
+            f"{d} {'static' if lv is None else lv}" for d, lv in sorted(h.derived.items())))
     statics = sorted(h.static) + [str(c) for c in h.static_classes()]
     if statics:
         lines.append(f"# static (criticality {top + 1}): " + ", ".join(statics))

@@ -58,6 +58,14 @@ preconditions than ALPINE's (with ``level + 1`` for every precondition, a
 abstract ``drive``, without end).  For logistics this gives exactly the
 hand-written ``logistics.crit``.  One level only (e.g. blocksworld, where
 every predicate is tied to every other) means a flat domain.
+
+**Derived predicates** (rules, ``Domain.axioms``) are set by no operator: a
+derived atom is a function of the basic literals its rules read, directly or
+through other derived predicates.  An operator with a derived precondition
+reads those literals, so the constraints treat it as a precondition on each of
+them, and the derived predicate sits at the highest level of what it reads
+(``Hierarchy.derived``; ``None``, kept at every level, when it reads static
+literals only).
 """
 
 from __future__ import annotations
@@ -65,7 +73,7 @@ from __future__ import annotations
 import gc
 import logging
 from collections.abc import Iterable, Iterator, Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from nowplan.core.atoms import Atom, Goal, Var
 from nowplan.core.domain import Domain, Problem
@@ -99,6 +107,8 @@ class Hierarchy:
     members: Mapping[LiteralClass, LiteralClass]  # every class -> its representative
     static: frozenset[str]  # predicates no operator changes
     edges: frozenset[tuple[LiteralClass, LiteralClass]]  # (e, p): level(e) >= level(p)
+    # derived predicate -> the highest level of the basic literals its rules read (None: static ones only)
+    derived: Mapping[str, int | None] = field(default_factory=dict)
 
     @property
     def top(self) -> int:
@@ -109,6 +119,8 @@ class Hierarchy:
         """The level of ``atom`` (in ``op``); ``None`` for a static predicate."""
         if atom.predicate in self.static:
             return None
+        if atom.predicate in self.derived:
+            return self.derived[atom.predicate]
         return self.levels.get(self.members[literal_class(domain, op, atom)])  # None: a static class
 
     def effect_level(self, domain: Domain, op: Operator) -> int | None:
@@ -267,9 +279,41 @@ def _keep(ops: tuple[Operator, ...], types: Mapping[str, str | None], hierarchy:
     _HIERARCHIES[id(ops)] = (ops, types, hierarchy)
 
 
+def _derived_dependencies(domain: Domain) -> dict[str, set[tuple[Operator, Atom]]]:
+    """Per derived predicate, the basic non-static literals (with the rule that reads each) its rules
+    read, directly or through other derived predicates."""
+    static, derived = domain.static_predicates, domain.derived
+    direct: dict[str, set[tuple[Operator, Atom]]] = {d: set() for d in derived}
+    uses: dict[str, set[str]] = {d: set() for d in derived}
+    for rule in domain.axioms:
+        head = rule.effects[0].predicate
+        for p in rule.preconditions:
+            q = p.atom.predicate
+            if q in derived:
+                uses[head].add(q)
+            elif q not in static and q != "=":
+                direct[head].add((rule, p.atom))
+    out: dict[str, set[tuple[Operator, Atom]]] = {}
+    for d in derived:  # the closure over the uses (a bounded walk: each predicate is seen once)
+        seen, todo, acc = {d}, [d], set(direct[d])
+        while todo:
+            for q in uses[todo.pop()]:
+                if q not in seen:
+                    seen.add(q)
+                    todo.append(q)
+                    acc |= direct[q]
+        out[d] = acc
+    return out
+
+
 def _derive_hierarchy(domain: Domain) -> Hierarchy:
     static = domain.static_predicates
-    raw = sorted({c for op in domain.operators for c in _operator_literals(domain, op)})
+    derived = domain.derived
+    # a derived precondition stands for the basic literals its rules read: an operator reading it reads them
+    deps = _derived_dependencies(domain)
+    dep_classes = {d: {literal_class(domain, rule, a) for rule, a in xs} for d, xs in deps.items()}
+    raw = sorted({c for op in domain.operators for c in _operator_literals(domain, op) if c.predicate not in derived}
+                 | {c for cs in dep_classes.values() for c in cs})
     uf = _UnionFind(raw)
     by_pred: dict[str, list[LiteralClass]] = {}
     for c in raw:
@@ -286,8 +330,10 @@ def _derive_hierarchy(domain: Domain) -> Hierarchy:
     edges: set[tuple[LiteralClass, LiteralClass]] = set()
     for op in domain.operators:
         effs = [members[literal_class(domain, op, e)] for e in op.effects]
-        pres = [r for p in op.preconditions if p.atom.predicate not in static
+        pres = [r for p in op.preconditions if p.atom.predicate not in static and p.atom.predicate not in derived
                 for r in [members[literal_class(domain, op, p.atom)]] if r in succ]
+        pres += [r for p in op.preconditions if p.atom.predicate in derived
+                 for r in sorted({members[c] for c in dep_classes[p.atom.predicate]}) if r in succ]
         for e in effs:
             for other in [*effs, *pres]:
                 if other != e:
@@ -301,7 +347,9 @@ def _derive_hierarchy(domain: Domain) -> Hierarchy:
         below = {comp_of[w] for v in comp for w in succ[v]} - {i}
         comp_level.append(1 + max((comp_level[j] for j in below), default=-1))
     levels = {c: comp_level[comp_of[c]] for c in reps}
-    return Hierarchy(domain.name, levels, members, static, frozenset(edges))
+    derived_levels = {d: max((levels[members[c]] for c in cs if members[c] in levels), default=None)
+                      for d, cs in dep_classes.items()}
+    return Hierarchy(domain.name, levels, members, static, frozenset(edges), derived_levels)
 
 
 def apply_hierarchy(domain: Domain, hierarchy: Hierarchy) -> Domain:
@@ -366,6 +414,8 @@ def ground_level(problem: Problem, hierarchy: Hierarchy, atom: Atom) -> int | No
     domain = problem.domain
     if atom.predicate in hierarchy.static:
         return None
+    if atom.predicate in hierarchy.derived:
+        return hierarchy.derived[atom.predicate]
     objs = problem.all_objects
     types = [objs.get(a) if isinstance(a, str) else None for a in atom.args]
     for c, rep in hierarchy.members.items():

@@ -310,21 +310,32 @@ def _regress_base(domain: Domain, goal: Goal, actions: Sequence[Action], levels:
     No action adds or deletes a derived atom, yet an action may change its
     truth; its pre-image through the action is a condition on the base facts
     that is no conjunction of literals.  So each step regresses the base
-    literals as usual and adds the action's own conditions: ``g_i`` holds the
-    derived literals that step ``i + 1`` needs (``g_n`` the goal's).  The
-    forward search checked them in the states it went through; these are not
-    the weakest pre-images (the executive, which monitors pre-images, refuses
-    such domains).  ``None`` if an action destroys a base literal needed later.
+    literals as usual and adds the action's own conditions; a derived literal
+    of ``g_{i+1}`` is kept in ``g_i`` where no effect of action ``i + 1`` can
+    change it (none matches the basic atoms its rules can read,
+    :class:`~nowplan.planning.derived_state.DerivedCones`: a delivered package
+    stays delivered while other packages move), else dropped.  The forward
+    search checked the dropped ones in the states it went through; these are
+    not the weakest pre-images, and where a derived literal was dropped not
+    sufficient ones either (the executive checks the goal itself at the end).
+    ``None`` if an action destroys a base literal needed later.
     """
-    from nowplan.core.atoms import Goal as GoalT
+    from nowplan.core.atoms import Goal as GoalT, conjoin
+    from nowplan.planning.derived_state import derived_cones
     from nowplan.planning.preimage import preimage
 
+    cones = derived_cones(domain)
     goals = [goal]
     for i in range(len(actions) - 1, -1, -1):
-        base = GoalT.of([a for a in goals[-1].atoms if a.predicate not in domain.derived], domain.rules)
+        after = goals[-1].atoms
+        base = GoalT.of([a for a in after if a.predicate not in domain.derived], domain.rules)
         g = preimage(base, actions[i], levels.level(actions[i]), domain, drop)
         if g is None:
             return None
+        effects = list(actions[i].effects())
+        kept = [a for a in after if a.predicate in domain.derived and not cones.touches(effects, a)]
+        if kept:
+            g = conjoin(g, kept, domain.rules) or g  # (no contradiction where the search's states held both)
         goals.append(g)
     goals.reverse()
     return goals

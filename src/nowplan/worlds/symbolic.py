@@ -4,7 +4,9 @@ It keeps its own true :class:`State`, separate from the agent's belief.  An
 action whose full (concrete) preconditions are false in the true state, or
 that draws a failure, changes nothing and reports ``success=False``.
 Exogenous events are drawn after each action from a domain-supplied
-function.
+function.  A domain with derived predicates gives a ``closure`` (e.g.
+:class:`nowplan.planning.derived_state.DerivedClosure`): the world recomputes
+its derived atoms from the basic facts after every change.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from nowplan.core.state import State
 from nowplan.worlds.base import SimulatedWorld
 
 ExogenousFn = Callable[[State, random.Random], list[Atom]]
+Closure = Callable[[State], State]
 
 
 class SymbolicWorld(SimulatedWorld):
@@ -27,7 +30,8 @@ class SymbolicWorld(SimulatedWorld):
 
     ``exogenous(state, rng)`` returns the atoms an exogenous change makes true
     (or false); ``observe="full"`` reports the whole state after each action,
-    ``"outcome"`` only success or failure.
+    ``"outcome"`` only success or failure.  ``closure(state)`` (derived predicates) gives the state
+    with its derived atoms recomputed; it is applied to the initial state and after every change.
     """
 
     def __init__(
@@ -40,9 +44,11 @@ class SymbolicWorld(SimulatedWorld):
         exogenous: ExogenousFn | None = None,
         exogenous_prob: float = 0.0,
         observe: Literal["full", "outcome"] = "full",
+        closure: Closure | None = None,
     ) -> None:
         self.domain = domain
-        self.state = state
+        self.closure = closure
+        self.state = state if closure is None else closure(state)
         self.exogenous = exogenous
         self.observe_mode = observe
         super().__init__(seed=seed, failure_prob=failure_prob, exogenous_prob=exogenous_prob)
@@ -67,14 +73,17 @@ class SymbolicWorld(SimulatedWorld):
         return None if self.applicable(action) else "preconditions false in the world"
 
     def apply(self, action: Action) -> None:
-        self.state = self.state.apply(action.effects())
+        self.state = self._closed(self.state.apply(action.effects()))
+
+    def _closed(self, state: State) -> State:
+        return state if self.closure is None else self.closure(state)
 
     def exogenous_change(self) -> list[str]:
         if self.exogenous is None:
             return []
         changes = self.exogenous(self.state, self.rng)
         if changes:
-            self.state = self.state.apply(changes)
+            self.state = self._closed(self.state.apply(changes))
         return [str(c) for c in changes]
 
     def observe(self, action: Action, success: bool) -> Any:

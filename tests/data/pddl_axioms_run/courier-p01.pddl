@@ -1,0 +1,10 @@
+; A line of places l1-l2-l3-l4-l5 and a branch l3-l6; every road closed.
+(define (problem courier-p01)
+  (:domain courier)
+  (:objects t1 t2 - truck p1 p2 p3 - package l1 l2 l3 l4 l5 l6 - loc)
+  (:init (at-t t1 l1) (at-t t2 l5)
+    (road l1 l2) (road l2 l1) (road l2 l3) (road l3 l2) (road l3 l4) (road l4 l3)
+    (road l4 l5) (road l5 l4) (road l3 l6) (road l6 l3)
+    (at-p p1 l1) (at-p p2 l2) (at-p p3 l5)
+    (dest p1 l5) (dest p2 l6) (dest p3 l1))
+  (:goal (and (delivered p1) (delivered p2) (delivered p3))))
