@@ -1,14 +1,17 @@
 from __future__ import annotations
 
-import sys
+import os
 from collections.abc import Callable, Iterator
-from pathlib import Path
 
 import pytest
+from hypothesis import settings
 
-ROOT = Path(__file__).resolve().parents[1]
-if str(ROOT / "src") not in sys.path:  # running without an installed package
-    sys.path.insert(0, str(ROOT / "src"))
+# Property tests draw their examples deterministically (from the test's own source), so a run of
+# the suite is reproducible and a failure on CI fails the same way on a laptop.
+# NOWPLAN_HYPOTHESIS=explore draws fresh random examples instead, to search wider.
+settings.register_profile("seeded", derandomize=True, database=None)
+settings.register_profile("explore", derandomize=False)
+settings.load_profile(os.environ.get("NOWPLAN_HYPOTHESIS", "seeded"))
 
 
 @pytest.fixture
