@@ -106,8 +106,7 @@ class FactTable:
         return frozenset(out)
 
     def goal(self, fs: Iterable[int]) -> Goal:
-        atoms = self.atoms
-        return Goal(frozenset(atoms[f] for f in fs))
+        return Goal(frozenset(map(self.atoms.__getitem__, fs)))  # (map: no generator frame per fact)
 
     def sorted(self, fs: Iterable[int]) -> list[int]:
         """Fact ids in the order of their atoms (as ``sorted(goal.atoms)``)."""

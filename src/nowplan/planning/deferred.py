@@ -138,9 +138,11 @@ class Reach:
         self.atoms = domain.facts.atoms
         hit = domain.facts.derived.get("deferral reach")
         if hit is None or hit[0] is not domain.operators:
-            hit = domain.facts.derived["deferral reach"] = (domain.operators, {}, {})
+            hit = domain.facts.derived["deferral reach"] = (domain.operators, {}, {}, {})
         self._memo: dict[int, tuple[float, tuple[Pattern, ...]]] = hit[1]
         self._named: dict[tuple[int, int], bool] = hit[2]  # (target, fact): does an achiever name the fact?
+        # per target: its patterns' arguments by (predicate, arity), what _named reads of them
+        self._by_pred: dict[int, dict[tuple[str, int], tuple[tuple[Any, ...], ...]]] = hit[3]
 
     def __call__(self, f: int) -> tuple[float, tuple[Pattern, ...]]:
         hit = self._memo.get(f)
@@ -182,7 +184,7 @@ class Reach:
             if v > b or kept:
                 hit = named.get((f, u))
                 if hit is None:
-                    hit = named[(f, u)] = _named(self.atoms[u], pats)
+                    hit = named[(f, u)] = _named(self.atoms[u], self._index(f, pats))
                 if not hit:
                     if v > b:
                         b = v
@@ -193,10 +195,24 @@ class Reach:
         return c, b, kept
 
 
-def _named(a: Atom, pats: tuple[Pattern, ...]) -> bool:
-    """Does a pattern name ``a``'s fluent?"""
-    n = len(a.args)
-    for pred, args in pats:
-        if pred == a.predicate and len(args) == n and all(x is _ANY or x == y for x, y in zip(args, a.args)):
+    def _index(self, f: int, pats: tuple[Pattern, ...]) -> dict[tuple[str, int], tuple[tuple[Any, ...], ...]]:
+        """``f``'s patterns' arguments by (predicate, arity), in the patterns' order (kept per domain)."""
+        index = self._by_pred.get(f)
+        if index is None:
+            grouped: dict[tuple[str, int], list[tuple[Any, ...]]] = {}
+            for pred, args in pats:
+                grouped.setdefault((pred, len(args)), []).append(args)
+            index = self._by_pred[f] = {k: tuple(v) for k, v in grouped.items()}
+        return index
+
+
+def _named(a: Atom, index: dict[tuple[str, int], tuple[tuple[Any, ...], ...]]) -> bool:
+    """Does a pattern (``index``: their arguments by predicate and arity) name ``a``'s fluent?
+
+    (Marsupial's single-origin problems met every pair of a held package fact and an unmet fact of a
+    node, thousands per problem, and scanned all of the target's patterns for each.)"""
+    y = a.args
+    for args in index.get((a.predicate, len(y)), ()):
+        if all(x is _ANY or x == z for x, z in zip(args, y)):
             return True
     return False

@@ -202,7 +202,7 @@ def astar(
         postponed: dict[tuple[float, float], list[tuple[Action, ActionFacts, float, Stamp]]] = {}
         postpone = search.postpone_unmet and reach is not None and not legacy
         for ti, target in enumerate(allowed):
-            if reach is not None and not legacy and fholds(target):
+            if reach is not None and not legacy and (target in held or fholds(target)):
                 if unmet_ids is None:
                     assert relaxed is not None
                     unmet_ids = [(f, relaxed.known(f)) for f in search.unmet(fs)]
