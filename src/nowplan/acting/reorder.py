@@ -29,6 +29,11 @@ from nowplan.core.operators import Action
 from nowplan.planning.plan import Plan
 from nowplan.planning.regression import PlannerConfig, preimage, static_drop
 
+# a cached pre-image's key: ids of the goal and the operator, the operator's level, the static
+# predicates left out (``Reorderer.drop``)
+PreimageKey = tuple[int, int, "int | None", frozenset[str]]
+
+
 def estimate_config(planner: PlannerConfig | None, nodes: int = 300) -> PlannerConfig:
     """The estimator's small searches: ``planner``'s heuristic and engine, ``nodes`` expansions."""
     return replace(planner or PlannerConfig(), max_nodes=nodes, shortcut_nodes=nodes, time_limit=30.0,
@@ -87,6 +92,7 @@ class Reorderer:
         config: PeepholeConfig | None = None,
         failed: Sequence[frozenset[Any]] = (),
         planner: PlannerConfig | None = None,
+        regressed: dict[PreimageKey, tuple[Goal, Action, Goal | None]] | None = None,
     ) -> None:
         self.domain = domain
         self.failed = failed  # combinations (sets of action keys) found unplannable in this belief
@@ -99,10 +105,14 @@ class Reorderer:
         self.estimator = Estimator(domain, objects, belief, self.model, search)
         self.moves: list[str] = []
         self.validity_checks = 0
-        # pre-images already computed in this belief, by (id of the goal, id of the operator): the
-        # candidate orders share their tails, so re-validating one regresses only its new head.
-        # The goal and operator are kept in the value, so the ids are never reused while cached
-        self._regressed: dict[tuple[int, int], tuple[Goal, Action, Goal | None]] = {}
+        # pre-images already computed, by (id of the goal, id of the operator, its level): the
+        # candidate orders share their tails, so re-validating one regresses only its new head.  A
+        # pre-image does not depend on the belief (only on the goal, the operator, its level and
+        # :attr:`drop`), so the caller may pass one table for every Reorderer of a run
+        # (``Peephole``: the plan's pre-images after a rewrite are these goal objects, and the next
+        # step's candidates regress through the same tails again).  The goal and operator are kept
+        # in the value, so the ids are never reused while cached
+        self._regressed = {} if regressed is None else regressed
         self.regressions = 0  # pre-images computed (not found in the cache)
         # per action key, for this level map (SelectGap, SelectParallelOps and Gather ask again and again)
         self._arrangeable: dict[Any, bool] = {}
@@ -148,12 +158,13 @@ class Reorderer:
 
     def _preimage(self, g: Goal, a: Action) -> Goal | None:
         """``preimage(g, a)`` at ``a``'s level, computed once per goal object and operator."""
-        key = (id(g), id(a))
+        level = self.levels.level(a)
+        key = (id(g), id(a), level, self.drop)
         hit = self._regressed.get(key)
         if hit is not None and hit[0] is g and hit[1] is a:
             return hit[2]
         self.regressions += 1
-        pre = preimage(g, a, self.levels.level(a), self.domain, self.drop)
+        pre = preimage(g, a, level, self.domain, self.drop)
         self._regressed[key] = (g, a, pre)
         return pre
 
