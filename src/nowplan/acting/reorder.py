@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from nowplan.acting.arrange import Arrange, Subgoal, arrange
+from nowplan.acting.arrange import Arrange, Subgoal, arrange, depends, nothing_goes_first
 from nowplan.acting.resources import Estimator, ResourceModel, resource_model
 from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
@@ -233,9 +233,16 @@ class Reorderer:
         while ops and self.arrangeable(ops[0]) and moves < limit:
             first = Subgoal((ops[0],), goals[1])
             moved = False
+            settled = False  # whether nothing_goes_first was asked for ``first``
             for j in range(1, len(ops)):
                 if not self.arrangeable(ops[j]) or not self.can_follow(ops[j], ()):
                     continue
+                if not settled and not self._depends_either(first, ops[j]):
+                    # the first candidate ``arrange`` would estimate ``first`` for: when ``first``
+                    # has nothing to wait for, no later step is preferred before it
+                    settled = True
+                    if nothing_goes_first(first, self.estimator, self.levels, self.model):
+                        break
                 if self.arrange(first, Subgoal((ops[j],), goals[j + 1]), Arrange.SECOND) is not Arrange.SECOND:
                     continue
                 new = [ops[j], *ops[:j], *ops[j + 1 :]]
@@ -250,6 +257,10 @@ class Reorderer:
             if not moved:
                 break
         return ops, goals
+
+    def _depends_either(self, s1: Subgoal, a: Action) -> bool:
+        """``arrange``'s first test (FIRST whatever the estimates): either needs an effect of the other."""
+        return depends(self.domain, s1.actions, (a,), self.levels) or depends(self.domain, (a,), s1.actions, self.levels)
 
     def note_dropped(self, before: Sequence[Action], after: Sequence[Action]) -> None:
         """Log, in :attr:`moves`, each step of ``before`` that a re-validation left out of ``after``."""
