@@ -21,6 +21,13 @@ the whole run.
 
     PYTHONPATH=src .venv/bin/python benchmarks/rchpn_split.py --regimes both --sizes 8,10 --trials 0-3
 
+Beside the exclusive parts, two inclusive tallies (CPU s with every part inside): ``windows``, the
+peephole's rewrites (``Peephole._next_step``) by whether they changed the plan (``moved``: a
+reorder or a combination; ``none``), and ``calls``, the executive's planner calls
+(``Executive.make_plan``) by where they are made: for a combined step (``joint``), below one
+(``below``), for a step taken alone after its combination was given up (``fallout``), or elsewhere
+(``plain``; every HPN call).
+
 ``--profile FILE`` also writes a cProfile top list of each RCHPN run (``FILE.<problem>``).
 ``--out`` appends one JSON line per run (the split, CPU, cost and a digest of the executed actions,
 to check that a change made the same decisions).
@@ -61,6 +68,7 @@ class Split:
         self.totals: dict[str, float] = defaultdict(float)
         self.counts: dict[str, int] = defaultdict(int)
         self._stack: list[list[Any]] = []  # [part, start, time of children]
+        self.tally: dict[str, tuple[int, float]] = {}
 
     def enter(self, part: str) -> None:
         if part == "loader" and self._stack:
@@ -96,6 +104,12 @@ class Split:
         self.totals.clear()
         self.counts.clear()
         self._stack.clear()
+        self.tally.clear()
+
+    def add(self, key: str, dt: float) -> None:
+        """An inclusive tally (``windows:*``, ``calls:*``): count and CPU s."""
+        n, t = self.tally.get(key, (0, 0.0))
+        self.tally[key] = (n + 1, t + dt)
 
 
 def install(split: Split) -> None:
@@ -119,6 +133,36 @@ def install(split: Split) -> None:
         lp.search_status = split.wrap("loader", lp.search_status)
     model_mod.fetch_infeasible = split.wrap("loader", model_mod.fetch_infeasible)  # type: ignore[assignment]
     gc.callbacks.append(split.on_gc)
+    rewrite = ph._next_step
+
+    def windows(self: Any, ex: Any, frame: Any) -> Any:
+        events, t0 = len(ex.trace.events), time.process_time()
+        try:
+            return rewrite(self, ex, frame)
+        finally:  # a rewrite that changed the plan leaves its trace note
+            split.add("windows:moved" if len(ex.trace.events) > events else "windows:none",
+                      time.process_time() - t0)
+
+    ph._next_step = windows  # type: ignore[method-assign]
+    make_plan = ex.make_plan
+
+    def calls(self: Any, goal: Any, levels: Any, parent: Any, *args: Any, **kw: Any) -> Any:
+        t0 = time.process_time()
+        try:
+            return make_plan(self, goal, levels, parent, *args, **kw)
+        finally:
+            info = parent.info
+            if info.get("joint") is not None and info.get("joint") == parent.i:
+                kind = "joint"
+            elif peephole_mod._combination(parent) is not None:
+                kind = "below"
+            elif info.get("fallout") is not None and info.get("fallout") == parent.i:
+                kind = "fallout"
+            else:
+                kind = "plain"
+            split.add(f"calls:{kind}", time.process_time() - t0)
+
+    ex.make_plan = calls  # type: ignore[method-assign]
 
 
 def _span(text: str) -> list[int]:
@@ -156,7 +200,8 @@ def one(regime: str, n: int, trial: int, strategy: str, split: Split, profile: s
     return {"problem": f"{regime}-{n}", "trial": trial, "strategy": strategy, "cpu": cpu, "ok": ok,
             "cost": m.execution_cost, "actions": hashlib.sha1("\n".join(executed).encode()).hexdigest()[:12],
             "parts": {k: round(v, 4) for k, v in sorted(parts.items())},
-            "counts": dict(sorted(split.counts.items()))}
+            "counts": dict(sorted(split.counts.items())),
+            "tally": {k: [n, round(t, 4)] for k, (n, t) in sorted(split.tally.items())}}
 
 
 def table(rows: list[dict[str, Any]]) -> str:
@@ -175,6 +220,19 @@ def table(rows: list[dict[str, Any]]) -> str:
                      f"{100 * d / extra if extra else 0:.0f} % |")
     lines.append(f"| whole run | {cpu['hpn']:.3f} | {cpu['hpn+peephole']:.3f} | {extra:+.3f} | "
                  f"RCHPN/HPN {cpu['hpn+peephole'] / cpu['hpn']:.2f} |")
+    tally: dict[str, dict[str, list[float]]] = {s: defaultdict(lambda: [0.0, 0.0]) for s in STRATEGIES}
+    for r in rows:
+        for k, (n, t) in r.get("tally", {}).items():
+            tally[r["strategy"]][k][0] += n
+            tally[r["strategy"]][k][1] += t
+    if any(tally.values()):
+        lines += ["", "| inclusive tally | HPN n | HPN s | RCHPN n | RCHPN s | RCHPN − HPN s | share of the extra |",
+                  "|---|---|---|---|---|---|---|"]
+        for k in sorted(set(tally["hpn"]) | set(tally["hpn+peephole"])):
+            h, p = tally["hpn"].get(k, [0, 0.0]), tally["hpn+peephole"].get(k, [0, 0.0])
+            d = p[1] - h[1]
+            lines.append(f"| {k} | {h[0]:.0f} | {h[1]:.3f} | {p[0]:.0f} | {p[1]:.3f} | {d:+.3f} | "
+                         f"{100 * d / extra if extra else 0:.0f} % |")
     return "\n".join(lines)
 
 

@@ -181,6 +181,24 @@ def _second_ruled_out_by_bound(s1: Subgoal, s2: Subgoal, estimator: Estimator, l
     return not math.isinf(e1) and sum(estimator.effort_bound(a, levels) for a in s2.actions) >= e1
 
 
+def nothing_goes_first(s1: Subgoal, estimator: Estimator, levels: LevelMap, model: ResourceModel) -> bool:
+    """A sufficient condition, found from ``s1``'s own estimate, for ``arrange(s1, s2, want=SECOND)``
+    not to be SECOND for any ``s2`` (SelectGap then looks at no later step).
+
+    It is :func:`_second_ruled_out_by_bound` for every ``s2`` at once: with ``s1`` reachable, using
+    nothing continually and no effort to reach (its exposed preconditions hold), SECOND is left only
+    through ``s2`` being easier to reach than ``s1``, and no effort (nor a bound of one) is below 0
+    (action costs are not negative).  Not for a domain with its own ``arrange``.
+    """
+    if model.arrange is not None:
+        return False
+    if any(math.isinf(estimator.estimate(a, levels).effort) for a in s1.actions):
+        return False
+    if any(u is ResourceUse.CONTINUAL for u in subgoal_uses(s1, estimator, levels).values()):
+        return False
+    return sum(estimator.effort(a, levels) for a in s1.actions) <= 0.0
+
+
 def _cannot_be_second(
     s1: Subgoal,
     s2: Subgoal,

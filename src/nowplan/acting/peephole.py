@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING, Any
 
 from nowplan.acting.gather import gather
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
-from nowplan.acting.reorder import PeepholeConfig, Reorderer, highest_applicable
+from nowplan.acting.reorder import PeepholeConfig, PreimageKey, Reorderer, highest_applicable
 from nowplan.acting.resources import resource_model
 from nowplan.core.atoms import Goal
 from nowplan.core.operators import Action
@@ -47,6 +47,10 @@ if TYPE_CHECKING:
 __all__ = ["Peephole", "PeepholeConfig"]  # the switch and its settings (the rewrite itself: acting/reorder.py)
 
 log = logging.getLogger(__name__)
+
+# entries of the run's pre-image table before it is cleared (a bound on its memory; a marsupial
+# run of 10 packages regresses a few thousand)
+_MAX_REGRESSED = 200_000
 
 
 class Peephole(Mechanism):
@@ -79,6 +83,9 @@ class Peephole(Mechanism):
         # each pre-image atom's order key and text for the rewritten plans' trace records
         # (``Plan.to_json``'s ``made``): consecutive rewrites share most atoms
         self._atom_text: dict[Any, Any] = {}
+        # the validity chains' pre-images, shared by every Reorderer of the run (a pre-image does not
+        # depend on the belief; the tails of the candidate orders are regressed again at each step)
+        self._regressed: dict[PreimageKey, Any] = {}
 
     def _failed_now(self, ex: Executive) -> list[frozenset[Any]]:
         """The combinations that failed in the current belief (forgotten after each action)."""
@@ -160,8 +167,10 @@ class Peephole(Mechanism):
         config = self.config
         if self._cap < config.max_combined:
             config = replace(config, max_combined=self._cap)
+        if len(self._regressed) > _MAX_REGRESSED:
+            self._regressed.clear()
         r = Reorderer(ex.domain, ex.problem.objects, ex.belief, plan.levels, config=config, failed=failed,
-                      planner=ex.strategy.planner)
+                      planner=ex.strategy.planner, regressed=self._regressed)
         last = 0
         if r.arrangeable(ops[0]):
             ops, goals = r.select_gap(ops, goals)

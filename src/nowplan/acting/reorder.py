@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from nowplan.acting.arrange import Arrange, Subgoal, arrange
+from nowplan.acting.arrange import Arrange, Subgoal, arrange, depends, nothing_goes_first
 from nowplan.acting.resources import Estimator, ResourceModel, resource_model
 from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
@@ -28,6 +28,11 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.plan import Plan
 from nowplan.planning.regression import PlannerConfig, preimage, static_drop
+
+# a cached pre-image's key: ids of the goal and the operator, the operator's level, the static
+# predicates left out (``Reorderer.drop``)
+PreimageKey = tuple[int, int, "int | None", frozenset[str]]
+
 
 def estimate_config(planner: PlannerConfig | None, nodes: int = 300) -> PlannerConfig:
     """The estimator's small searches: ``planner``'s heuristic and engine, ``nodes`` expansions."""
@@ -87,6 +92,7 @@ class Reorderer:
         config: PeepholeConfig | None = None,
         failed: Sequence[frozenset[Any]] = (),
         planner: PlannerConfig | None = None,
+        regressed: dict[PreimageKey, tuple[Goal, Action, Goal | None]] | None = None,
     ) -> None:
         self.domain = domain
         self.failed = failed  # combinations (sets of action keys) found unplannable in this belief
@@ -99,10 +105,14 @@ class Reorderer:
         self.estimator = Estimator(domain, objects, belief, self.model, search)
         self.moves: list[str] = []
         self.validity_checks = 0
-        # pre-images already computed in this belief, by (id of the goal, id of the operator): the
-        # candidate orders share their tails, so re-validating one regresses only its new head.
-        # The goal and operator are kept in the value, so the ids are never reused while cached
-        self._regressed: dict[tuple[int, int], tuple[Goal, Action, Goal | None]] = {}
+        # pre-images already computed, by (id of the goal, id of the operator, its level): the
+        # candidate orders share their tails, so re-validating one regresses only its new head.  A
+        # pre-image does not depend on the belief (only on the goal, the operator, its level and
+        # :attr:`drop`), so the caller may pass one table for every Reorderer of a run
+        # (``Peephole``: the plan's pre-images after a rewrite are these goal objects, and the next
+        # step's candidates regress through the same tails again).  The goal and operator are kept
+        # in the value, so the ids are never reused while cached
+        self._regressed = {} if regressed is None else regressed
         self.regressions = 0  # pre-images computed (not found in the cache)
         # per action key, for this level map (SelectGap, SelectParallelOps and Gather ask again and again)
         self._arrangeable: dict[Any, bool] = {}
@@ -148,12 +158,13 @@ class Reorderer:
 
     def _preimage(self, g: Goal, a: Action) -> Goal | None:
         """``preimage(g, a)`` at ``a``'s level, computed once per goal object and operator."""
-        key = (id(g), id(a))
+        level = self.levels.level(a)
+        key = (id(g), id(a), level, self.drop)
         hit = self._regressed.get(key)
         if hit is not None and hit[0] is g and hit[1] is a:
             return hit[2]
         self.regressions += 1
-        pre = preimage(g, a, self.levels.level(a), self.domain, self.drop)
+        pre = preimage(g, a, level, self.domain, self.drop)
         self._regressed[key] = (g, a, pre)
         return pre
 
@@ -222,9 +233,16 @@ class Reorderer:
         while ops and self.arrangeable(ops[0]) and moves < limit:
             first = Subgoal((ops[0],), goals[1])
             moved = False
+            settled = False  # whether nothing_goes_first was asked for ``first``
             for j in range(1, len(ops)):
                 if not self.arrangeable(ops[j]) or not self.can_follow(ops[j], ()):
                     continue
+                if not settled and not self._depends_either(first, ops[j]):
+                    # the first candidate ``arrange`` would estimate ``first`` for: when ``first``
+                    # has nothing to wait for, no later step is preferred before it
+                    settled = True
+                    if nothing_goes_first(first, self.estimator, self.levels, self.model):
+                        break
                 if self.arrange(first, Subgoal((ops[j],), goals[j + 1]), Arrange.SECOND) is not Arrange.SECOND:
                     continue
                 new = [ops[j], *ops[:j], *ops[j + 1 :]]
@@ -239,6 +257,10 @@ class Reorderer:
             if not moved:
                 break
         return ops, goals
+
+    def _depends_either(self, s1: Subgoal, a: Action) -> bool:
+        """``arrange``'s first test (FIRST whatever the estimates): either needs an effect of the other."""
+        return depends(self.domain, s1.actions, (a,), self.levels) or depends(self.domain, (a,), s1.actions, self.levels)
 
     def note_dropped(self, before: Sequence[Action], after: Sequence[Action]) -> None:
         """Log, in :attr:`moves`, each step of ``before`` that a re-validation left out of ``after``."""
