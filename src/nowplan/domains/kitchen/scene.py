@@ -20,7 +20,8 @@ when built, the cabinet; their states (m of travel) are kept in one dict.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import weakref
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -168,6 +169,8 @@ class Scene:
     statics: tuple[int, ...]
     objects: dict[str, int]
     lid: int = -1  # the cabinet's lid (a multibody whose link 0 slides along -x), -1 without a cabinet
+    # disconnects the client when the scene is closed or no longer referenced (set by build)
+    release: weakref.finalize[[int], Scene] | None = field(default=None, repr=False, compare=False)
 
     @property
     def p(self) -> Any:
@@ -252,14 +255,24 @@ def build(objects: tuple[str, ...] = ("green", "sugar", "cracker"), cabinet: boo
         objs[o] = _box(p, c, SIZES[o], (0.0, 0.0, -1.0 - len(objs)), COLOURS[o])
     lid = _cabinet(p, c, statics) if cabinet else -1
     sc = Scene(c, int(robot), int(drawers), tuple(statics), objs, lid)
+    # each client holds its own copy of the meshes (~85 MB): an episode dropped without close()
+    # (a run, a sweep's worker, a test) gives its client back when the scene is collected
+    sc.release = weakref.finalize(sc, _disconnect, c)
     set_conf(sc, HOME)
     return sc
 
 
 def close(sc: Scene) -> None:
     """Disconnect the scene's PyBullet client (each holds its own copy of the meshes)."""
+    if sc.release is not None:
+        sc.release()  # a finalizer runs once: a later collection does nothing
+    else:
+        _disconnect(sc.client)
+
+
+def _disconnect(client: int) -> None:
     try:
-        sc.p.disconnect(physicsClientId=sc.client)
+        pybullet().disconnect(physicsClientId=client)
     except Exception:  # noqa: BLE001 - already disconnected
         pass
 
