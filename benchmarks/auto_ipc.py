@@ -119,7 +119,7 @@ def run_flat(dom: Path, prob: Path, limit: float, grace: float, improve: float) 
     solved = doc.get("status") == "solved"
     row.update(outcome="solved" if solved else str(doc.get("status")), cost=doc.get("cost"),
                planning_cpu_s=doc.get("planning_cpu_s"), actions=len(doc.get("plan") or []),
-               note="" if solved else str(doc.get("reason", ""))[:200])
+               note="" if solved else str(doc.get("reason", ""))[:200], plan=list(doc.get("plan") or []))
     if solved:
         row["validation"] = validate(dom, prob, list(doc["plan"]), HAS_UP)
     return row
@@ -138,7 +138,8 @@ def run_auto(dom: Path, prob: Path, strategy: str, limit: float, grace: float) -
     if kind != "ok":
         return {**row, "outcome": kind, "note": doc, "actions": len(done)}
     row.update(outcome=str(doc.get("outcome")), cost=doc.get("execution_cost"), planning_cpu_s=doc.get("planning_cpu_s"),
-               actions=doc.get("actions"), plans_made=doc.get("plans_made"), note=str(doc.get("reason", ""))[:200])
+               actions=doc.get("actions"), plans_made=doc.get("plans_made"), note=str(doc.get("reason", ""))[:200],
+               executed=done)  # for an A/B of two trees: the same executed actions
     if row["outcome"] == "reached":
         row["validation"] = validate(dom, prob, done, HAS_UP)
     return row
