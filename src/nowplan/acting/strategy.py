@@ -135,6 +135,7 @@ register_switch(
            {"domain_planner": True})
 )
 
+
 def is_online(strategy: Strategy) -> bool:
     """The strategy runs under seed 004's online policy (:mod:`nowplan.acting.online`), not the executive."""
     return bool(ONLINE_SWITCHES & set(strategy.switches))
