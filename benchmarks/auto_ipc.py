@@ -22,6 +22,10 @@ and ``auto_ipc.md`` (a table per pair, the reached counts and the CPU ratios aut
 
     PYTHONPATH=src .venv/bin/python benchmarks/auto_ipc.py /tmp/ipc8 [/tmp/ipc9 ...] --time-limit 60 \\
         --problems 8 --strategies hpn,hpn+flexible --out benchmarks/results/auto_ipc/NAME
+
+``--summarize RUN_DIR [RUN_DIR_AFTER] [--larger 1]`` prints the CPU ratios of stored runs (all pairs
+both solve, and those whose flat planner needs at least ``--larger`` s) and, for two runs, an A/B of
+their executed actions and costs.
 """
 
 from __future__ import annotations
@@ -32,6 +36,7 @@ import importlib.util
 import json
 import logging
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -119,7 +124,7 @@ def run_flat(dom: Path, prob: Path, limit: float, grace: float, improve: float) 
     solved = doc.get("status") == "solved"
     row.update(outcome="solved" if solved else str(doc.get("status")), cost=doc.get("cost"),
                planning_cpu_s=doc.get("planning_cpu_s"), actions=len(doc.get("plan") or []),
-               note="" if solved else str(doc.get("reason", ""))[:200])
+               note="" if solved else str(doc.get("reason", ""))[:200], plan=list(doc.get("plan") or []))
     if solved:
         row["validation"] = validate(dom, prob, list(doc["plan"]), HAS_UP)
     return row
@@ -144,7 +149,8 @@ def run_auto(dom: Path, prob: Path, strategy: str, limit: float, grace: float) -
     if kind != "ok":
         return {**row, "outcome": kind, "note": doc, "actions": len(done)}
     row.update(outcome=str(doc.get("outcome")), cost=doc.get("execution_cost"), planning_cpu_s=doc.get("planning_cpu_s"),
-               actions=doc.get("actions"), plans_made=doc.get("plans_made"), note=str(doc.get("reason", ""))[:200])
+               actions=doc.get("actions"), plans_made=doc.get("plans_made"), note=str(doc.get("reason", ""))[:200],
+               executed=done)  # for an A/B of two trees: the same executed actions
     if row["outcome"] == "reached":
         row["validation"] = validate(dom, prob, done, HAS_UP)
     return row
@@ -197,7 +203,61 @@ def tables(rows: list[dict[str, Any]], strategies: list[str], header: str) -> st
     return "\n".join([*lines[:1], "", "; ".join(summary), *lines[1:], ""])
 
 
+def load_runs(path: Path) -> dict[tuple[str, str], dict[str, Any]]:
+    return {(r["pair"], r["setting"]): r for r in map(json.loads, path.read_text().splitlines())}
+
+
+def summarize(dirs: list[Path], strategy: str, larger: float) -> str:
+    """The CPU ratios auto / flat of each stored run (``runs.jsonl``) over the pairs both solve, those
+    whose flat planner took at least ``larger`` s apart; with two runs (before, after) also an A/B of
+    the runs both trees reached: the same executed actions (where stored) and costs."""
+    out: list[str] = []
+    runs = [load_runs(d / "runs.jsonl") for d in dirs]
+    for d, rs in zip(dirs, runs):
+        both = [(f, a) for (pair, s), a in rs.items() if s == strategy and a["outcome"] == "reached"
+                and (f := rs.get((pair, "flat"), {})).get("outcome") == "solved"]
+        out.append(f"{d}: {len(both)} pairs both solve")
+        for what in ("planning_cpu_s", "process_cpu_s"):
+            r = sorted(a[what] / f[what] for f, a in both if f.get(what) and a.get(what) is not None)
+            if r:
+                out.append(f"  {what}: below flat on {sum(x < 1 for x in r)} of {len(r)}, median "
+                           f"{statistics.median(r):.2f}, worst {r[-1]:.2f}")
+        big = sorted((f["pair"], a["process_cpu_s"] / f["process_cpu_s"], a.get("planning_cpu_s", 0) / f["planning_cpu_s"])
+                     for f, a in both if (f.get("planning_cpu_s") or 0) >= larger)
+        out.append(f"  flat planner >= {larger:g} s: {len(big)} pairs, process CPU below flat on "
+                   f"{sum(p < 1 for _, p, _ in big)}: " + ", ".join(f"{n} {p:.2f} (plan {q:.2f})" for n, p, q in big))
+    if len(runs) == 2:
+        a, b = runs
+        same = diff = 0
+        notes: list[str] = []
+        for key, ra in a.items():
+            rb = b.get(key)
+            if rb is None or ra["outcome"] not in ("solved", "reached") or rb["outcome"] != ra["outcome"]:
+                if rb is not None and ra["outcome"] != rb["outcome"]:
+                    notes.append(f"{key[0]} {key[1]}: {ra['outcome']} -> {rb['outcome']}")
+                continue
+            steps = "executed" if key[1] != "flat" else "plan"
+            if ra.get("cost") == rb.get("cost") and ra.get(steps, []) == rb.get(steps, []):
+                same += 1
+            else:
+                diff += 1
+                notes.append(f"{key[0]} {key[1]}: cost {ra.get('cost')} -> {rb.get('cost')}")
+        out.append(f"A/B {dirs[0]} -> {dirs[1]}: {same} runs solved/reached in both with the same actions and "
+                   f"cost, {diff} different" + "".join(f"\n  {n}" for n in notes))
+    return "\n".join(out)
+
+
 def main(argv: list[str] | None = None) -> int:
+    if argv is None:
+        argv = sys.argv[1:]
+    if argv and argv[0] == "--summarize":  # --summarize RUN_DIR [RUN_DIR_AFTER] [--larger S]
+        sp = argparse.ArgumentParser(prog="auto_ipc.py --summarize")
+        sp.add_argument("dirs", type=Path, nargs="+")
+        sp.add_argument("--strategy", default="hpn")
+        sp.add_argument("--larger", type=float, default=1.0, help="the larger pairs: flat planner CPU >= this")
+        sa = sp.parse_args(argv[1:])
+        print(summarize(sa.dirs, sa.strategy, sa.larger))
+        return 0
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("folders", type=Path, nargs="+")
     ap.add_argument("--time-limit", type=float, default=60.0)

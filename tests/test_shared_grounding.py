@@ -139,3 +139,38 @@ def test_a_dropped_condition_without_a_static_is_not_shared(tmp_path: Path) -> N
         g = grounding(p.domain, p.objects, p.init, level)
         assert not g.shared
         same(g, fresh(p, level))
+
+
+def test_the_dead_end_fallbacks_flat_domain_is_filed_with_the_concrete_grounding(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """nomystery spends fuel for good, so ``prepare_problem`` plans it flat (every precondition at
+    criticality 1): that domain's grounding at each level the run uses is the dead-end test's concrete
+    one, re-made on the flat operators (IPC trucks p07 grounded twice before: ~0.5 s of a 2 s run),
+    and the run grounds nothing after the set-up."""
+    task_grounding._CACHE.clear()
+    p = prepared("nomystery")
+    assert p.domain.top_level == 0
+    for level in (-(10**9), -1, 0):
+        shared = grounding(p.domain, p.objects, p.init, level)
+        assert shared.shared, level
+        same(shared, fresh(p, level))
+        for act in shared.actions:
+            assert act.operator in p.domain.operators
+            b = act.bindings
+            assert act.preconditions() == tuple(pc.atom.bind(b) for pc in act.operator.preconditions)
+            assert act.preconditions(level) == act.preconditions()
+    calls: list[int] = []
+    real = task_grounding._ground
+
+    def counted(*args: object, **kw: object) -> Grounding:
+        calls.append(1)
+        return real(*args, **kw)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(task_grounding, "_ground", counted)
+    strat = parse_strategy("hpn+refine-flat")
+    from dataclasses import replace
+
+    strat = replace(strat, planner=replace(strat.planner, engine="forward"))
+    m = run_episode(Episode(p, SymbolicWorld(p.domain, p.init, seed=0), SymbolicBelief(p.init), "nomystery"), strat)
+    assert m.outcome.value == "reached"
+    assert calls == []

@@ -53,13 +53,6 @@ from nowplan.worlds.base import Observation
 
 log = logging.getLogger(__name__)
 
-ONLINE_SWITCHES = frozenset({"online", "reuse", "deferred"})
-
-
-def is_online(strategy: Strategy) -> bool:
-    return bool(ONLINE_SWITCHES & set(strategy.switches))
-
-
 class _OnlineOnly(Mechanism):
     """Refuses to run under the plan-stack executive: these switches need the online policy."""
 

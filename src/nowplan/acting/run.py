@@ -2,22 +2,25 @@
 
 from __future__ import annotations
 
-import base64
 import gc
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nowplan import __version__
 from nowplan.acting.hpn import Executive
 from nowplan.acting.metrics import Metrics
-from nowplan.acting.online import OnlinePolicy, is_online
 from nowplan.core.operators import Action
-from nowplan.acting.strategy import Strategy
+from nowplan.acting.strategy import Strategy, is_online
 from nowplan.domains.registry import Episode
 from nowplan.trace import Trace
 
+if TYPE_CHECKING:
+    from nowplan.acting.online import OnlinePolicy
+
 
 def _frame(trace: Trace, render: Callable[[Any, Any], bytes], episode: Episode, n: int, caption: str) -> None:
+    import base64  # frames only (start-up)
+
     png = render(episode.world, episode.belief)
     uri = "data:image/png;base64," + base64.b64encode(png).decode("ascii")
     trace.emit("frame", n=n, image=uri, caption=caption)
@@ -34,6 +37,8 @@ def make_runner(
     online / reuse / deferred, else the plan-stack executive), built but not run: building it refuses a
     strategy the domain or its belief cannot support (a sweep checks its runs this way before any runs)."""
     if is_online(strategy):
+        from nowplan.acting.online import OnlinePolicy  # imported for online strategies only (start-up)
+
         return OnlinePolicy(episode.problem, episode.world, episode.belief, strategy, seed=seed, trace=trace,
                             on_action=on_action)
     return Executive(episode.problem, episode.world, episode.belief, strategy, seed=seed, trace=trace,

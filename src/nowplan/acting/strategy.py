@@ -21,16 +21,20 @@ if TYPE_CHECKING:
     from nowplan.core.domain import Domain
 
 
-# modules that register switches with mechanisms when imported
-MECHANISM_MODULES = (
-    "nowplan.acting.aggressive",
-    "nowplan.acting.flexible",
-    "nowplan.acting.serendipity",
-    "nowplan.acting.selective",
-    "nowplan.acting.peephole",
-    "nowplan.acting.monitor",
-    "nowplan.acting.online",
-)
+# modules that register switches with mechanisms when imported, with the switches each registers:
+# a strategy imports only its own switches' modules (the monitor's plan library, RCHPN's reordering
+# and the online policy are ~0.1 s of a run's start-up that a plain hpn run does not use);
+# tests/test_startup.py checks the names against what the modules register
+MECHANISM_MODULES: dict[str, tuple[str, ...]] = {
+    "nowplan.acting.aggressive": ("aggressive",),
+    "nowplan.acting.flexible": ("flexible",),
+    "nowplan.acting.serendipity": ("serendipity",),
+    "nowplan.acting.selective": ("selective",),
+    "nowplan.acting.peephole": ("peephole",),
+    "nowplan.acting.monitor": ("monitor", "monitor-goal", "monitor-restore", "monitor-cost", "monitor-rule-cost"),
+    "nowplan.acting.online": ("online", "reuse", "deferred"),
+}
+ONLINE_SWITCHES = frozenset(MECHANISM_MODULES["nowplan.acting.online"])  # run by the online policy
 
 
 @dataclass(frozen=True)
@@ -83,7 +87,7 @@ class Strategy:
         return self.max_plans + self.replans_per_surprise * surprises
 
     def mechanisms(self) -> list[Mechanism]:
-        _load()
+        _load(self.switches)
         out: list[Mechanism] = []
         for s in self.switches:
             sw = SWITCHES[s]
@@ -131,6 +135,12 @@ register_switch(
            {"domain_planner": True})
 )
 
+
+def is_online(strategy: Strategy) -> bool:
+    """The strategy runs under seed 004's online policy (:mod:`nowplan.acting.online`), not the executive."""
+    return bool(ONLINE_SWITCHES & set(strategy.switches))
+
+
 def check_supported(domain: Domain, strategy: Strategy) -> None:
     """Refuse, before a run starts, a switch the domain declares it cannot support (and why)."""
     for switch in strategy.switches:
@@ -145,15 +155,17 @@ def check_supported(domain: Domain, strategy: Strategy) -> None:
 PLANNED: dict[str, str] = {}
 
 
-def _load() -> None:
-    for m in MECHANISM_MODULES:
-        importlib.import_module(m)
+def _load(switches: tuple[str, ...] | list[str] | None = None) -> None:
+    """Import the mechanism modules that register ``switches`` (None: all of them)."""
+    for module, names in MECHANISM_MODULES.items():
+        if switches is None or any(n in names for n in switches):
+            importlib.import_module(module)
 
 
 def strategy_names() -> list[str]:
-    """The strategy switches (``hpn``, ``flat``, ``online``, ``peephole``, ...) a strategy string may join with '+'."""
-    _load()
-    return sorted(SWITCHES)
+    """The strategy switches (``hpn``, ``flat``, ``online``, ``peephole``, ...) a strategy string may join with '+'
+    (the mechanism modules' switches by name, without importing them)."""
+    return sorted({*SWITCHES, *(n for names in MECHANISM_MODULES.values() for n in names)})
 
 
 # switches that contradict each other: at most one of each group, with why
@@ -188,8 +200,8 @@ def parse_strategy(spec: str, *, base_planner: PlannerConfig | None = None, **ov
     ``base_planner`` (e.g. a domain's own settings, ``DomainSpec.planner``) is the planner
     configuration the switches then modify; without it the engine's defaults.
     """
-    _load()
     parts = [p.strip() for p in spec.split("+") if p.strip()]
+    _load(parts)
     if not parts:
         raise ScenarioError(f"empty strategy; valid strategies: {', '.join(strategy_names())}")
     s = Strategy(name=spec, switches=tuple(parts))

@@ -471,7 +471,7 @@ def prepare_problem(problem: Problem) -> Problem:
 def _prepare(problem: Problem) -> Problem:
     from nowplan.planning.dead_ends import irreversible_step
     from nowplan.planning.reach_statics import add_reachability_statics
-    from nowplan.planning.task_grounding import cached_grounding
+    from nowplan.planning.task_grounding import cached_grounding, share_concrete
 
     domain = problem.domain
     hierarchy = derive_hierarchy(domain)
@@ -497,6 +497,10 @@ def _prepare(problem: Problem) -> Problem:
                     "cannot see it, and executing its first steps could leave no plan)", problem.name, dead)
         flat = tuple(replace(op, preconditions=tuple(Precondition(p.atom, 1) for p in op.preconditions))
                      for op in problem.domain.operators)
-        return replace(problem, domain=replace(problem.domain, operators=flat))
+        flat_problem = replace(problem, domain=replace(problem.domain, operators=flat))
+        concrete = cached_grounding(problem.domain, problem.objects, problem.init, -1)
+        if concrete is not None:  # the dead-end test's grounding: every level of the flat domain has it
+            share_concrete(concrete, flat_problem.domain, problem.objects, problem.init, [-(10**9), -1, 0])
+        return flat_problem
     stages = goal_stages(problem, hierarchy)
     return replace(prepared, stages=stages)

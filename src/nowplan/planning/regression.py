@@ -35,7 +35,6 @@ from nowplan.planning.task import forward_unsupported
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.preimage import achieves, preimage, regress_through, static_drop
-from nowplan.planning.regression_search import _Search
 
 __all__ = [
     "PlannerConfig",
@@ -158,6 +157,10 @@ def _plan(
         from nowplan.errors import ModelError
 
         raise ModelError(axioms_refusal(domain))
+    # imported at the first regression search: a forward-only run (nowplan plan, a PDDL
+    # --criticality auto run) never loads the regression search's ~15 modules
+    from nowplan.planning.regression_search import _Search
+
     search = _Search(domain, objects, belief, levels, config, context)
     attempts: list[str] = []
     result: tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str] = (

@@ -404,10 +404,11 @@ _UNBOUND = object()
 
 
 def _extension(old: Operator, op: Operator | None) -> tuple[int, tuple[int | None, ...]] | None:
-    """How ``op`` extends ``old`` with preconditions only (see :func:`share_concrete`), or None."""
+    """How ``op`` extends ``old`` with preconditions only (see :func:`share_concrete`), or None.
+    The old preconditions' criticalities may differ (the caller says every one is kept at its levels)."""
     k = len(old.preconditions)
-    if (op is None or op.effects != old.effects or op.params != old.params
-            or op.preconditions[:k] != old.preconditions):
+    if (op is None or op.effects != old.effects or op.params != old.params or len(op.preconditions) < k
+            or any(p.atom != q.atom for p, q in zip(op.preconditions, old.preconditions))):
         return None
     sources: list[int | None] = []
     for p in op.preconditions[k:]:
@@ -420,12 +421,15 @@ def _extension(old: Operator, op: Operator | None) -> tuple[int, tuple[int | Non
 def share_concrete(concrete: Grounding, domain: Domain, objects: Mapping[str, str | None], belief: Any,
                    levels: Iterable[int]) -> None:
     """File ``concrete`` (the grounding at level -1 of a domain that ``domain`` extends with static
-    preconditions only) as ``domain``'s grounding at each of ``levels``, its actions re-made on
-    ``domain``'s operators: what :func:`grounding` would compute there, without grounding again.
+    preconditions only, or with other criticalities that keep every precondition at ``levels``) as
+    ``domain``'s grounding at each of ``levels``, its actions re-made on ``domain``'s operators: what
+    :func:`grounding` would compute there, without grounding again.
 
     The caller guarantees the premise (:func:`nowplan.planning.reach_statics.add_reachability_statics`:
     every precondition an abstract level drops is guarded by a static that holds exactly for the
-    concretely reachable atoms, and every grounded action satisfies its new statics).  Then at every
+    concretely reachable atoms, and every grounded action satisfies its new statics; the flat domain
+    of ``--criticality auto``'s dead-end fallback, :func:`nowplan.planning.abstraction.prepare_problem`:
+    every precondition kept at every level, as at level -1).  Then at every
     level the relaxed exploration from ``belief`` reaches the same atoms and actions as concretely:
     an action found there has its dropped preconditions reachable, hence all of them.  So the run's
     first planner call does not ground the problem a second time (``--criticality auto`` grounded it
