@@ -7,10 +7,10 @@ wherever it is, and the plan hands packages to trucks without regard to where th
 the root it is worse: refining one instance of ``drop`` exposes its truck's position, while its
 siblings (the same drop with other capacity counts, or by the other truck) still hide theirs,
 and the cheapest plan for the refinement swaps them in, driving the trucks back and forth
-(``docs/pddl.md``, "Costs").
+(``benchmarks/results/auto_ipc/README.md``, "Costs").
 
-ABSTRIPS and ALPINE order the work but say nothing of cost; HPN (seed 000) costs an abstract
-operator by an estimate of its refinement.  Here an action that hides preconditions costs its
+The criticalities (ABSTRIPS-, ALPINE-style) say what a level hides, not what it will cost; HPN
+(seed 000) costs an abstract operator by an estimate of its refinement.  Here an action that hides preconditions costs its
 own cost plus ``h_max`` of the hidden ones (those of its full precondition not in its row at
 this level), computed in the concrete relaxed task from the call's initial state: the cheapest
 relaxed way to make the hardest hidden precondition true from where things are now (for a

@@ -241,7 +241,7 @@ def build_task(
         task.memo["mutex"] = st.mutex
     task.memo["position"] = st.position
     task.memo["adders"] = _adders(st, add, moved)
-    if hidden_costs and st.axioms is None:
+    if hidden_costs and st.axioms is None and levels.top >= domain.min_criticality:  # (not a concrete call)
         from nowplan.planning.hidden_costs import add_hidden_costs
 
         costed = add_hidden_costs(len(st.facts), task.init, pre, _full_pre(st), add, cost)
