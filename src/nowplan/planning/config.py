@@ -71,6 +71,10 @@ class PlannerConfig:
     # call's goal only); the executive sets its problem's goal, so that its calls share one grounding
     # (planning/relevance.py)
     relevant_to: Goal | None = None
+    # forward search at an abstract level: an action that hides preconditions costs its own cost plus
+    # h_max of the hidden ones from the call's state (planning/hidden_costs.py); `nowplan run
+    # --criticality auto` sets it, hand-written hierarchies keep their actions' own costs
+    hidden_costs: bool = False
 
 
 

@@ -358,14 +358,16 @@ def forward_plan(
     improve: float = 0.0,
     cache_costs: bool = False,
     relevant_to: Goal | None = None,
+    hidden_costs: bool = False,
 ) -> tuple[ForwardResult, list[tuple[Action | None, Goal]] | None]:
     """Ground, search and regress: the result and the plan's steps (``None`` unless solved).
 
     ``cache_costs``: ``cost_of`` is ``Action.cost`` in ``belief``; ``relevant_to``: a goal whose
-    relevant operators are grounded too (see :func:`build_task`).
+    relevant operators are grounded too (see :func:`build_task`); ``hidden_costs``: abstract actions
+    cost an estimate of their hidden preconditions too (:mod:`nowplan.planning.hidden_costs`).
     """
     task = build_task(domain, objects, belief, goal, levels, cost_of, cache_costs=cache_costs,
-                      relevant_to=relevant_to)
+                      relevant_to=relevant_to, hidden_costs=hidden_costs)
     t0 = time.process_time()
     res = search(task, method=method, heuristic=heuristic, cost_type=cost_type, weight=weight,
                  max_nodes=max_nodes, out_of_time=out_of_time)
@@ -427,6 +429,7 @@ def plan_forward(
         max_nodes=config.max_nodes if config.forward_max_nodes is None else config.forward_max_nodes,
         out_of_time=lambda: now() > deadline,
         improve=config.improve, cache_costs=True, relevant_to=config.relevant_to,
+        hidden_costs=config.hidden_costs,
     )
     method = f"forward:{config.search}"
     common: dict[str, Any] = dict(expanded=res.expanded, generated=res.generated, method=method,

@@ -145,6 +145,7 @@ class _Structure:
     rows: _Rows  # makes an action's row at another level (the level map's overrides)
     position: dict[Any, int] = field(default_factory=dict)  # action key -> its id
     costs: list[float] | None = None  # each action's cost, where every cost is state-free
+    full_pre: list[tuple[int, ...]] | None = None  # each action's concrete preconditions (-1: not indexed)
     adders: dict[int, list[int]] | None = None  # fact -> the actions whose row adds it, ascending
     by_operator: dict[str, list[int]] | None = None  # operator name -> its actions' ids (floors move them)
     pre_rows: list[Sequence[int]] | None = None  # pre_rows of the tasks whose by_pre is this structure's
@@ -163,6 +164,7 @@ def build_task(
     *,
     cache_costs: bool = False,
     relevant_to: Goal | None = None,
+    hidden_costs: bool = False,
 ) -> Task:
     """The integer task for ``goal`` from ``belief`` with each action at its level in ``levels``.
 
@@ -182,6 +184,9 @@ def build_task(
     the preconditions of the map's lowest level, a superset of every action's own) are grounded; the
     executive passes its problem's goal as ``relevant_to``, so the calls of a run share one grounding
     (an abstract level's goal hides most of some domains: where the lift is in miconic).
+
+    ``hidden_costs``: an action that hides preconditions at its level costs its own cost plus
+    ``h_max`` of the hidden ones from this state (:mod:`nowplan.planning.hidden_costs`).
     """
     top = max([levels.top, *(lv for _, lv in levels.overrides)])
     low = min([levels.top, *(lv for _, lv in levels.overrides), *(lv for _, lv in levels.floors)])
@@ -236,7 +241,24 @@ def build_task(
         task.memo["mutex"] = st.mutex
     task.memo["position"] = st.position
     task.memo["adders"] = _adders(st, add, moved)
+    if hidden_costs and st.axioms is None and levels.top >= domain.min_criticality:  # (not a concrete call)
+        from nowplan.planning.hidden_costs import add_hidden_costs
+
+        costed = add_hidden_costs(len(st.facts), task.init, pre, _full_pre(st), add, cost)
+        if costed is not None:
+            task.cost = costed
     return task
+
+
+def _full_pre(st: _Structure) -> list[tuple[int, ...]]:
+    """Each action's concrete non-static preconditions as fact ids (-1 for an atom the task does not
+    index), made once per structure."""
+    if st.full_pre is None:
+        index, statics = st.index, st.rows.statics
+        st.full_pre = [tuple(sorted({index.get(c, -1) for c in act.preconditions(None)
+                                     if c.predicate not in statics}))
+                       for act in st.actions]
+    return st.full_pre
 
 
 def _floored(domain: Domain, gr: Grounding, st: _Structure, floored: LevelMap, goal_negs: frozenset[Atom]) -> _Structure:
