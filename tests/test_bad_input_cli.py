@@ -159,3 +159,19 @@ def test_output_paths_that_cannot_be_written(tmp_path: Path, capsys: pytest.Capt
     for argv, says in cases:
         err = _err(capsys, *argv)
         assert says in err and "give another path" in err, (argv, err)
+
+
+@pytest.mark.parametrize("name", ["log\x1cistics", "log\nistics", "log\u2028istics", "log\x85istics"])
+def test_an_error_naming_input_with_line_breaking_characters_stays_one_line(
+        name: str, capsys: pytest.CaptureFixture[str]) -> None:
+    # str.splitlines breaks at \x1c-\x1e, \x85 and \u2028 too: a damaged file's text (a run store's
+    # SQLite message, found by the fuzz test) must not split the one line
+    err = _err(capsys, "run", "--domain", name)
+    assert "unknown domain" in err
+
+
+def test_one_line_escapes_control_characters() -> None:
+    from nowplan.errors import one_line
+
+    assert one_line("a\x1cb\nc\td") == "a\\x1cb c\td"
+    assert one_line("plain é") == "plain é"

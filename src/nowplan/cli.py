@@ -19,7 +19,7 @@ from collections.abc import Sequence
 
 from typing import Any
 
-from nowplan.errors import NowplanError
+from nowplan.errors import NowplanError, one_line
 
 # subcommand modules under nowplan.commands, in --help order
 COMMANDS = ("plan", "run", "criticality", "demo", "domains", "sweep", "report", "reproduce", "view")
@@ -101,7 +101,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             for mod in args.imports:
                 load_module(mod)
         except NowplanError as err:
-            print(f"nowplan: error: {err}", file=sys.stderr)
+            print(f"nowplan: error: {one_line(str(err))}", file=sys.stderr)
             return err.exit_code
     if not getattr(args, "func", None):
         parser.print_help()
@@ -109,7 +109,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return int(args.func(args) or 0)
     except NowplanError as err:
-        print(f"nowplan {args.command}: error: {err}", file=sys.stderr)
+        print(f"nowplan {args.command}: error: {one_line(str(err))}", file=sys.stderr)
         return err.exit_code
     except BrokenPipeError:  # output piped into head & co.
         sys.stderr.close()
@@ -117,7 +117,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except OSError as err:  # a path the command cannot read or write (a directory, a missing parent...)
         logging.getLogger(__name__).debug("file error", exc_info=True)
         where = f"{err.filename}: " if err.filename is not None else ""
-        print(f"nowplan {args.command}: error: {where}{err.strerror or err}; give another path "
+        print(f"nowplan {args.command}: error: {one_line(where + str(err.strerror or err))}; give another path "
               f"(see 'nowplan {args.command} --help' for what each path names)", file=sys.stderr)
         return 2
     except MemoryError:  # a search that outgrew the machine: say so in one line, not a traceback

@@ -82,3 +82,18 @@ def require(module: str, extra: str):  # type: ignore[no-untyped-def]
         return importlib.import_module(module)
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise MissingExtraError(module, extra) from exc
+
+
+def one_line(message: str) -> str:
+    """``message`` as one printable line: a line break becomes a space and any other control
+    character (SQLite and file contents can carry ``\\x1c``, which ``str.splitlines`` also breaks at)
+    its escape, so an error printed for the user stays the one line it promises."""
+    out = []
+    for ch in message:
+        if ch in "\r\n":
+            out.append(" ")
+        elif ch.isprintable() or ch == "\t":
+            out.append(ch)
+        else:
+            out.append(ascii(ch)[1:-1])
+    return "".join(out)
