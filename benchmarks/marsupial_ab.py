@@ -25,20 +25,14 @@ from collections import defaultdict
 from pathlib import Path
 from typing import Any
 
+from bench_args import span  # benchmarks/bench_args.py, beside this script
+
 HERE = Path(__file__).resolve().parent
 
 
-def _span(text: str) -> list[int]:
-    out: list[int] = []
-    for part in text.split(","):
-        lo, _, hi = part.partition("-")
-        out.extend(range(int(lo), int(hi or lo) + 1))
-    return out
-
-
 def run(args: argparse.Namespace) -> None:
-    for trial in _span(args.trials):
-        for n in _span(args.sizes):
+    for trial in span(args.trials):
+        for n in span(args.sizes):
             for tag, src in (("before", args.before), ("after", args.after)):
                 env = {**os.environ, "PYTHONPATH": str(Path(src).resolve())}
                 cmd = [sys.executable, str(HERE / "planner_profile.py"), "--regimes", args.regimes,

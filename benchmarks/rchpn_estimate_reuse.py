@@ -20,13 +20,7 @@ from nowplan.acting import resources as resources_mod
 from nowplan.domains.marsupial.flatcmp import timed_run
 from nowplan.domains.marsupial.scenarios import episode
 
-
-def _span(text: str) -> list[int]:
-    out: list[int] = []
-    for part in text.split(","):
-        lo, _, hi = part.partition("-")
-        out.extend(range(int(lo), int(hi or lo) + 1))
-    return out
+from bench_args import span  # benchmarks/bench_args.py, beside this script
 
 
 def main() -> int:
@@ -57,8 +51,8 @@ def main() -> int:
 
     resources_mod.Estimator.estimate = recorded  # type: ignore[method-assign]
     total = 0.0
-    for trial in _span(args.trials):
-        for n in _span(args.sizes):
+    for trial in span(args.trials):
+        for n in span(args.sizes):
             seen.clear()
             total += timed_run(episode(args.regime, n, trial), "hpn+peephole", trial, 600.0)[1]
     print(f"RCHPN CPU s: {total:.2f}; estimates computed: {sum(counts.values())}")

@@ -58,6 +58,8 @@ from nowplan.domains.marsupial import model as model_mod
 from nowplan.domains.marsupial.flatcmp import timed_run
 from nowplan.domains.marsupial.scenarios import episode
 
+from bench_args import span  # benchmarks/bench_args.py, beside this script
+
 STRATEGIES = ("hpn", "hpn+peephole")
 
 
@@ -165,14 +167,6 @@ def install(split: Split) -> None:
     ex.make_plan = calls  # type: ignore[method-assign]
 
 
-def _span(text: str) -> list[int]:
-    out: list[int] = []
-    for part in text.split(","):
-        lo, _, hi = part.partition("-")
-        out.extend(range(int(lo), int(hi or lo) + 1))
-    return out
-
-
 def one(regime: str, n: int, trial: int, strategy: str, split: Split, profile: str | None) -> dict[str, Any]:
     ep = episode(regime, n, trial)
     executed: list[str] = []
@@ -252,8 +246,8 @@ def main() -> int:
     split = Split()
     install(split)
     rows = []
-    for trial in _span(args.trials):
-        for n in _span(args.sizes):
+    for trial in span(args.trials):
+        for n in span(args.sizes):
             for regime in args.regimes.split(","):
                 for strategy in STRATEGIES:
                     r = one(regime, n, trial, strategy, split, args.profile)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from functools import cache
 from pathlib import Path
+from typing import Any
 
 import pytest
 from hypothesis import given, settings
@@ -96,11 +97,10 @@ def test_a_call_needing_fewer_operators_gets_only_those() -> None:
     same(g, fresh(p, top, ops))
 
 
-@pytest.mark.parametrize("name", ["logistics", "zenotravel", "driverlog"])
-def test_an_auto_run_grounds_the_problem_once(name: str, monkeypatch: pytest.MonkeyPatch) -> None:
-    """After prepare_problem, no planner call of an HPN run grounds the problem again."""
-    task_grounding._CACHE.clear()
-    p = prepared(name)
+def _groundings_of_a_run(p: Problem, name: str, monkeypatch: pytest.MonkeyPatch) -> tuple[Any, list[int]]:
+    """An HPN run (forward search, refine-flat) of ``p``, and one entry per grounding it made."""
+    from dataclasses import replace
+
     calls: list[int] = []
     real = task_grounding._ground
 
@@ -110,10 +110,17 @@ def test_an_auto_run_grounds_the_problem_once(name: str, monkeypatch: pytest.Mon
 
     monkeypatch.setattr(task_grounding, "_ground", counted)
     strat = parse_strategy("hpn+refine-flat")
-    from dataclasses import replace
-
     strat = replace(strat, planner=replace(strat.planner, engine="forward"))
     m = run_episode(Episode(p, SymbolicWorld(p.domain, p.init, seed=0), SymbolicBelief(p.init), name), strat)
+    return m, calls
+
+
+@pytest.mark.parametrize("name", ["logistics", "zenotravel", "driverlog"])
+def test_an_auto_run_grounds_the_problem_once(name: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """After prepare_problem, no planner call of an HPN run grounds the problem again."""
+    task_grounding._CACHE.clear()
+    p = prepared(name)
+    m, calls = _groundings_of_a_run(p, name, monkeypatch)
     assert m.outcome.value == "reached"
     assert m.plans_made > 1
     assert calls == []
@@ -159,18 +166,6 @@ def test_the_dead_end_fallbacks_flat_domain_is_filed_with_the_concrete_grounding
             b = act.bindings
             assert act.preconditions() == tuple(pc.atom.bind(b) for pc in act.operator.preconditions)
             assert act.preconditions(level) == act.preconditions()
-    calls: list[int] = []
-    real = task_grounding._ground
-
-    def counted(*args: object, **kw: object) -> Grounding:
-        calls.append(1)
-        return real(*args, **kw)  # type: ignore[arg-type]
-
-    monkeypatch.setattr(task_grounding, "_ground", counted)
-    strat = parse_strategy("hpn+refine-flat")
-    from dataclasses import replace
-
-    strat = replace(strat, planner=replace(strat.planner, engine="forward"))
-    m = run_episode(Episode(p, SymbolicWorld(p.domain, p.init, seed=0), SymbolicBelief(p.init), "nomystery"), strat)
+    m, calls = _groundings_of_a_run(p, "nomystery", monkeypatch)
     assert m.outcome.value == "reached"
     assert calls == []
