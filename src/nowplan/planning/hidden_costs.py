@@ -23,7 +23,6 @@ is costed from where things are at the start, not after the earlier steps' refin
 
 from __future__ import annotations
 
-import heapq
 import math
 from collections.abc import Sequence
 
@@ -31,39 +30,19 @@ from collections.abc import Sequence
 def hmax_costs(n_facts: int, init: frozenset[int], pre: Sequence[Sequence[int]],
                add: Sequence[Sequence[int]], cost: Sequence[float]) -> list[float]:
     """``h_max`` of every fact from ``init`` (inf: unreachable) over the actions ``pre``/``add``/
-    ``cost`` (a Dijkstra over facts: an action fires once the last of its preconditions is settled,
-    at that fact's cost plus its own)."""
-    h = [math.inf] * n_facts
-    waiting = [len(p) for p in pre]
-    need: dict[int, list[int]] = {}
-    queue: list[tuple[float, int]] = []
-    for f in init:
-        h[f] = 0.0
-        queue.append((0.0, f))
-    heapq.heapify(queue)
+    ``cost``: LM-cut's exploration (:func:`nowplan.planning.lmcut_lazy.hmax_over`) over these rows."""
+    from nowplan.planning.lmcut_lazy import hmax_over
 
-    def fire(k: int, base: float) -> None:
-        c = base + cost[k]
-        for g in add[k]:
-            if c < h[g]:
-                h[g] = c
-                heapq.heappush(queue, (c, g))
-
+    users: dict[int, list[int]] = {}
     for k, p in enumerate(pre):
-        if not p:
-            fire(k, 0.0)
         for f in p:
-            need.setdefault(f, []).append(k)
-    done = [False] * n_facts
-    while queue:  # bounded: each fact is settled once, each action fires once
-        c, f = heapq.heappop(queue)
-        if done[f] or c > h[f]:
-            continue
-        done[f] = True
-        for k in need.get(f, ()):
-            waiting[k] -= 1
-            if waiting[k] == 0:
-                fire(k, c)
+            users.setdefault(f, []).append(k)
+    acts = list(range(len(pre)))
+    reached, _ = hmax_over([tuple(p) for p in pre], list(init), acts, dict(enumerate(cost)), users,
+                           {k: list(a) for k, a in enumerate(add)})
+    h = [math.inf] * n_facts
+    for f, v in reached.items():
+        h[f] = v
     return h
 
 
