@@ -10,3 +10,12 @@ def span(text: str) -> list[int]:
         lo, _, hi = part.partition("-")
         out.extend(range(int(lo), int(hi or lo) + 1))
     return out
+
+
+class Hang(Exception):
+    """A run outlived its SIGALRM deadline (:func:`alarm` raises it)."""
+
+
+def alarm(signum: int, frame: object) -> None:
+    """A SIGALRM handler: ``signal.signal(signal.SIGALRM, alarm)``."""
+    raise Hang()

@@ -33,6 +33,8 @@ from collections import Counter
 from pathlib import Path
 from typing import Any
 
+from bench_args import Hang, alarm, span  # benchmarks/bench_args.py, beside this script
+
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ("lab", "search", "drone", "ward", "house")
 ONLINE = ("online", "online+reuse", "online+deferred", "online+reuse+deferred")
@@ -61,19 +63,6 @@ HELDOUT: dict[str, dict[str, dict[str, Any]]] = {
               "f0.5-x0.5": {"failure_prob": 0.5, "exogenous_prob": 0.5}},
 }
 TIMING = frozenset({"t", "cpu_s", "wall_s", "planning_cpu_s", "planning_s", "version"})
-
-
-class Hang(Exception):
-    pass
-
-
-def _alarm(signum: int, frame: Any) -> None:
-    raise Hang()
-
-
-def seeds(text: str) -> list[int]:
-    a, _, b = text.partition("-")
-    return list(range(int(a), int(b or a) + 1))
 
 
 def cells(domains: list[str], strategies: tuple[str, ...], seed_list: list[int]) -> list[tuple[str, str, str, int]]:
@@ -149,7 +138,7 @@ def run_one(domain: str, level: str, strategy: str, seed: int, max_actions: int,
 def worker(a: argparse.Namespace) -> int:
     import nowplan
 
-    signal.signal(signal.SIGALRM, _alarm)
+    signal.signal(signal.SIGALRM, alarm)
     logging.getLogger("nowplan").setLevel(logging.ERROR)
     print(f"worker: nowplan from {nowplan.__file__}", file=sys.stderr, flush=True)
     out = Path(a.out)
@@ -262,7 +251,7 @@ def main() -> int:
     if a.worker:
         return worker(a)
     strategies = HPN_SAMPLE if a.hpn else tuple(a.strategies.split(","))
-    todo = cells(a.domains.split(","), strategies, seeds(a.seeds))
+    todo = cells(a.domains.split(","), strategies, span(a.seeds))
     a.results.mkdir(parents=True, exist_ok=True)
     cells_file = a.results / f"{a.label}_cells.json"
     cells_file.write_text(json.dumps(todo))

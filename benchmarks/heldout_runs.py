@@ -18,6 +18,8 @@ from typing import Any
 
 from nowplan.api import NowplanError, Outcome, parse_strategy, run_episode
 
+from bench_args import Hang, alarm, span  # benchmarks/bench_args.py, beside this script
+
 STRATEGIES = [
     "flat", "hpn", "hpn+aggressive", "hpn+flexible", "hpn+foresight", "hpn+monitor", "hpn+monitor-cost",
     "hpn+monitor-goal", "hpn+monitor-restore", "hpn+monitor-rule-cost", "hpn+nodirect", "hpn+noshortcuts",
@@ -25,19 +27,6 @@ STRATEGIES = [
     "online+reuse", "online+reuse+deferred", "hpn+flexible+serendipity+selective+foresight",
     "flat+flexible+serendipity", "hpn+peephole+flexible",
 ]
-class Hang(Exception):
-    pass
-
-
-def _alarm(signum: int, frame: Any) -> None:
-    raise Hang()
-
-
-def seeds(text: str) -> list[int]:
-    a, _, b = text.partition("-")
-    return list(range(int(a), int(b or a) + 1))
-
-
 def run_one(levels: Mapping[str, tuple[str, dict[str, Any]]], episodes: Mapping[str, Callable[..., Any]],
             level: str, strategy: str, seed: int, max_actions: int, time_limit: float) -> dict[str, Any]:
     domain, kw = levels[level]
@@ -127,7 +116,7 @@ def main(doc: str, levels: Mapping[str, tuple[str, dict[str, Any]]],
     ap.add_argument("--recheck", type=Path, help="re-run every run of --out that ended 'limit' with --time-limit, "
                     "writing the rows here (resumable): was it the machine's load or the run?")
     a = ap.parse_args()
-    signal.signal(signal.SIGALRM, _alarm)
+    signal.signal(signal.SIGALRM, alarm)
     logging.getLogger("nowplan").setLevel(logging.ERROR)  # the runs' warnings are not the table's
     done: list[dict[str, Any]] = []
     if a.out and a.out.exists():
@@ -149,7 +138,7 @@ def main(doc: str, levels: Mapping[str, tuple[str, dict[str, Any]]],
         have = {(r["level"], r["strategy"], r["seed"]) for r in done}
         for level in a.levels.split(","):
             for strategy in a.strategies.split(","):
-                for seed in seeds(a.seeds):
+                for seed in span(a.seeds):
                     if (level, strategy, seed) in have:
                         continue
                     row = run_one(levels, eps, level, strategy, seed, a.max_actions, a.time_limit)
