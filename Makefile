@@ -38,12 +38,16 @@ test-deps: $(TESTDEPS)
 	    || echo "test-deps: apt-get failed; the browser test will be skipped"; \
 	else echo "test-deps: chromium missing and not root; the browser test will be skipped"; fi
 
+# the tests run in TEST_JOBS processes (pytest-xdist; the CI machine has 2 cores); TEST_JOBS=0 runs
+# them in this process, e.g. `make test TEST_JOBS=0` to debug one with pdb
+TEST_JOBS ?= 2
+
 test: $(STAMP) test-deps
 	$(BIN)/python -m mypy src/nowplan
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n $(TEST_JOBS)
 
 test-all: $(STAMP) test-deps
-	$(BIN)/python -m pytest -m ''
+	$(BIN)/python -m pytest -n $(TEST_JOBS) -m ''
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/classical.py --time-limit 10 --out benchmarks/results/classical_current
