@@ -36,6 +36,7 @@ from nowplan.acting.gather import gather
 from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 from nowplan.acting.reorder import PeepholeConfig, PreimageKey, Reorderer, highest_applicable
 from nowplan.acting.resources import resource_model
+from nowplan.acting.truth import HoldsFn, TruthMemo
 from nowplan.core.atoms import Goal
 from nowplan.core.operators import Action
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
@@ -86,6 +87,15 @@ class Peephole(Mechanism):
         # the validity chains' pre-images, shared by every Reorderer of the run (a pre-image does not
         # depend on the belief; the tails of the candidate orders are regressed again at each step)
         self._regressed: dict[PreimageKey, Any] = {}
+        # atom truths in the current belief, shared by the highest true kernel of every frame and
+        # the rewrite's tests until the belief's state changes
+        self._truth: TruthMemo | None = None
+
+    def _holds(self, ex: Executive) -> HoldsFn:
+        """``Domain.holds`` in the executive's belief, memoised while its point state is the same."""
+        if self._truth is None or self._truth.domain is not ex.domain:
+            self._truth = TruthMemo(ex.domain)
+        return self._truth.holds_in(ex.belief)
 
     def _failed_now(self, ex: Executive) -> list[frozenset[Any]]:
         """The combinations that failed in the current belief (forgotten after each action)."""
@@ -113,7 +123,7 @@ class Peephole(Mechanism):
                 return False  # above a combination given up: popped (as not applicable)
         if frame.i >= frame.n:
             return False
-        k = highest_applicable(ex.domain, ex.belief, frame.plan, _watch(frame))
+        k = highest_applicable(ex.domain, ex.belief, frame.plan, _watch(frame), self._holds(ex))
         # the executive asks next_step right after this, in the same belief: it reuses k
         self._applicable = (frame, frame.plan, ex.metrics.actions, k)
         if k is None:
@@ -150,7 +160,7 @@ class Peephole(Mechanism):
         if known is not None and known[0] is frame and known[1] is plan and known[2] == ex.metrics.actions:
             k = known[3]
         else:
-            k = highest_applicable(ex.domain, ex.belief, plan, _watch(frame))
+            k = highest_applicable(ex.domain, ex.belief, plan, _watch(frame), self._holds(ex))
         if k is None or k >= frame.n:
             return None
         first = plan.steps[k + 1].action
@@ -170,7 +180,7 @@ class Peephole(Mechanism):
         if len(self._regressed) > _MAX_REGRESSED:
             self._regressed.clear()
         r = Reorderer(ex.domain, ex.problem.objects, ex.belief, plan.levels, config=config, failed=failed,
-                      planner=ex.strategy.planner, regressed=self._regressed)
+                      planner=ex.strategy.planner, regressed=self._regressed, holds=self._holds(ex))
         last = 0
         if r.arrangeable(ops[0]):
             ops, goals = r.select_gap(ops, goals)

@@ -22,6 +22,7 @@ from typing import Any
 
 from nowplan.acting.arrange import Arrange, Subgoal, arrange, depends, nothing_goes_first
 from nowplan.acting.resources import Estimator, ResourceModel, resource_model
+from nowplan.acting.truth import HoldsFn
 from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
@@ -93,8 +94,13 @@ class Reorderer:
         failed: Sequence[frozenset[Any]] = (),
         planner: PlannerConfig | None = None,
         regressed: dict[PreimageKey, tuple[Goal, Action, Goal | None]] | None = None,
+        holds: HoldsFn | None = None,
     ) -> None:
         self.domain = domain
+        # truth in the belief (``holds``: the caller's, e.g. a TruthMemo's for this belief, which the
+        # rewrite's tests share with the highest true kernel's)
+        self._holds_given = holds is not None
+        self.holds: HoldsFn = holds if holds is not None else (lambda a: domain.holds(a, belief))
         self.failed = failed  # combinations (sets of action keys) found unplannable in this belief
         self.belief = belief
         self.levels = levels
@@ -102,7 +108,7 @@ class Reorderer:
         self.config = config or PeepholeConfig()
         self._drop: frozenset[str] | None = None  # static predicates left out of pre-images (``drop``)
         search = self.config.estimate_search or estimate_config(planner, self.config.estimate_nodes)
-        self.estimator = Estimator(domain, objects, belief, self.model, search)
+        self.estimator = Estimator(domain, objects, belief, self.model, search, holds=holds)
         self.moves: list[str] = []
         self.validity_checks = 0
         # pre-images already computed, by (id of the goal, id of the operator, its level): the
@@ -181,11 +187,11 @@ class Reorderer:
         only there: an Unload pulled ahead of the steps that bring its package to the vehicle.
         """
         touched = {e.key for b in before for e in b.effects()}
-        drop = self.drop
+        drop, holds = self.drop, self.holds
         for p in a.preconditions(self.levels.level(a)):
             if p.predicate in drop or p.key in touched:
                 continue
-            if not self.domain.holds(p, self.belief):
+            if not holds(p):
                 return False
         return True
 
@@ -193,7 +199,10 @@ class Reorderer:
         """The plan (redundant steps dropped) and its pre-images if it is valid from the belief."""
         self.validity_checks += 1
         res = self.chain(ops, goal)
-        if res is None or not self.domain.satisfies(self.belief, res[1][0]):
+        if res is None:
+            return None
+        g0 = res[1][0]
+        if not (all(map(self.holds, g0.atoms)) if self._holds_given else self.domain.satisfies(self.belief, g0)):
             return None
         return res
 
@@ -312,22 +321,26 @@ def combine_goals(ops: Sequence[Action], goals: Sequence[Goal], last: int) -> Su
 
 
 def highest_applicable(
-    domain: Domain, belief: Any, plan: Plan, watch: dict[int, Atom] | None = None
+    domain: Domain, belief: Any, plan: Plan, watch: dict[int, Atom] | None = None, holds: HoldsFn | None = None
 ) -> int | None:
     """The highest ``i`` with the belief in ``g_i`` (``n`` if the goal already holds).
 
     ``watch`` (kept by the caller for this plan across beliefs) holds, per pre-image found false,
     the atom that was false: it is tested first next time, so a pre-image that stays false (most
     of a long plan's, while its first steps are taken) costs one test instead of a pass over its
-    atoms up to a false one.  The answer is the same with or without it.
+    atoms up to a false one.  The answer is the same with or without it.  ``holds`` answers
+    ``domain.holds(atom, belief)`` (e.g. a :class:`~nowplan.acting.truth.TruthMemo`'s, shared by
+    the calls made in one belief: the pre-images of a plan, and of the plans pushed in that
+    belief, repeat most atoms).
     """
-    holds = domain.holds
+    if holds is None:
+        holds = lambda a: domain.holds(a, belief)  # noqa: E731
     for i in range(len(plan.steps) - 1, -1, -1):
         if watch is not None:
             w = watch.get(i)
-            if w is not None and not holds(w, belief):
+            if w is not None and not holds(w):
                 continue
-        false = next((a for a in plan.steps[i].goal.atoms if not holds(a, belief)), None)
+        false = next((a for a in plan.steps[i].goal.atoms if not holds(a)), None)
         if false is None:
             return i
         if watch is not None:

@@ -131,10 +131,13 @@ class Estimator:
         belief: Any,
         model: ResourceModel,
         search: PlannerConfig | None = None,
+        holds: Callable[[Atom], bool] | None = None,
     ) -> None:
         self.domain = domain
         self.objects = objects
         self.belief = belief
+        # truth in the belief (the caller's memo for it, or Domain.holds)
+        self.holds: Callable[[Atom], bool] = holds if holds is not None else (lambda a: domain.holds(a, belief))
         self.model = model
         self.search = search or PlannerConfig(
             max_nodes=300, time_limit=30.0, serialization=True, monotonic=False, shortcut_nodes=300
@@ -241,7 +244,8 @@ class Estimator:
             for p in action.operator.preconditions
             if p.criticality == crit and p.atom.predicate not in self.domain.static_predicates
         ]
-        return [a for a in want if not self.domain.holds(a, self.belief)]
+        holds = self.holds
+        return [a for a in want if not holds(a)]
 
     def _support(self, action: Action, levels: LevelMap, crit: int) -> tuple[Action, ...] | None:
         """Actions of a limited plan achieving ``action``'s unmet preconditions of criticality ``crit``."""
