@@ -2,7 +2,7 @@
 
 For every instance: ground, run LAMA's first iteration and action elimination, then
 improve that plan with each strategy for the budget `nowplan plan --improve 1` gives
-(the first search's CPU time plus forward.IMPROVE_BASE_S), and print its cost against
+(the first search's expansions plus forward.IMPROVE_BASE work units, planning/anytime.py), and print its cost against
 lama-first's cost stored in a `benchmarks/classical.py` CSV:
 
 * ``wastar``: the weighted A* searches alone (weights 5, 3, 2, 1; what
@@ -14,7 +14,7 @@ lama-first's cost stored in a `benchmarks/classical.py` CSV:
     PYTHONPATH=src .venv/bin/python benchmarks/classical_improve.py [--domains barman]
         [--fd-csv benchmarks/results/classical_orders/classical.csv]
 
-CPU budgets, so the figures vary a little with the machine's load.
+Work budgets (counted states), so the figures do not depend on the machine's load.
 """
 
 from __future__ import annotations
@@ -22,7 +22,6 @@ from __future__ import annotations
 import argparse
 import csv
 import sys
-import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -35,7 +34,7 @@ from benchmarks.classical.generate import DOMAINS, domain_file, instance_files  
 from nowplan.core.levels import flat_levels  # noqa: E402
 from nowplan.io.pddl_read import load_pddl  # noqa: E402
 from nowplan.planning import anytime, pngs  # noqa: E402
-from nowplan.planning.forward import IMPROVE_BASE_S, search  # noqa: E402
+from nowplan.planning.forward import IMPROVE_BASE, search  # noqa: E402
 from nowplan.planning.hff import RelaxedHeuristic  # noqa: E402
 from nowplan.planning.postprocess import eliminate_actions  # noqa: E402
 from nowplan.planning.task import Task, build_task  # noqa: E402
@@ -43,18 +42,23 @@ from nowplan.planning.task import Task, build_task  # noqa: E402
 STRATEGIES = ("wastar", "pngs", "default")
 
 
-def _wastar_only(task: Task, plan: list[int], budget: float) -> list[int]:
-    return anytime.improve(task, plan, budget, wastar_share=1.0)
+def _wastar_only(task: Task, plan: list[int], budget: int, branching: int) -> list[int]:
+    return anytime.improve(task, plan, budget, wastar_share=1.0, branching=branching)
 
 
-def _pngs_only(task: Task, plan: list[int], budget: float) -> list[int]:
-    end = time.process_time() + budget
-    return pngs.improve_by_neighborhood(task, plan, lambda: time.process_time() > end,
-                                        RelaxedHeuristic(task).native)
+def _pngs_only(task: Task, plan: list[int], budget: int, branching: int) -> list[int]:
+    spent = [0]
+
+    def stop() -> bool:
+        spent[0] += anytime.PNGS_UNITS
+        return spent[0] > budget
+
+    return pngs.improve_by_neighborhood(task, plan, stop, RelaxedHeuristic(task).native)
 
 
-RUN: dict[str, Callable[[Task, list[int], float], list[int]]] = {
-    "wastar": _wastar_only, "pngs": _pngs_only, "default": lambda t, p, b: anytime.improve(t, p, b)}
+RUN: dict[str, Callable[[Task, list[int], int, int], list[int]]] = {
+    "wastar": _wastar_only, "pngs": _pngs_only,
+    "default": lambda t, p, b, k: anytime.improve(t, p, b, branching=k)}
 
 
 def main() -> None:
@@ -72,17 +76,17 @@ def main() -> None:
                 continue
             p = load_pddl(str(domain_file(d)), str(prob))
             task = build_task(p.domain, p.objects, p.init, p.goal, flat_levels(), lambda a, p=p: a.cost(p.init))
-            t0 = time.process_time()
             res = search(task, method="lama")
             if res.actions is None:
                 print(f"{d} {prob.stem}: no first plan ({res.status.value})")
                 continue
             ids = {a: i for i, a in enumerate(task.actions)}
             first = eliminate_actions(task, [ids[a] for a in res.actions])
-            budget = time.process_time() - t0 + IMPROVE_BASE_S
+            budget = res.expanded + IMPROVE_BASE  # what `nowplan plan --improve 1` gives (forward.py)
+            branching = max(1, round(res.generated / max(1, res.expanded)))
             line = f"{d:11s} {prob.stem} lama-first {fd[key]:4.0f} first {sum(task.cost[a] for a in first):4.0f}"
             for s in STRATEGIES:
-                c = sum(task.cost[a] for a in RUN[s](task, first, budget))
+                c = sum(task.cost[a] for a in RUN[s](task, first, budget, branching))
                 ratios[s].append(c / fd[key])
                 line += f" | {s} {c:4.0f} ({c / fd[key]:.3f})"
             print(line, flush=True)

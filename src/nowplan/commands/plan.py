@@ -67,8 +67,10 @@ def register(subparsers: Any) -> None:
                         "alone, or on --heuristic) or astar (weighted by --weight; --weight 1 with "
                         "--heuristic max is optimal)")
     p.add_argument("--improve", type=float, default=1.0, metavar="K",
-                   help="after the first forward plan, look for cheaper ones for K times the first "
-                        "search's CPU time + 0.02 s (weighted A*, falling weights; default 1, 0 = off)")
+                   help="after the first forward plan, look for cheaper ones (weighted A* with falling "
+                        "weights, then plan neighborhood search) for K times the first search's work plus "
+                        "a fixed amount, counted in states, not seconds, so the plan does not depend on the "
+                        "machine's load (default 1, 0 = off)")
     p.add_argument("--heuristic", choices=("ff", "add", "max"), default="ff",
                    help="heuristic of --search gbfs and astar: h_FF (default), h_add or h_max "
                         "(lama always uses h_FF and the landmark count)")

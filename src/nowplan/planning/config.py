@@ -51,7 +51,8 @@ class PlannerConfig:
     # greedy best-first on h_FF alone, or (weighted) A*
     search: Literal["gbfs", "lama", "astar"] = "lama"
     # anytime improvement after the first forward plan (weighted A* with falling weights, bounded by
-    # the best cost): CPU budget = improve x the first search's CPU time + 0.02 s; 0 = off
+    # the best cost, then plan neighborhood search): a work budget of improve x the first search's
+    # expansions + forward.IMPROVE_BASE units (planning/anytime.py); 0 = off
     improve: float = 0.0
     forward_heuristic: Literal["ff", "add", "max"] = "ff"
     # action costs as the forward heuristic sees them (FD's adapt_costs): one | plusone | normal
