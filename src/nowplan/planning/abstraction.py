@@ -72,7 +72,7 @@ from __future__ import annotations
 
 import gc
 import logging
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
 
 from nowplan.core.atoms import Atom, Goal, Var
@@ -85,6 +85,7 @@ from nowplan.planning.type_predicates import is_type_set, may_overlap, object_se
 log = logging.getLogger(__name__)
 
 TypeName = str | None
+Meets = Callable[[str, str], bool]  # can one object be of both type sets?
 
 
 @dataclass(frozen=True, order=True)
@@ -170,19 +171,21 @@ def literal_class(domain: Domain, op: Operator, atom: Atom, type_sets: bool = Fa
     return LiteralClass(atom.predicate, tuple(_type_name(domain, op, a, type_sets) or "" for a in atom.args))
 
 
-def _overlap(domain: Domain, a: str, b: str) -> bool:
+def _overlap(domain: Domain, a: str, b: str, meets: Meets | None = None) -> bool:
     """Can one object have both types?  (Single inheritance: one is an ancestor of the other; type sets:
     one a subset of the other; a type set and a declared type: assumed so.)"""
     if not a or not b or a == b:
         return True
     if is_type_set(a) or is_type_set(b):
-        return not (is_type_set(a) and is_type_set(b)) or may_overlap(a, b)
+        if not (is_type_set(a) and is_type_set(b)):
+            return True
+        return may_overlap(a, b) if meets is None else meets(a, b)
     return b in domain.subtypes(a) or a in domain.subtypes(b)
 
 
-def _classes_overlap(domain: Domain, x: LiteralClass, y: LiteralClass) -> bool:
+def _classes_overlap(domain: Domain, x: LiteralClass, y: LiteralClass, meets: Meets | None) -> bool:
     return x.predicate == y.predicate and all(
-        _overlap(domain, a, b) for a, b in zip(x.types, y.types, strict=True)
+        _overlap(domain, a, b, meets) for a, b in zip(x.types, y.types, strict=True)
     )
 
 
@@ -252,7 +255,7 @@ def _derived_dependencies(domain: Domain) -> dict[str, set[tuple[Operator, Atom]
     return out
 
 
-def _derive_hierarchy(domain: Domain, type_sets: bool) -> Hierarchy:
+def _derive_hierarchy(domain: Domain, type_sets: bool, meets: Meets | None = None) -> Hierarchy:
     static = domain.static_predicates
     derived = domain.derived
     # a derived precondition stands for the basic literals its rules read: an operator reading it reads them
@@ -268,7 +271,7 @@ def _derive_hierarchy(domain: Domain, type_sets: bool) -> Hierarchy:
     for group in by_pred.values():
         for i, x in enumerate(group):
             for y in group[i + 1:]:
-                if _classes_overlap(domain, x, y):
+                if _classes_overlap(domain, x, y, meets):
                     uf.union(x, y)
     members = {c: uf.find(c) for c in raw if c.predicate not in static}
     # classes no operator changes are static too (checked at every level), like static predicates
@@ -416,25 +419,27 @@ def _split_pairs(hierarchy: Hierarchy) -> list[tuple[tuple[str, ...], tuple[str,
 
 
 def problem_hierarchy(problem: Problem) -> Hierarchy:
-    """The automatic hierarchy for ``problem``: with type sets unless two of them, taken as disjoint,
-    share one of its objects where a predicate's classes are kept apart (then without)."""
+    """The automatic hierarchy for ``problem``: the domain's, unless two of its type sets (taken as
+    disjoint) share one of the problem's objects where a predicate's classes are kept apart; then
+    the one whose classes merge wherever their type sets share an object of the problem."""
     hierarchy = derive_hierarchy(problem.domain)
-    if hierarchy.type_sets and shared_objects(problem, _split_pairs(hierarchy)) is not None:
-        return derive_hierarchy(problem.domain, type_sets=False)
-    return hierarchy
+    if not hierarchy.type_sets or shared_objects(problem, _split_pairs(hierarchy)) is None:
+        return hierarchy
+    sets = object_sets(problem, (t for c in hierarchy.members for t in c.types))
+    return _derive_hierarchy(problem.domain, True, lambda a, b: bool(sets[a] & sets[b]))
 
 
 def checked_type_sets(problem: Problem) -> Problem:
-    """``problem`` whose domain has the automatic criticalities of :func:`problem_hierarchy`: unchanged
-    unless type sets of its hierarchy share objects of the problem (``load_pddl(..., "auto")``)."""
+    """``problem`` whose domain has the criticalities of :func:`problem_hierarchy` (``load_pddl(...,
+    "auto")``): unchanged unless type sets of the domain's hierarchy share objects of the problem."""
     hierarchy = derive_hierarchy(problem.domain)
     if not hierarchy.type_sets:
         return problem
     shared = shared_objects(problem, _split_pairs(hierarchy))
     if shared is None:
         return problem
-    log.info("%s: the automatic hierarchy without type predicates: %s", problem.name, shared)
-    return replace(problem, domain=apply_hierarchy(problem.domain, derive_hierarchy(problem.domain, type_sets=False)))
+    log.info("%s: type sets merged where they share objects: %s", problem.name, shared)
+    return replace(problem, domain=apply_hierarchy(problem.domain, problem_hierarchy(problem)))
 
 
 def prepare_problem(problem: Problem) -> Problem:

@@ -76,7 +76,7 @@ def shared_objects(problem: Problem, pairs: Iterable[tuple[tuple[str, ...], tupl
 
     for xs, ys in pairs:
         if all(_meet(objs(a), objs(b)) for a, b in zip(xs, ys, strict=True)):
-            return f"({', '.join(xs)}) and ({', '.join(ys)}) share objects in {problem.name}"
+            return f"({', '.join(xs)}) and ({', '.join(ys)}) in {problem.name}"
     return None
 
 
