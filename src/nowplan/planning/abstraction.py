@@ -13,7 +13,10 @@ vehicles.  An argument's type is the operator parameter's declared type (or a
 constant's type; ``None`` = ``object``).  Two classes of one predicate whose
 types overlap position by position (one type a subtype of the other) could
 match the same ground atom, so they are merged: every ground atom belongs to
-at most one class.  Without types the classes are the predicates.
+at most one class.  An untyped parameter is typed by the static unary predicates
+its operator requires of it (``[truck]`` for ``(truck ?t)``,
+:mod:`nowplan.planning.type_predicates`); without those either, the classes are
+the predicates.
 
 **Constraints** (Knoblock's problem-independent restriction).  For every
 operator, every effect class ``e`` (added or deleted) and
