@@ -23,9 +23,9 @@ def counting(monkeypatch: Any) -> list[str]:
     calls: list[str] = []
     made = abstraction._derive_hierarchy
 
-    def counted(domain: Any) -> Any:
+    def counted(domain: Any, *args: Any) -> Any:  # (domain, type_sets[, meets])
         calls.append(domain.name)
-        return made(domain)
+        return made(domain, *args)
 
     monkeypatch.setattr(abstraction, "_derive_hierarchy", counted)
     return calls

@@ -231,6 +231,9 @@ def hierarchy_text(domain: Domain) -> str:
         f"# criticality k+1; one at the action's own level, or static, {top + 1} (kept at every level).",
         "# Edit freely: this file loads with --criticality FILE.",
     ]
+    if h.type_sets:
+        lines.append("# [p]: an untyped argument the action requires to satisfy the static predicate p; such")
+        lines.append("# type sets are taken as disjoint (run: checked on the problem's objects, else without)")
     for lvl, classes in sorted(h.by_level().items(), reverse=True):
         lines.append(f"# level {lvl} (criticality {lvl + 1}): " + ", ".join(str(c) for c in classes))
     if h.derived:

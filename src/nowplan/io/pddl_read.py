@@ -437,4 +437,9 @@ def _load_problem(d: DomainDef, checker: Checker, problem_path: str | Path, crit
         goal = Goal.of(goal_atoms, domain.rules)
     except ContradictoryGoalError as exc:
         raise ContradictoryGoalError(f"{src.path}: {exc} (in the goal)") from exc
-    return Problem(domain, objects, init, goal, p.name)
+    problem = Problem(domain, objects, init, goal, p.name)
+    if isinstance(criticality_path, str) and criticality_path == "auto":
+        from nowplan.planning.abstraction import checked_type_sets
+
+        problem = checked_type_sets(problem)  # type predicates that this problem's objects share
+    return problem

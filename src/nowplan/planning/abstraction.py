@@ -13,7 +13,10 @@ vehicles.  An argument's type is the operator parameter's declared type (or a
 constant's type; ``None`` = ``object``).  Two classes of one predicate whose
 types overlap position by position (one type a subtype of the other) could
 match the same ground atom, so they are merged: every ground atom belongs to
-at most one class.  Without types the classes are the predicates.
+at most one class.  An untyped parameter is typed by the static unary predicates
+its operator requires of it (``[truck]`` for ``(truck ?t)``,
+:mod:`nowplan.planning.type_predicates`); without those either, the classes are
+the predicates.
 
 **Constraints** (Knoblock's problem-independent restriction).  For every
 operator, every effect class ``e`` (added or deleted) and
@@ -72,17 +75,20 @@ from __future__ import annotations
 
 import gc
 import logging
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
 
 from nowplan.core.atoms import Atom, Goal, Var
 from nowplan.core.domain import Domain, Problem
 from nowplan.core.operators import Action, Operator, Precondition
 from nowplan.core.state import State
+from nowplan.planning.graphs import UnionFind, sccs
+from nowplan.planning.type_predicates import is_type_set, may_overlap, object_sets, shared_objects, type_set
 
 log = logging.getLogger(__name__)
 
 TypeName = str | None
+Meets = Callable[[str, str], bool]  # can one object be of both type sets?
 
 
 @dataclass(frozen=True, order=True)
@@ -109,6 +115,7 @@ class Hierarchy:
     edges: frozenset[tuple[LiteralClass, LiteralClass]]  # (e, p): level(e) >= level(p)
     # derived predicate -> the highest level of the basic literals its rules read (None: static ones only)
     derived: Mapping[str, int | None] = field(default_factory=dict)
+    type_sets: bool = False  # untyped parameters typed by static unary predicates (planning/type_predicates.py)
 
     @property
     def top(self) -> int:
@@ -121,7 +128,7 @@ class Hierarchy:
             return None
         if atom.predicate in self.derived:
             return self.derived[atom.predicate]
-        return self.levels.get(self.members[literal_class(domain, op, atom)])  # None: a static class
+        return self.levels.get(self.members[literal_class(domain, op, atom, self.type_sets)])  # None: static
 
     def effect_level(self, domain: Domain, op: Operator) -> int | None:
         """The one level of ``op``'s effects (``None`` without effects)."""
@@ -150,133 +157,78 @@ class Hierarchy:
 # --------------------------------------------------------------------------- classes
 
 
-def _type_name(domain: Domain, op: Operator, term: object) -> TypeName:
+def _type_name(domain: Domain, op: Operator, term: object, type_sets: bool) -> TypeName:
     if isinstance(term, Var):
-        return op.type_of(term) if term in op.params else None
+        t = op.type_of(term) if term in op.params else None
+        if type_sets and t in (None, "object") and term in op.params:
+            return type_set(domain, op, term) or None
+        return t
     if isinstance(term, str):
         return domain.constants.get(term)
     return None
 
 
-def literal_class(domain: Domain, op: Operator, atom: Atom) -> LiteralClass:
-    """The (unmerged) class of a precondition or effect of ``op``."""
-    return LiteralClass(atom.predicate, tuple(_type_name(domain, op, a) or "" for a in atom.args))
+def literal_class(domain: Domain, op: Operator, atom: Atom, type_sets: bool = False) -> LiteralClass:
+    """The (unmerged) class of a precondition or effect of ``op`` (``type_sets``: an untyped parameter
+    is typed by the static unary predicates ``op`` requires of it, :mod:`nowplan.planning.type_predicates`)."""
+    return LiteralClass(atom.predicate, tuple(_type_name(domain, op, a, type_sets) or "" for a in atom.args))
 
 
-def _overlap(domain: Domain, a: str, b: str) -> bool:
-    """Can one object have both types?  (Single inheritance: one is an ancestor of the other.)"""
+def _overlap(domain: Domain, a: str, b: str, meets: Meets | None = None) -> bool:
+    """Can one object have both types?  (Single inheritance: one is an ancestor of the other; type sets:
+    one a subset of the other; a type set and a declared type: assumed so.)"""
     if not a or not b or a == b:
         return True
+    if is_type_set(a) or is_type_set(b):
+        if not (is_type_set(a) and is_type_set(b)):
+            return True
+        return may_overlap(a, b) if meets is None else meets(a, b)
     return b in domain.subtypes(a) or a in domain.subtypes(b)
 
 
-def _classes_overlap(domain: Domain, x: LiteralClass, y: LiteralClass) -> bool:
+def _classes_overlap(domain: Domain, x: LiteralClass, y: LiteralClass, meets: Meets | None) -> bool:
     return x.predicate == y.predicate and all(
-        _overlap(domain, a, b) for a, b in zip(x.types, y.types, strict=True)
+        _overlap(domain, a, b, meets) for a, b in zip(x.types, y.types, strict=True)
     )
 
 
-class _UnionFind:
-    def __init__(self, items: Iterable[LiteralClass]) -> None:
-        self.parent = {c: c for c in items}
-
-    def find(self, c: LiteralClass) -> LiteralClass:
-        root = c
-        while self.parent[root] != root:
-            root = self.parent[root]
-        while self.parent[c] != root:  # path compression, bounded by the path's length
-            self.parent[c], c = root, self.parent[c]
-        return root
-
-    def union(self, a: LiteralClass, b: LiteralClass) -> None:
-        ra, rb = self.find(a), self.find(b)
-        if ra != rb:
-            lo, hi = sorted((ra, rb))
-            self.parent[hi] = lo  # the smallest class represents the group: deterministic
-
-
-def _operator_literals(domain: Domain, op: Operator) -> Iterator[LiteralClass]:
+def _operator_literals(domain: Domain, op: Operator, type_sets: bool) -> Iterator[LiteralClass]:
     for p in op.preconditions:
-        yield literal_class(domain, op, p.atom)
+        yield literal_class(domain, op, p.atom, type_sets)
     for e in op.effects:
-        yield literal_class(domain, op, e)
+        yield literal_class(domain, op, e, type_sets)
 
 
 # --------------------------------------------------------------------------- graph
 
 
-def _sccs(nodes: list[LiteralClass], succ: Mapping[LiteralClass, set[LiteralClass]]) -> list[list[LiteralClass]]:
-    """Tarjan's algorithm, iterative (no recursion limit), in a deterministic order."""
-    index: dict[LiteralClass, int] = {}
-    low: dict[LiteralClass, int] = {}
-    on_stack: set[LiteralClass] = set()
-    stack: list[LiteralClass] = []
-    out: list[list[LiteralClass]] = []
-    counter = 0
-    for root in nodes:
-        if root in index:
-            continue
-        work: list[tuple[LiteralClass, Iterator[LiteralClass]]] = [(root, iter(sorted(succ[root])))]
-        index[root] = low[root] = counter
-        counter += 1
-        stack.append(root)
-        on_stack.add(root)
-        while work:
-            v, it = work[-1]
-            advanced = False
-            for w in it:
-                if w not in index:
-                    index[w] = low[w] = counter
-                    counter += 1
-                    stack.append(w)
-                    on_stack.add(w)
-                    work.append((w, iter(sorted(succ[w]))))
-                    advanced = True
-                    break
-                if w in on_stack:
-                    low[v] = min(low[v], index[w])
-            if advanced:
-                continue
-            work.pop()
-            if work:
-                low[work[-1][0]] = min(low[work[-1][0]], low[v])
-            if low[v] == index[v]:
-                comp: list[LiteralClass] = []
-                while True:
-                    w = stack.pop()
-                    on_stack.discard(w)
-                    comp.append(w)
-                    if w == v:
-                        break
-                out.append(sorted(comp))
-    return out
-
-
-def derive_hierarchy(domain: Domain) -> Hierarchy:
+def derive_hierarchy(domain: Domain, type_sets: bool = True) -> Hierarchy:
     """Knoblock's problem-independent ordered-monotonic hierarchy of ``domain`` (see the module doc).
 
     Kept per operators and types (by identity, the last few): ``--criticality auto`` asks it when
     loading and again in ``prepare_problem``, for copies of the domain with the same literals (the
     criticalities it sets and the mutexes inferred later play no part in it); a tenth of a small
     problem's whole run (rovers p05: 2 of 17 ms).  :func:`apply_hierarchy` files the hierarchy under
-    the operators it makes too."""
-    hit = _HIERARCHIES.get(id(domain.operators))
+    the operators it makes too.  ``type_sets``: untyped parameters are typed by the static unary
+    predicates their operator requires of them (``(truck ?t)``), taken as disjoint
+    (:mod:`nowplan.planning.type_predicates`; ``prepare_problem`` checks a problem's objects)."""
+    hit = _HIERARCHIES.get((id(domain.operators), type_sets))
     if hit is not None and hit[0] is domain.operators and hit[1] is domain.types:
         return hit[2]
-    out = _derive_hierarchy(domain)
-    _keep(domain.operators, domain.types, out)
+    out = _derive_hierarchy(domain, type_sets)
+    _keep(domain.operators, domain.types, out, type_sets)
     return out
 
 
-# the last hierarchies derived: (operators, types, hierarchy) by the operators' id (the tuple is kept,
-# so its id is not reused while the entry lives)
-_HIERARCHIES: dict[int, tuple[tuple[Operator, ...], Mapping[str, str | None], Hierarchy]] = {}
+# the last hierarchies derived: (operators, types, hierarchy) by the operators' id and the type-sets
+# flag asked for (the tuple is kept, so its id is not reused while the entry lives)
+_HIERARCHIES: dict[tuple[int, bool], tuple[tuple[Operator, ...], Mapping[str, str | None], Hierarchy]] = {}
 
 
-def _keep(ops: tuple[Operator, ...], types: Mapping[str, str | None], hierarchy: Hierarchy) -> None:
+def _keep(ops: tuple[Operator, ...], types: Mapping[str, str | None], hierarchy: Hierarchy, asked: bool) -> None:
     if len(_HIERARCHIES) >= 16:
         _HIERARCHIES.pop(next(iter(_HIERARCHIES)))
-    _HIERARCHIES[id(ops)] = (ops, types, hierarchy)
+    _HIERARCHIES[(id(ops), asked)] = (ops, types, hierarchy)
 
 
 def _derived_dependencies(domain: Domain) -> dict[str, set[tuple[Operator, Atom]]]:
@@ -306,32 +258,33 @@ def _derived_dependencies(domain: Domain) -> dict[str, set[tuple[Operator, Atom]
     return out
 
 
-def _derive_hierarchy(domain: Domain) -> Hierarchy:
+def _derive_hierarchy(domain: Domain, type_sets: bool, meets: Meets | None = None) -> Hierarchy:
     static = domain.static_predicates
     derived = domain.derived
     # a derived precondition stands for the basic literals its rules read: an operator reading it reads them
     deps = _derived_dependencies(domain)
-    dep_classes = {d: {literal_class(domain, rule, a) for rule, a in xs} for d, xs in deps.items()}
-    raw = sorted({c for op in domain.operators for c in _operator_literals(domain, op) if c.predicate not in derived}
+    dep_classes = {d: {literal_class(domain, rule, a, type_sets) for rule, a in xs} for d, xs in deps.items()}
+    raw = sorted({c for op in domain.operators for c in _operator_literals(domain, op, type_sets)
+                  if c.predicate not in derived}
                  | {c for cs in dep_classes.values() for c in cs})
-    uf = _UnionFind(raw)
+    uf = UnionFind(raw)
     by_pred: dict[str, list[LiteralClass]] = {}
     for c in raw:
         by_pred.setdefault(c.predicate, []).append(c)
     for group in by_pred.values():
         for i, x in enumerate(group):
             for y in group[i + 1:]:
-                if _classes_overlap(domain, x, y):
+                if _classes_overlap(domain, x, y, meets):
                     uf.union(x, y)
     members = {c: uf.find(c) for c in raw if c.predicate not in static}
     # classes no operator changes are static too (checked at every level), like static predicates
-    reps = sorted({members[literal_class(domain, op, e)] for op in domain.operators for e in op.effects})
+    reps = sorted({members[literal_class(domain, op, e, type_sets)] for op in domain.operators for e in op.effects})
     succ: dict[LiteralClass, set[LiteralClass]] = {r: set() for r in reps}
     edges: set[tuple[LiteralClass, LiteralClass]] = set()
     for op in domain.operators:
-        effs = [members[literal_class(domain, op, e)] for e in op.effects]
+        effs = [members[literal_class(domain, op, e, type_sets)] for e in op.effects]
         pres = [r for p in op.preconditions if p.atom.predicate not in static and p.atom.predicate not in derived
-                for r in [members[literal_class(domain, op, p.atom)]] if r in succ]
+                for r in [members[literal_class(domain, op, p.atom, type_sets)]] if r in succ]
         pres += [r for p in op.preconditions if p.atom.predicate in derived
                  for r in sorted({members[c] for c in dep_classes[p.atom.predicate]}) if r in succ]
         for e in effs:
@@ -339,7 +292,7 @@ def _derive_hierarchy(domain: Domain) -> Hierarchy:
                 if other != e:
                     succ[e].add(other)
                     edges.add((e, other))
-    comps = _sccs(reps, succ)
+    comps = sccs(reps, succ)
     comp_of = {c: i for i, comp in enumerate(comps) for c in comp}
     # Tarjan emits a component after every component it reaches: layering in emission order
     comp_level: list[int] = []
@@ -349,7 +302,9 @@ def _derive_hierarchy(domain: Domain) -> Hierarchy:
     levels = {c: comp_level[comp_of[c]] for c in reps}
     derived_levels = {d: max((levels[members[c]] for c in cs if members[c] in levels), default=None)
                       for d, cs in dep_classes.items()}
-    return Hierarchy(domain.name, levels, members, static, frozenset(edges), derived_levels)
+    if type_sets and not any(is_type_set(t) for c in raw for t in c.types):
+        type_sets = False  # no untyped parameter has a type predicate: the hierarchy without type sets
+    return Hierarchy(domain.name, levels, members, static, frozenset(edges), derived_levels, type_sets)
 
 
 def apply_hierarchy(domain: Domain, hierarchy: Hierarchy) -> Domain:
@@ -360,9 +315,10 @@ def apply_hierarchy(domain: Domain, hierarchy: Hierarchy) -> Domain:
         ))
         for op in domain.operators
     )
-    hit = _HIERARCHIES.get(id(domain.operators))
-    if hit is not None and hit[0] is domain.operators and hit[1] is domain.types and hit[2] is hierarchy:
-        _keep(ops, domain.types, hierarchy)  # derived for these literals: the copy's hierarchy too
+    for asked in (False, True):
+        hit = _HIERARCHIES.get((id(domain.operators), asked))
+        if hit is not None and hit[0] is domain.operators and hit[1] is domain.types and hit[2] is hierarchy:
+            _keep(ops, domain.types, hierarchy, asked)  # derived for these literals: the copy's hierarchy too
     return replace(domain, operators=ops)
 
 
@@ -409,9 +365,13 @@ def literal_levels(domain: Domain, hierarchy: Hierarchy) -> dict[tuple[str, int,
 # --------------------------------------------------------------------------- problems
 
 
-def ground_level(problem: Problem, hierarchy: Hierarchy, atom: Atom) -> int | None:
-    """The level of a ground atom of ``problem`` (``None``: static, or in no operator's classes)."""
+def ground_level(problem: Problem, hierarchy: Hierarchy, atom: Atom,
+                 sets: Mapping[str, frozenset[str]] | None = None) -> int | None:
+    """The level of a ground atom of ``problem`` (``None``: static, or in no operator's classes);
+    ``sets``: each type set's objects (made here if not given)."""
     domain = problem.domain
+    if hierarchy.type_sets and sets is None:
+        sets = object_sets(problem, (t for c in hierarchy.members for t in c.types))
     if atom.predicate in hierarchy.static:
         return None
     if atom.predicate in hierarchy.derived:
@@ -421,7 +381,9 @@ def ground_level(problem: Problem, hierarchy: Hierarchy, atom: Atom) -> int | No
     for c, rep in hierarchy.members.items():
         if c.predicate != atom.predicate or rep not in hierarchy.levels:
             continue
-        if all(not ct or (t is not None and t in domain.subtypes(ct)) for ct, t in zip(c.types, types, strict=True)):
+        if all(not ct or (a in sets[ct] if sets is not None and ct in sets else
+                          t is not None and t in domain.subtypes(ct))
+               for ct, t, a in zip(c.types, types, atom.args, strict=True)):
             return hierarchy.levels[rep]
     return None
 
@@ -438,7 +400,8 @@ def goal_stages(problem: Problem, hierarchy: Hierarchy) -> tuple[Goal, ...]:
     add nothing are left out.
     """
     atoms = list(problem.goal.atoms)
-    levels = {a: ground_level(problem, hierarchy, a) for a in atoms}
+    sets = object_sets(problem, (t for c in hierarchy.members for t in c.types)) if hierarchy.type_sets else None
+    levels = {a: ground_level(problem, hierarchy, a, sets) for a in atoms}
     stages: list[Goal] = []
     prev: frozenset[Atom] = frozenset()
     for k in range(hierarchy.top, 0, -1):
@@ -447,6 +410,39 @@ def goal_stages(problem: Problem, hierarchy: Hierarchy) -> tuple[Goal, ...]:
             stages.append(Goal.of(sorted(part), problem.domain.rules))
         prev = part
     return tuple(stages)
+
+
+def _split_pairs(hierarchy: Hierarchy) -> list[tuple[tuple[str, ...], tuple[str, ...]]]:
+    """The argument types of every two classes of one predicate that the hierarchy keeps apart."""
+    by_pred: dict[str, list[LiteralClass]] = {}
+    for c in hierarchy.members:
+        by_pred.setdefault(c.predicate, []).append(c)
+    return [(x.types, y.types) for cs in by_pred.values() for i, x in enumerate(cs) for y in cs[i + 1:]
+            if hierarchy.members[x] != hierarchy.members[y]]
+
+
+def problem_hierarchy(problem: Problem) -> Hierarchy:
+    """The automatic hierarchy for ``problem``: the domain's, unless two of its type sets (taken as
+    disjoint) share one of the problem's objects where a predicate's classes are kept apart; then
+    the one whose classes merge wherever their type sets share an object of the problem."""
+    hierarchy = derive_hierarchy(problem.domain)
+    if not hierarchy.type_sets or shared_objects(problem, _split_pairs(hierarchy)) is None:
+        return hierarchy
+    sets = object_sets(problem, (t for c in hierarchy.members for t in c.types))
+    return _derive_hierarchy(problem.domain, True, lambda a, b: bool(sets[a] & sets[b]))
+
+
+def checked_type_sets(problem: Problem) -> Problem:
+    """``problem`` whose domain has the criticalities of :func:`problem_hierarchy` (``load_pddl(...,
+    "auto")``): unchanged unless type sets of the domain's hierarchy share objects of the problem."""
+    hierarchy = derive_hierarchy(problem.domain)
+    if not hierarchy.type_sets:
+        return problem
+    shared = shared_objects(problem, _split_pairs(hierarchy))
+    if shared is None:
+        return problem
+    log.info("%s: type sets merged where they share objects: %s", problem.name, shared)
+    return replace(problem, domain=apply_hierarchy(problem.domain, problem_hierarchy(problem)))
 
 
 def prepare_problem(problem: Problem) -> Problem:
@@ -473,8 +469,9 @@ def _prepare(problem: Problem) -> Problem:
     from nowplan.planning.reach_statics import add_reachability_statics
     from nowplan.planning.task_grounding import cached_grounding, share_concrete
 
+    problem = checked_type_sets(problem)
     domain = problem.domain
-    hierarchy = derive_hierarchy(domain)
+    hierarchy = problem_hierarchy(problem)
     if hierarchy.top == 0:
         return problem
     if domain.top_level <= 0:
