@@ -242,19 +242,23 @@ def test_highest_applicable_subgoal():
     assert highest_applicable(TOY, s, p) == 1  # the robot is already in the hall
 
 
-@settings(max_examples=100, deadline=None)
-@given(st.data())
-def test_highest_applicable_with_watched_atoms_answers_as_without(data: st.DataObject) -> None:
-    """The watched atoms kept for a plan across beliefs change no answer, whatever the beliefs."""
+def toy_errand_plan() -> tuple[list[Any], Any]:
+    """Seven toy steps (place x in the hall, carry y, close) chained from the door, and their plan."""
     from nowplan.planning.plan import Plan, PlanStep
 
     s = state(robot="door", x="hall", y="yard")
     ops = [act("goto", "door", "hall"), act("place", "x", "hall"), act("goto", "hall", "yard"),
            act("carry", "y", "yard"), act("goto", "yard", "hall"), act("goto", "hall", "door"), act("close")]
-    r = reorderer(s)
-    ops, goals = r.chain(ops, Goal.of([atom("inside", "x"), atom("carried", "y"), atom("closed")]))
-    p = Plan(tuple([PlanStep(None, goals[0]), *(PlanStep(op, g) for op, g in zip(ops, goals[1:]))]),
-             LevelMap(TOY.top_level))
+    ops, goals = reorderer(s).chain(ops, Goal.of([atom("inside", "x"), atom("carried", "y"), atom("closed")]))
+    return ops, Plan(tuple([PlanStep(None, goals[0]), *(PlanStep(op, g) for op, g in zip(ops, goals[1:]))]),
+                     LevelMap(TOY.top_level))
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.data())
+def test_highest_applicable_with_watched_atoms_answers_as_without(data: st.DataObject) -> None:
+    """The watched atoms kept for a plan across beliefs change no answer, whatever the beliefs."""
+    ops, p = toy_errand_plan()
     watch: dict = {}
     for _ in range(data.draw(st.integers(1, 8))):
         here = data.draw(st.sampled_from(PLACES))

@@ -11,11 +11,9 @@ from nowplan.acting.reorder import PeepholeConfig, Reorderer, highest_applicable
 from nowplan.acting.resources import ResourceModel
 from nowplan.acting.truth import TruthMemo
 from nowplan.belief.symbolic import SymbolicBelief
-from nowplan.core.atoms import Goal, atom
-from nowplan.core.levels import LevelMap
+from nowplan.core.atoms import atom
 from nowplan.core.state import State
-from nowplan.planning.plan import Plan, PlanStep
-from tests.test_peephole import OBJECTS, PLACES, TOY, act, reorderer, state
+from tests.test_peephole import OBJECTS, PLACES, TOY, reorderer, state, toy_errand_plan
 
 ASKED = [atom("robot_at", p) for p in PLACES] + [atom("obj_at", x, p) for x in "xy" for p in PLACES] + [
     atom("inside", "x"), atom("carried", "y"), atom("closed"), atom("closed", value=False)]
@@ -67,12 +65,7 @@ def test_a_belief_that_is_no_point_state_is_asked_each_time() -> None:
 @settings(max_examples=60, deadline=None)
 @given(st.data())
 def test_highest_applicable_with_a_memo_answers_as_without(data: st.DataObject) -> None:
-    s = state(robot="door", x="hall", y="yard")
-    ops = [act("goto", "door", "hall"), act("place", "x", "hall"), act("goto", "hall", "yard"),
-           act("carry", "y", "yard"), act("goto", "yard", "hall"), act("goto", "hall", "door"), act("close")]
-    ops, goals = reorderer(s).chain(ops, Goal.of([atom("inside", "x"), atom("carried", "y"), atom("closed")]))
-    p = Plan(tuple([PlanStep(None, goals[0]), *(PlanStep(op, g) for op, g in zip(ops, goals[1:]))]),
-             LevelMap(TOY.top_level))
+    ops, p = toy_errand_plan()
     memo, watch = TruthMemo(TOY), {}  # type: ignore[var-annotated]
     for _ in range(data.draw(st.integers(1, 8))):
         b = _belief(data, True)
