@@ -25,6 +25,7 @@ from nowplan.planning.deferred import Reach
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.regression import PlannerConfig, plan
 from nowplan.planning.regression_search import _Search
+from tests.test_lmcut_lazy import family_nodes
 from tests.test_planner_property import FAMILIES, QUICK, check_contract, level_maps, witness_reaches_goal
 
 
@@ -121,6 +122,7 @@ def test_deferral_expands_what_eager_search_expands(family, data):
     case = data.draw(FAMILIES[family], label="case")
     witness_reaches_goal(case)
     base = data.draw(st.sampled_from(LAZY), label="config")
+    base = replace(base, max_nodes=family_nodes(family, base.max_nodes))
     shortcuts = data.draw(st.booleans(), label="shortcuts")
     config = replace(base, serialization=shortcuts, monotonic=shortcuts, seed=data.draw(st.integers(0, 3)))
     objects = {o: None for o in case.objects}

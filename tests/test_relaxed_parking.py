@@ -16,7 +16,7 @@ from nowplan.core.state import State
 from nowplan.planning.regression import PlannerConfig, plan
 from nowplan.planning.regression_search import _Search
 from nowplan.planning.relaxed import LazyRelaxed
-from tests.test_lmcut_lazy import FREE, free2_domain, v
+from tests.test_lmcut_lazy import FREE, family_nodes, free2_domain, v
 from tests.test_planner_property import FAMILIES, QUICK, level_maps
 
 CFG = PlannerConfig(heuristic="lmcut", lazy_relaxation=True, engine="regression")
@@ -86,8 +86,8 @@ class Twin:
 @given(data=st.data())
 def test_random_strips_estimates_equal_an_unparked_twin(family, heuristic, data):
     case = data.draw(FAMILIES[family], label="case")
-    config = replace(QUICK, heuristic=heuristic, lazy_relaxation=True, engine="regression", max_nodes=150,
-                     shortcut_nodes=50)
+    config = replace(QUICK, heuristic=heuristic, lazy_relaxation=True, engine="regression",
+                     max_nodes=family_nodes(family, 150), shortcut_nodes=50)
     objects = {o: None for o in case.objects}
     chk = Twin()
     LazyRelaxed.estimate = lambda self, fs: chk(self, fs)  # type: ignore[method-assign]
