@@ -438,7 +438,7 @@ def _load_problem(d: DomainDef, checker: Checker, problem_path: str | Path, crit
     except ContradictoryGoalError as exc:
         raise ContradictoryGoalError(f"{src.path}: {exc} (in the goal)") from exc
     problem = Problem(domain, objects, init, goal, p.name)
-    if isinstance(criticality_path, str) and criticality_path == "auto":
+    if criticality_path == "auto":
         from nowplan.planning.abstraction import checked_type_sets
 
         problem = checked_type_sets(problem)  # type predicates that this problem's objects share

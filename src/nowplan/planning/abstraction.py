@@ -426,8 +426,12 @@ def problem_hierarchy(problem: Problem) -> Hierarchy:
     disjoint) share one of the problem's objects where a predicate's classes are kept apart; then
     the one whose classes merge wherever their type sets share an object of the problem."""
     hierarchy = derive_hierarchy(problem.domain)
-    if not hierarchy.type_sets or shared_objects(problem, _split_pairs(hierarchy)) is None:
+    if not hierarchy.type_sets:
         return hierarchy
+    shared = shared_objects(problem, _split_pairs(hierarchy))
+    if shared is None:
+        return hierarchy
+    log.info("%s: type sets merged where they share objects: %s", problem.name, shared)
     sets = object_sets(problem, (t for c in hierarchy.members for t in c.types))
     return _derive_hierarchy(problem.domain, True, lambda a, b: bool(sets[a] & sets[b]))
 
@@ -435,14 +439,10 @@ def problem_hierarchy(problem: Problem) -> Hierarchy:
 def checked_type_sets(problem: Problem) -> Problem:
     """``problem`` whose domain has the criticalities of :func:`problem_hierarchy` (``load_pddl(...,
     "auto")``): unchanged unless type sets of the domain's hierarchy share objects of the problem."""
-    hierarchy = derive_hierarchy(problem.domain)
-    if not hierarchy.type_sets:
+    hierarchy = problem_hierarchy(problem)
+    if hierarchy is derive_hierarchy(problem.domain):  # the domain's own (kept: the same object)
         return problem
-    shared = shared_objects(problem, _split_pairs(hierarchy))
-    if shared is None:
-        return problem
-    log.info("%s: type sets merged where they share objects: %s", problem.name, shared)
-    return replace(problem, domain=apply_hierarchy(problem.domain, problem_hierarchy(problem)))
+    return replace(problem, domain=apply_hierarchy(problem.domain, hierarchy))
 
 
 def prepare_problem(problem: Problem) -> Problem:
@@ -469,7 +469,6 @@ def _prepare(problem: Problem) -> Problem:
     from nowplan.planning.reach_statics import add_reachability_statics
     from nowplan.planning.task_grounding import cached_grounding, share_concrete
 
-    problem = checked_type_sets(problem)
     domain = problem.domain
     hierarchy = problem_hierarchy(problem)
     if hierarchy.top == 0:

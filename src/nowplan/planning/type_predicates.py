@@ -9,8 +9,8 @@ parameter gets the *type set* of the static unary predicates the operator requir
 (``[truck]``; none: any object).  Two type sets can hold of one object unless they differ
 with neither a subset of the other; from the domain alone such sets are taken to be
 disjoint (as different types are), and :func:`shared_objects` checks a problem's objects:
-where one object has both, the problem is given the hierarchy without type sets
-(:func:`nowplan.planning.abstraction.prepare_problem`).
+where one object has both, the problem's hierarchy merges exactly the classes whose type sets
+share an object (:func:`nowplan.planning.abstraction.problem_hierarchy`).
 """
 
 from __future__ import annotations
