@@ -31,6 +31,7 @@ from nowplan.io.pddl_read import read_domain
 from nowplan.planning.abstraction import (
     LiteralClass,
     auto_criticality,
+    changing_effects,
     derive_hierarchy,
     literal_levels,
     violations,
@@ -116,6 +117,28 @@ def test_a_class_no_operator_changes_is_static() -> None:
     crit = _crits(auto_criticality(dom))
     assert crit[("lift", Atom("at", (Var("h"), p)))] == h.top + 1
     assert crit[("lift", Atom("clear", (x,)))] == 1  # below lift's own level
+
+
+def test_an_effect_that_restates_a_precondition_constrains_no_level() -> None:
+    """Rovers' ``communicate`` deletes and re-adds ``available`` and ``channel_free`` (deletes first, the
+    add wins): no change.  Counted as effects they tie ``communicated`` to ``available``, which
+    ``navigate`` needs, and the domain was one level; left out, navigation is below the samples and the
+    samples below the communications."""
+    dom = read_domain(CLASSICAL / "rovers" / "domain.pddl")
+    comm = next(op for op in dom.operators if op.name == "communicate_soil_data")
+    assert [e.predicate for e in changing_effects(comm)] == ["communicated_soil_data"]
+    h = derive_hierarchy(dom)
+    assert h.top == 2
+    assert h.levels[h.members[LiteralClass("at", ("rover", "waypoint"))]] == 0
+    assert h.levels[h.members[LiteralClass("communicated_soil_data", ("waypoint",))]] == 2
+    assert LiteralClass("available", ("rover",)) in h.static_classes()
+    assert violations(dom, literal_levels(dom, h)) == []
+    # a delete that is not restated is a change: the precondition's value is not where the fluent ends
+    x = Var("x")
+    flip = _op("flip", [Atom("p", (x,))], [Atom("p", (x,), False)], (x,), ("a",))
+    keep = _op("keep", [Atom("p", (x,))], [Atom("p", (x,), False), Atom("p", (x,))], (x,), ("a",))
+    assert changing_effects(flip) == flip.effects
+    assert changing_effects(keep) == ()
 
 
 @pytest.mark.parametrize("path", DOMAIN_FILES, ids=lambda p: f"{p.parent.parent.name}-{p.parent.name}")

@@ -19,7 +19,10 @@ its operator requires of it (``[truck]`` for ``(truck ?t)``,
 the predicates.
 
 **Constraints** (Knoblock's problem-independent restriction).  For every
-operator, every effect class ``e`` (added or deleted) and
+operator, every effect class ``e`` (added or deleted) that the operator can
+change (an effect whose fluent ends at the value a precondition requires, as
+rovers' ``communicate`` deletes and re-adds ``(available ?r)``, changes
+nothing and constrains nothing: :func:`changing_effects`) and
 
 * every other effect class ``e'`` of the operator: ``level(e) >= level(e')``
   (so all effects of an operator share one level), and
@@ -131,13 +134,15 @@ class Hierarchy:
         return self.levels.get(self.members[literal_class(domain, op, atom, self.type_sets)])  # None: static
 
     def effect_level(self, domain: Domain, op: Operator) -> int | None:
-        """The one level of ``op``'s effects (``None`` without effects)."""
-        return max((self.level_of(domain, op, e) or 0 for e in op.effects), default=None)
+        """The one level of the effects ``op`` can change (``None`` without any: :func:`changing_effects`)."""
+        return max((self.level_of(domain, op, e) or 0 for e in changing_effects(op)), default=None)
 
     def criticality(self, domain: Domain, op: Operator, atom: Atom) -> int:
-        """``top + 1`` for a static precondition or one at the level of ``op``'s effects, else level + 1."""
+        """``top + 1`` for a static precondition, one at the level of ``op``'s effects or one of an
+        operator that changes nothing, else level + 1."""
         lvl = self.level_of(domain, op, atom)
-        if lvl is None or lvl == self.effect_level(domain, op):
+        k = self.effect_level(domain, op)
+        if lvl is None or k is None or lvl == k:
             return self.top + 1
         return lvl + 1
 
@@ -190,6 +195,17 @@ def _classes_overlap(domain: Domain, x: LiteralClass, y: LiteralClass, meets: Me
     return x.predicate == y.predicate and all(
         _overlap(domain, a, b, meets) for a, b in zip(x.types, y.types, strict=True)
     )
+
+
+def changing_effects(op: Operator) -> tuple[Atom, ...]:
+    """The effects of ``op`` that can change their fluent: all but those whose fluent ends at the value a
+    precondition requires of it (the last effect on a fluent wins, as in ``State.apply``; PDDL stores
+    deletes first, so rovers' ``(not (available ?r)) ... (available ?r)`` under ``(available ?r)`` is
+    no change).  Such an effect restates a precondition, so it constrains no level."""
+    final = {(e.predicate, e.args): e.value for e in op.effects}
+    required = {(p.atom.predicate, p.atom.args): p.atom.value for p in op.preconditions}
+    return tuple(e for e in op.effects
+                 if (e.predicate, e.args) not in required or required[(e.predicate, e.args)] != final[(e.predicate, e.args)])
 
 
 def _operator_literals(domain: Domain, op: Operator, type_sets: bool) -> Iterator[LiteralClass]:
@@ -278,11 +294,12 @@ def _derive_hierarchy(domain: Domain, type_sets: bool, meets: Meets | None = Non
                     uf.union(x, y)
     members = {c: uf.find(c) for c in raw if c.predicate not in static}
     # classes no operator changes are static too (checked at every level), like static predicates
-    reps = sorted({members[literal_class(domain, op, e, type_sets)] for op in domain.operators for e in op.effects})
+    reps = sorted({members[literal_class(domain, op, e, type_sets)] for op in domain.operators
+                   for e in changing_effects(op)})
     succ: dict[LiteralClass, set[LiteralClass]] = {r: set() for r in reps}
     edges: set[tuple[LiteralClass, LiteralClass]] = set()
     for op in domain.operators:
-        effs = [members[literal_class(domain, op, e, type_sets)] for e in op.effects]
+        effs = [members[literal_class(domain, op, e, type_sets)] for e in changing_effects(op)]
         pres = [r for p in op.preconditions if p.atom.predicate not in static and p.atom.predicate not in derived
                 for r in [members[literal_class(domain, op, p.atom, type_sets)]] if r in succ]
         pres += [r for p in op.preconditions if p.atom.predicate in derived
@@ -337,7 +354,8 @@ def violations(domain: Domain, levels_of: Mapping[tuple[str, int, str], int | No
     """
     out: list[str] = []
     for op in domain.operators:
-        eff = {levels_of[(op.name, i, "eff")] for i in range(len(op.effects))}
+        changing = changing_effects(op)
+        eff = {levels_of[(op.name, i, "eff")] for i, e in enumerate(op.effects) if e in changing}
         if len(eff) > 1:
             out.append(f"{op.name}: effects at levels {sorted(x for x in eff if x is not None)}")
             continue
