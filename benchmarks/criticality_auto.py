@@ -55,7 +55,7 @@ from nowplan.commands.run import pddl_action_budget  # noqa: E402
 from nowplan.belief.symbolic import SymbolicBelief  # noqa: E402
 from nowplan.domains.registry import Episode  # noqa: E402
 from nowplan.io.pddl_read import load_pddl  # noqa: E402
-from nowplan.planning.abstraction import prepare_problem  # noqa: E402
+from nowplan.planning.problem_hierarchy import prepare_problem  # noqa: E402
 from nowplan.planning.task_grounding import clear_cache  # noqa: E402
 from nowplan.worlds.symbolic import SymbolicWorld  # noqa: E402
 

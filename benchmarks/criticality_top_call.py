@@ -28,7 +28,7 @@ from benchmarks.criticality_auto import LARGER  # noqa: E402
 from nowplan.belief.symbolic import SymbolicBelief  # noqa: E402
 from nowplan.core.levels import LevelMap, flat_levels  # noqa: E402
 from nowplan.io.pddl_read import load_pddl  # noqa: E402
-from nowplan.planning.abstraction import prepare_problem  # noqa: E402
+from nowplan.planning.problem_hierarchy import prepare_problem  # noqa: E402
 from nowplan.planning.config import PlannerConfig  # noqa: E402
 from nowplan.planning.regression import plan  # noqa: E402
 

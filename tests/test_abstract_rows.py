@@ -17,7 +17,7 @@ import pytest
 from nowplan.core.levels import LevelMap
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning import fact_mutex
-from nowplan.planning.abstraction import prepare_problem
+from nowplan.planning.problem_hierarchy import prepare_problem
 from nowplan.planning.task import build_task
 from nowplan.planning.task_grounding import clear_cache
 

@@ -292,7 +292,7 @@ def _classical(domain: str, problem: str) -> Problem:
 
 
 def test_goal_stages_put_the_abstract_literals_first() -> None:
-    from nowplan.planning.abstraction import goal_stages
+    from nowplan.planning.problem_hierarchy import goal_stages
 
     prob = _classical("driverlog", "p04")
     (stage,) = goal_stages(prob, derive_hierarchy(prob.domain))
@@ -346,7 +346,7 @@ def test_cli_run_auto_on_classical_problems_flat_planning_solves(
 def test_an_irreversible_concrete_step_makes_auto_plan_flat(caplog: pytest.LogCaptureFixture) -> None:
     """nomystery: driving spends fuel that nothing restores, so the abstract plan could strand
     the truck; zenotravel refuels and logistics drives back, so they keep their hierarchy."""
-    from nowplan.planning.abstraction import prepare_problem
+    from nowplan.planning.problem_hierarchy import prepare_problem
 
     with caplog.at_level("WARNING"):
         nomystery = prepare_problem(_classical("nomystery", "p01"))

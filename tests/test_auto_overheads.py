@@ -154,7 +154,7 @@ def test_direct_refinements_from_the_grounding_index_match_the_grounders(
     from nowplan.acting.strategy import parse_strategy
     from nowplan.domains.registry import Episode
     from nowplan.io.pddl_read import load_pddl
-    from nowplan.planning.abstraction import prepare_problem
+    from nowplan.planning.problem_hierarchy import prepare_problem
     from nowplan.worlds.symbolic import SymbolicWorld
 
     def run() -> tuple[str, list[str]]:

@@ -29,7 +29,7 @@ from nowplan.core.operators import Action
 from nowplan.core.state import State
 from nowplan.domains.registry import Episode
 from nowplan.io.pddl_read import load_pddl
-from nowplan.planning.abstraction import prepare_problem
+from nowplan.planning.problem_hierarchy import prepare_problem
 from nowplan.planning.task_grounding import grounding
 from nowplan.trace import Trace
 from nowplan.worlds.symbolic import SymbolicWorld

@@ -27,7 +27,7 @@ from nowplan.core.operators import Action
 from nowplan.domains.registry import Episode
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning.plan import Plan
-from nowplan.planning.abstraction import prepare_problem
+from nowplan.planning.problem_hierarchy import prepare_problem
 from nowplan.worlds.symbolic import SymbolicWorld
 
 DOMAIN = Path(__file__).resolve().parents[1] / "benchmarks" / "classical" / "satellite" / "domain.pddl"

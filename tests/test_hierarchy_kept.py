@@ -14,7 +14,8 @@ from typing import Any
 
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning import abstraction
-from nowplan.planning.abstraction import apply_hierarchy, derive_hierarchy, prepare_problem
+from nowplan.planning.abstraction import apply_hierarchy, derive_hierarchy
+from nowplan.planning.problem_hierarchy import prepare_problem
 
 SHIPPED = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl"
 

@@ -21,7 +21,7 @@ from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.core.state import State
 from nowplan.io.pddl_read import load_pddl
-from nowplan.planning.abstraction import prepare_problem
+from nowplan.planning.problem_hierarchy import prepare_problem
 from nowplan.planning.task_grounding import grounding
 from nowplan.worlds.symbolic import SymbolicWorld
 

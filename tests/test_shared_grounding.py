@@ -24,7 +24,7 @@ from nowplan.core.domain import Problem
 from nowplan.domains.registry import Episode
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning import task_grounding
-from nowplan.planning.abstraction import prepare_problem
+from nowplan.planning.problem_hierarchy import prepare_problem
 from nowplan.planning.task_grounding import Grounding, grounding
 from nowplan.worlds.symbolic import SymbolicWorld
 

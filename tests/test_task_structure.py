@@ -205,7 +205,7 @@ CLASSICAL = Path(__file__).resolve().parents[1] / "benchmarks" / "classical"
 
 
 def test_abstract_rows_drop_only_exclusions_a_kept_precondition_implies(tmp_path: Path) -> None:
-    from nowplan.planning.abstraction import prepare_problem
+    from nowplan.planning.problem_hierarchy import prepare_problem
 
     for name in ("gripper", "zenotravel", "logistics", "driverlog", "depots"):
         p = prepare_problem(load_pddl(CLASSICAL / name / "domain.pddl", CLASSICAL / name / "p02.pddl", "auto"))

@@ -14,14 +14,8 @@ import pytest
 from nowplan.cli import main
 from nowplan.core.atoms import Atom
 from nowplan.io.pddl_read import load_pddl, read_domain
-from nowplan.planning.abstraction import (
-    derive_hierarchy,
-    goal_stages,
-    literal_levels,
-    prepare_problem,
-    problem_hierarchy,
-    violations,
-)
+from nowplan.planning.abstraction import derive_hierarchy, literal_levels, violations
+from nowplan.planning.problem_hierarchy import goal_stages, prepare_problem, problem_hierarchy
 
 DOMAIN = """(define (domain dl) (:requirements :strips)
  (:predicates (at ?x ?l) (in ?o ?t) (driving ?d ?t) (empty ?t) (link ?x ?y)

@@ -100,7 +100,7 @@ def build_episode(args: argparse.Namespace, hierarchical: bool = True) -> Episod
 
         prob = load_pddl(args.pddl[0], args.pddl[1], args.criticality)
         if args.criticality == "auto" and hierarchical:
-            from nowplan.planning.abstraction import prepare_problem
+            from nowplan.planning.problem_hierarchy import prepare_problem
 
             prob = prepare_problem(prob)  # reachability statics and goal stages (docs/pddl.md)
         from nowplan.planning.derived_state import derived_closure

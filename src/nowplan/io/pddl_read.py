@@ -439,7 +439,7 @@ def _load_problem(d: DomainDef, checker: Checker, problem_path: str | Path, crit
         raise ContradictoryGoalError(f"{src.path}: {exc} (in the goal)") from exc
     problem = Problem(domain, objects, init, goal, p.name)
     if criticality_path == "auto":
-        from nowplan.planning.abstraction import checked_type_sets
+        from nowplan.planning.problem_hierarchy import checked_type_sets
 
         problem = checked_type_sets(problem)  # type predicates that this problem's objects share
     return problem

@@ -428,7 +428,7 @@ def share_concrete(concrete: Grounding, domain: Domain, objects: Mapping[str, st
     The caller guarantees the premise (:func:`nowplan.planning.reach_statics.add_reachability_statics`:
     every precondition an abstract level drops is guarded by a static that holds exactly for the
     concretely reachable atoms, and every grounded action satisfies its new statics; the flat domain
-    of ``--criticality auto``'s dead-end fallback, :func:`nowplan.planning.abstraction.prepare_problem`:
+    of ``--criticality auto``'s dead-end fallback, :func:`nowplan.planning.problem_hierarchy.prepare_problem`:
     every precondition kept at every level, as at level -1).  Then at every
     level the relaxed exploration from ``belief`` reaches the same atoms and actions as concretely:
     an action found there has its dropped preconditions reachable, hence all of them.  So the run's

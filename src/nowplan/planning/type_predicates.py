@@ -10,7 +10,7 @@ parameter gets the *type set* of the static unary predicates the operator requir
 with neither a subset of the other; from the domain alone such sets are taken to be
 disjoint (as different types are), and :func:`shared_objects` checks a problem's objects:
 where one object has both, the problem's hierarchy merges exactly the classes whose type sets
-share an object (:func:`nowplan.planning.abstraction.problem_hierarchy`).
+share an object (:func:`nowplan.planning.problem_hierarchy.problem_hierarchy`).
 """
 
 from __future__ import annotations
@@ -85,5 +85,5 @@ def _meet(a: frozenset[str] | None, b: frozenset[str] | None) -> bool:
 
 
 def object_sets(problem: Problem, names: Iterable[str]) -> Mapping[str, frozenset[str]]:
-    """Each type set's objects in ``problem`` (for :func:`nowplan.planning.abstraction.ground_level`)."""
+    """Each type set's objects in ``problem`` (for :func:`nowplan.planning.problem_hierarchy.ground_level`)."""
     return {n: extension(problem, n) for n in set(names) if is_type_set(n)}
