@@ -9,16 +9,19 @@ the compiled kernel as in the Python reference.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from collections.abc import Callable
 
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from nowplan.core.levels import flat_levels
+from nowplan.io.pddl_read import load_pddl
 from nowplan.planning import anytime, forward, native, pngs
 from nowplan.planning.hff import RelaxedHeuristic
 from nowplan.planning.postprocess import eliminate_actions
-from nowplan.planning.task import Task
+from nowplan.planning.task import Task, build_task
 
 from kernel_support import PDDL, PROBLEMS, int_task, int_tasks, needs_kernel, pddl_task
 
@@ -114,6 +117,20 @@ def test_the_improvement_stops_when_asked_and_keeps_the_plan() -> None:
     assert pngs.improve_by_neighborhood(task, plan, lambda: True) == plan
     res = pngs.neighborhood_plan(task, plan, 10**6, task.cost, lambda: True)
     assert res.stopped and res.plan == plan
+
+
+def test_a_neighborhood_check_costs_more_work_with_derived_predicates() -> None:
+    # every neighborhood state evaluates the ground rules: the charge per check grows with their size
+    # (IPC-2004 PSR-large spent 7 of 9 s there); without derived predicates it is PNGS_UNITS exactly
+    assert anytime.pngs_units(pddl_task("logistics", "p04.pddl")) == anytime.PNGS_UNITS
+    data = Path(__file__).resolve().parent / "data" / "pddl_axioms"
+    p = load_pddl(data / "doors-domain.pddl", data / "doors-p01.pddl")
+    task = build_task(p.domain, p.objects, p.init, p.goal, flat_levels(), lambda a: 1.0)
+    assert task.axioms
+    body = sum(len(b) for b in task.axioms.body)
+    pre = sum(len(x) for x in task.pre)
+    assert body > 0 and anytime.pngs_units(task) == round(anytime.PNGS_UNITS * (1 + body / pre))
+    assert anytime.pngs_units(task) > anytime.PNGS_UNITS
 
 
 @pytest.mark.parametrize(("domain", "problem"), PROBLEMS)

@@ -44,6 +44,7 @@ from nowplan.errors import CompilationBoundError, ContradictoryGoalError, PDDLEr
 from nowplan.io import pddl_adl as adl
 from nowplan.io.pddl_ast import TOTAL_COST, EAnd, Reader, Effect, EForall, ELit, EWhen, FAnd, FAtom, FNot, Formula
 from nowplan.io.pddl_check import EQUALITY, Checker, warn_undeclared
+from nowplan.io.pddl_predtypes import goal_predicate_types, predicate_types
 from nowplan.io.pddl_actions import NeedsObjects, World, atom_of, compile_action, objects_of, static_value
 from nowplan.io.pddl_axioms import Strata, compile_rules, static_oracle, stratify, with_auxiliaries
 from nowplan.io.pddl_source import read_source
@@ -69,7 +70,7 @@ def equality_facts(objects: Iterable[str]) -> list[Atom]:
 
 def _read_domain_def(path: str | Path) -> tuple[DomainDef, Checker]:
     src = read_source(path)
-    d = parse_domain(src.text, src.path)
+    d = predicate_types(parse_domain(src.text, src.path))
     checker = Checker(d)
     warn_undeclared(d)
     _check_derived(d, checker)
@@ -370,6 +371,7 @@ def _load_problem(d: DomainDef, checker: Checker, problem_path: str | Path, crit
     known = {**checker.constants, **objects}
     init_atoms, values = _read_init(p, d, checker, known)
     assert p.goal is not None
+    p.goal = goal_predicate_types(d, p.goal)
     checker.formula(p.goal, "the goal", {}, known, p.path)
     if p.metric is not None:
         direction, expr = p.metric

@@ -18,7 +18,14 @@ successor; the caller passes the first search's successors per expansion), and
 search adds or closes (the points where both ask to stop, in C and in Python
 alike).  On the kernel, over benchmarks/classical's first two instances per
 domain, a weighted A* expansion took 6-40 us at 3-9 successors, and 1,024
-neighborhood states 0.7-1.1 ms, about 500 evaluations.
+neighborhood states 0.7-1.1 ms, about 500 evaluations.  A task with derived
+predicates evaluates its ground rules in every state the neighborhood search
+makes, so there a check costs ``PNGS_UNITS`` times ``1 + B / P`` (:func:`pngs_units`:
+``B`` the ground rules' condition sizes, ``P`` the actions' precondition sizes):
+on IPC-2004 PSR-large p02 (1,080 rules, B = 2,918, P = 189) 1,024 neighborhood
+states took about 29 ms of CPU, 28 times the figure above, and the improvement
+7.1 of the run's 9.4 s (cProfile, benchmarks/results/ipc_check_ipc10.md).
+Without derived predicates the charge is ``PNGS_UNITS`` exactly.
 """
 
 from __future__ import annotations
@@ -83,6 +90,16 @@ def _bounded_wastar(task: Task, h: RelaxedHeuristic, succ: _Successors, weight: 
     return None
 
 
+def pngs_units(task: Task) -> int:
+    """Budget units per stop check of the neighborhood search (module doc): more with derived predicates."""
+    ax = task.axioms
+    if not ax:
+        return PNGS_UNITS
+    body = sum(len(b) for b in ax.body)
+    pre = max(1, sum(len(p) for p in task.pre))
+    return round(PNGS_UNITS * (1 + body / pre))
+
+
 def improve(task: Task, plan: list[int], budget: int, cost_type: CostType = "plusone",
             out_of_time: Callable[[], bool] = lambda: False, wastar_share: float = WASTAR_SHARE,
             branching: int = 1) -> list[int]:
@@ -94,6 +111,7 @@ def improve(task: Task, plan: list[int], budget: int, cost_type: CostType = "plu
     """
     spent = 0
     end_wastar = wastar_share * budget
+    units = pngs_units(task)
 
     def stop_wastar() -> bool:
         nonlocal spent
@@ -102,7 +120,7 @@ def improve(task: Task, plan: list[int], budget: int, cost_type: CostType = "plu
 
     def stop() -> bool:
         nonlocal spent
-        spent += PNGS_UNITS
+        spent += units
         return spent > budget or out_of_time()
 
     h = RelaxedHeuristic(task, "ff", cost_type)
