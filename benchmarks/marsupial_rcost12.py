@@ -122,9 +122,27 @@ def loader_ops(regime: str, n: int, trial: int, strategy: str) -> dict[str, int]
     return out
 
 
-def summarize(path: Path) -> None:
+def fd_table(rows: list[dict[str, Any]], fd_path: Path) -> None:
+    """Fast Downward's flat plans (``marsupial_rcost12_flat.py`` rows) beside HPN, RCHPN and the reference."""
+    fd = {(r["problem"], r["trial"]): r for r in (json.loads(x) for x in fd_path.read_text().splitlines() if x.strip())}
+    print("| problem | HPN | RCHPN | reference | FD first plan | FD best plan (plans, CPU s) |")
+    print("|---|---|---|---|---|---|")
+    for r in rows:
+        f = fd.get((r["problem"], r["trial"]))
+        if f is None:
+            continue
+        first = "-" if f["first_cost"] is None else f"{f['first_cost']:g}"
+        best = "-" if f["best_cost"] is None else f"{f['best_cost']:g}"
+        print(f"| {r['problem']} t{r['trial']} | {r['hpn']:g} | {r['rchpn']:g} | {r['ref']['cost']:.0f} | {first} "
+              f"| {best} ({f['plans']}, {f['cpu_s']:g}) |")
+    print()
+
+
+def summarize(path: Path, fd_path: Path | None = None) -> None:
     """Means over the stored rows: decreases against HPN and where RCHPN's extra cost over the reference lies."""
     rows = [json.loads(x) for x in path.read_text().splitlines() if x.strip()]
+    if fd_path is not None:
+        fd_table(rows, fd_path)
 
     def dec(r: dict[str, Any], cost: float) -> float:
         return 100.0 * (float(r["hpn"]) - cost) / float(r["hpn"])
@@ -166,9 +184,10 @@ def main() -> None:
     ap.add_argument("--cap", type=int, default=4, help="packages per trip in the capped reference")
     ap.add_argument("--out", type=Path, help="JSON lines, one per problem")
     ap.add_argument("--summarize", type=Path, help="print the means of stored rows and stop")
+    ap.add_argument("--fd", type=Path, help="with --summarize: marsupial_rcost12_flat.py rows to show beside them")
     args = ap.parse_args()
     if args.summarize:
-        summarize(args.summarize)
+        summarize(args.summarize, args.fd)
         return
     print("| problem | HPN | RCHPN (travel / loader) | reference (travel / loader) [trips] | capped at "
           f"{args.cap} (travel) | RCHPN decrease % | reference decrease % | RCHPN trips [packages] |")

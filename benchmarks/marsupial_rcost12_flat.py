@@ -34,6 +34,27 @@ from nowplan.planning.validate import validate_plan
 log = logging.getLogger("marsupial_rcost12_flat")
 
 
+def split(steps: list[str]) -> dict[str, float]:
+    """A flat plan's rescored cost by kind (travel, load/unload, loader work by ``flat.rescore``'s
+    rule: a run of one loader's moves is one walk) and the loader's walks, grasps and places."""
+    out = {"travel": 0.0, "load_unload": 0.0, "walks": 0.0, "grasps": 0.0, "places": 0.0}
+    last_move = None
+    for s in steps:
+        name, *args = s.strip("()").split()
+        base = name.split("-")[0]
+        if base == "move":
+            out["walks"] += last_move != args[0]
+            last_move = args[0]
+            continue
+        last_move = None
+        if base in ("travel", "load", "unload"):
+            out["travel" if base == "travel" else "load_unload"] += 10.0
+        elif base in ("grasp", "place"):
+            out[base + "s"] += 1.0
+    out["loader"] = rescore(steps) - out["travel"] - out["load_unload"]
+    return out
+
+
 def anytime(regime: str, n: int, trial: int, limit: float) -> dict[str, Any]:
     exe = _downward()
     if exe is None:
@@ -48,7 +69,7 @@ def anytime(regime: str, n: int, trial: int, limit: float) -> dict[str, Any]:
                         "--plan-file", str(work / "sas_plan"), "--alias", "seq-sat-lama-2011",
                         str(dom), str(prob)], capture_output=True, text=True, cwd=work, check=False)
         row.update(cpu_s=round(_child_cpu() - c0, 2), wall_s=round(time.perf_counter() - t0, 2))
-        costs = []
+        costs, best_steps = [], []
         for i in range(1, 1000):  # FD numbers its plans 1, 2, ...; bounded by the limit's few restarts
             steps = _read_plan(work / f"sas_plan.{i}")
             if not steps:
@@ -58,7 +79,11 @@ def anytime(regime: str, n: int, trial: int, limit: float) -> dict[str, Any]:
                 log.warning("%s-%d t%d plan %d does not validate: %s", regime, n, trial, i, msg)
                 continue
             costs.append(rescore(steps))
+            if costs[-1] == min(costs):
+                best_steps = steps
     row.update(plans=len(costs), first_cost=costs[0] if costs else None, best_cost=min(costs) if costs else None)
+    if best_steps:
+        row.update(best_split=split(best_steps))
     return row
 
 
