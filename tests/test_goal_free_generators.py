@@ -61,3 +61,27 @@ def test_the_default_search_is_the_lazy_one_only_for_goal_free_generators(reads:
         assert [a.key for a in default.plan.actions] == [a.key for a in lazy.plan.actions]
     else:
         assert default.expanded != lazy.expanded  # counting unmet atoms: another search
+
+
+def test_an_effect_that_leaves_a_generator_input_unbound_is_no_dead_end() -> None:
+    """Two jobs each take a fuel level (``fuel(f1)`` comes from the other job's fuel effect, which binds
+    no item, so the pose generator yields nothing there): the lazy relaxation must not call it unreachable."""
+    f, f2 = Var("f"), Var("f2")
+    preds = {x.name: x for x in (Predicate("pose", 0, boolean=False), Predicate("spot", 2, ("item", None)),
+                                 Predicate("done", 1, ("item",)), Predicate("fuel", 1, ("fuel",)),
+                                 Predicate("dec", 2, ("fuel", "fuel")))}
+    gen = Generator("where", (q,), _where, (p,), reads=reads_nothing)
+    ops = (Operator("go", (q,), (), (atom("pose", value=q),), param_types=(None,)),
+           Operator("work", (p, q, f, f2), (Precondition(atom("pose", value=q), 1), Precondition(atom("fuel", f), 1),
+                                            Precondition(atom("dec", f, f2), 0, static=True)),
+                    (atom("done", p), atom("fuel", f2), atom("fuel", f, value=False)),
+                    param_types=("item", None, "fuel", "fuel"), generators=(gen,)))
+    dom = Domain("yard-fuel", preds, ops, types={"item": None, "fuel": None})
+    init = State([atom("pose", value="0,0"), atom("fuel", "f2"), atom("dec", "f2", "f1"), atom("dec", "f1", "f0"),
+                  atom("spot", "i0", "1,0"), atom("spot", "i1", "2,0")])
+    objects = {"i0": "item", "i1": "item", "f0": "fuel", "f1": "fuel", "f2": "fuel"}
+    goal = Goal.of([atom("done", "i0"), atom("done", "i1")], dom.rules)
+    for lazy in (True, False):
+        res = plan(dom, objects, SymbolicBelief(init), goal, config=PlannerConfig(lazy_relaxation=lazy, time_limit=30.0))
+        assert res.solved and res.plan is not None, (lazy, res.status, res.reason)
+        assert sorted(str(a.args[0]) for a in res.plan.actions if a.name == "work") == ["i0", "i1"]
