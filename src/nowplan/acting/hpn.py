@@ -26,6 +26,7 @@ from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.guard import ProgressGuard
+from nowplan.acting.dead_end import unreachable_alone
 from nowplan.acting.progress import Cycle, start_warnings
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
@@ -471,6 +472,8 @@ class Executive:
                             continue
                         outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
                         reason = f"no plan for the goal ({self._last_failure}){self.model_hint}"
+                        if self._last_status is PlanStatus.UNSOLVABLE:
+                            reason += unreachable_alone(self.problem, self.belief)
                         if timed_out and self.remaining_time() <= 0.05:
                             # the planner's limit was what remained of the run's: say so, not the
                             # clamped figure (a held-out drone run said "time limit of 0.19 s" in a 20 s run)

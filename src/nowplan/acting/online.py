@@ -34,6 +34,7 @@ from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.guard import ProgressGuard
+from nowplan.acting.dead_end import unreachable_alone
 from nowplan.acting.progress import Cycle, start_warnings
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
@@ -278,6 +279,8 @@ class OnlinePolicy:
                     continue
                 outcome = Outcome.LIMIT if timed else Outcome.FAILED
                 reason = f"no plan for the goal ({res.status.value}: {res.reason}){self.model_hint}"
+                if res.status is PlanStatus.UNSOLVABLE:
+                    reason += unreachable_alone(self.problem, self.belief)
                 if timed and self.clock() - t0 >= self.strategy.time_limit - 0.05:
                     # the planner's limit was what remained of the run's: say so, not the clamped figure
                     reason = (f"time limit of {self.strategy.time_limit:g} s for the run reached while planning "
