@@ -26,7 +26,8 @@ from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.guard import ProgressGuard
-from nowplan.acting.progress import Cycle, blind_guard_warning
+from nowplan.acting.dead_end import unreachable_alone
+from nowplan.acting.progress import Cycle, start_warnings
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
 from nowplan.acting.refine_flat import FlatSteps, call_config, refinement_key, root_time_share
@@ -113,9 +114,7 @@ class Executive:
         self.achievers = Achievers()  # ground actions by effect, for refinements made directly
         check_supported(self.domain, strategy)
         check_belief(self.domain, belief)
-        blind = blind_guard_warning(belief)
-        if blind is not None:
-            log.warning(blind)
+        self.model_hint = start_warnings(problem, belief)  # (logged; "no plan for the goal" repeats it)
         for m in self.mechanisms:
             m.check(self)
         if strategy.domain_planner and self.domain.planner is None:
@@ -472,7 +471,9 @@ class Executive:
                             looks += 1
                             continue
                         outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
-                        reason = f"no plan for the goal ({self._last_failure})"
+                        reason = f"no plan for the goal ({self._last_failure}){self.model_hint}"
+                        if self._last_status is PlanStatus.UNSOLVABLE:
+                            reason += unreachable_alone(self.problem, self.belief)
                         if timed_out and self.remaining_time() <= 0.05:
                             # the planner's limit was what remained of the run's: say so, not the
                             # clamped figure (a held-out drone run said "time limit of 0.19 s" in a 20 s run)

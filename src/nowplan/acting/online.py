@@ -34,7 +34,8 @@ from nowplan.acting.judge import judge
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.guard import ProgressGuard
-from nowplan.acting.progress import Cycle, blind_guard_warning
+from nowplan.acting.dead_end import unreachable_alone
+from nowplan.acting.progress import Cycle, start_warnings
 from nowplan.acting.reuse import SkeletonStep, constrained_plan, skeleton
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.acting.whole import plan_whole_problem
@@ -93,9 +94,7 @@ class OnlinePolicy:
     ) -> None:
         check_supported(problem.domain, strategy)
         check_belief(problem.domain, belief)
-        blind = blind_guard_warning(belief)
-        if blind is not None:
-            log.warning(blind)
+        self.model_hint = start_warnings(problem, belief)  # (logged; "no plan for the goal" repeats it)
         self.problem = problem
         self.on_action = on_action  # observers (e.g. a renderer); never change control flow
         self.domain = problem.domain
@@ -279,7 +278,9 @@ class OnlinePolicy:
                     prev = None
                     continue
                 outcome = Outcome.LIMIT if timed else Outcome.FAILED
-                reason = f"no plan for the goal ({res.status.value}: {res.reason})"
+                reason = f"no plan for the goal ({res.status.value}: {res.reason}){self.model_hint}"
+                if res.status is PlanStatus.UNSOLVABLE:
+                    reason += unreachable_alone(self.problem, self.belief)
                 if timed and self.clock() - t0 >= self.strategy.time_limit - 0.05:
                     # the planner's limit was what remained of the run's: say so, not the clamped figure
                     reason = (f"time limit of {self.strategy.time_limit:g} s for the run reached while planning "

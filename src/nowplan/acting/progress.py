@@ -45,6 +45,7 @@ situations, so they are not chance — instead of running into a budget.
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Hashable, Iterable
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
@@ -53,6 +54,8 @@ from nowplan.belief.protocols import HasState
 from nowplan.core.operators import Action
 from nowplan.core.state import State
 from nowplan.worlds.base import Observation
+
+log = logging.getLogger(__name__)
 
 
 @runtime_checkable
@@ -84,6 +87,20 @@ def blind_guard_warning(belief: Any) -> str | None:
     return (f"the belief {type(belief).__name__} has neither fingerprint() nor a State as .state: the "
             "progress guard sees no cycles (only an action failing the same way again and again); "
             "define fingerprint() (see nowplan.api.Fingerprinted)")
+
+
+def start_warnings(problem: Any, belief: Any) -> str:
+    """Log what a run is about to miss (a blind progress guard, an operator parameter that can never
+    bind a value the belief holds); returns the latter as "; ..." for "no plan for the goal", or ""."""
+    from nowplan.core.unbound import unbindable_parameters
+
+    blind = blind_guard_warning(belief)
+    if blind is not None:
+        log.warning(blind)
+    hint = unbindable_parameters(problem.domain, problem.all_objects, belief)
+    if hint is not None:
+        log.warning(hint)
+    return f"; {hint}" if hint else ""
 
 
 def belief_fingerprint(belief: Any) -> Hashable | None:

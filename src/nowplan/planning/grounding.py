@@ -311,10 +311,18 @@ class Grounder:
         if r is None:
             r = True
             for i, op, effs in self._gen_by_pred.get(target.predicate, ()):
-                if self._unified(i, effs, target):
-                    if any(g.reads is not reads_nothing for g in op.generators):
+                for b in self._unified(i, effs, target):
+                    # a generator that reads the goal, or one whose inputs this effect leaves unbound: it
+                    # yields nothing here by its contract (bindings.get), which is no proof that nothing
+                    # achieves the atom (a held-out greenhouse's spray(r, p, q, c, c2): charge(c1) from
+                    # its charge effect, the plant unbound; the lazy relaxation called the two sprays
+                    # two plants needed a dead end and the planner "unsolvable")
+                    if any(g.reads is not reads_nothing or any(v not in b for v in g.inputs)
+                           for g in op.generators):
                         r = False
                         break
+                if not r:
+                    break
             self._goal_free[target] = r
         return r
 

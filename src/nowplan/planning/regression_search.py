@@ -54,7 +54,9 @@ def _log_fallback(domain: str, heuristic: str, why: str, *, lazy: bool = False) 
             return
         log.info(
             "domain %s: heuristic %s falls back to counting unmet atoms: %s "
-            "(PlannerConfig(lazy_relaxation=True) keeps a relaxed estimate with tests and generators)",
+            "(PlannerConfig(lazy_relaxation=True) keeps a relaxed estimate with tests and generators: "
+            "DomainSpec(planner=...) or parse_strategy(..., planner=...); generators that all declare "
+            "reads=reads_nothing get it by default)",
             domain, heuristic, why,
         )
 

@@ -1,0 +1,40 @@
+"""Why "no plan for the goal": the goal atoms that have no plan even alone (a dead end's place).
+
+A search that exhausts its space says only "unsolvable"; a run that ends there (a tank that
+leaked after its one refill was spent, in a held-out greenhouse: benchmarks/results/heldout12)
+should say which part of the goal can no longer be reached.  Asked once, when a run gives up on
+an unsolvable goal: each unmet atom is planned for alone, concretely, within a small budget.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+from nowplan.core.atoms import Goal
+from nowplan.core.levels import flat_levels
+from nowplan.planning.config import PlannerConfig
+from nowplan.planning.plan import PlanStatus
+from nowplan.planning.regression import plan
+
+MAX_ATOMS = 8  # unmet goal atoms tried, at most
+TIME_EACH = 0.5  # planner seconds per atom
+TIME_ALL = 2.0  # seconds for all of them
+
+
+def unreachable_alone(problem: Any, belief: Any) -> str:
+    """``"; no plan even for watered(p2) alone"`` (the atoms whose own search is exhausted), or ``""``."""
+    domain, t0 = problem.domain, time.perf_counter()
+    dead: list[str] = []
+    unmet = [a for a in problem.goal if not domain.holds(a, belief)][:MAX_ATOMS]
+    for a in unmet:
+        left = TIME_ALL - (time.perf_counter() - t0)
+        if left <= 0.05:
+            break
+        cfg = PlannerConfig(time_limit=min(TIME_EACH, left), relevant_to=problem.goal)
+        res = plan(domain, problem.objects, belief, Goal.of([a], domain.rules), flat_levels(), cfg)
+        if res.status is PlanStatus.UNSOLVABLE:
+            dead.append(str(a))
+    if not dead or len(dead) == len(unmet) > 1:
+        return ""  # nothing singled out (or every atom: the search says no more than that)
+    return f"; no plan even for {' & '.join(dead)} alone"
