@@ -58,3 +58,22 @@ def test_either_fix_plans_and_says_nothing(generator: bool, pose_is_object: bool
     assert unbindable_parameters(ep.problem.domain, ep.problem.all_objects, ep.belief) is None
     m = run_episode(ep, parse_strategy("hpn", max_actions=20, time_limit=10), seed=0)
     assert m.outcome is Outcome.REACHED, m.reason
+
+
+def test_a_parameter_an_effect_makes_true_is_bound_from_the_goal() -> None:
+    """``put(t, q)`` needs ``free(q)`` and makes ``lies(t, q)``: the goal ``lies(sprayer, "0.0,2.0")`` binds
+    ``q`` through the effect, so a pose in ``free`` is no reason for a hint, and the plan is found."""
+    preds = {p.name: p for p in (Predicate("lies", 2, ("tool", None)), Predicate("holding", 1, ("tool",)),
+                                 Predicate("free", 1, (None,)),
+                                 Predicate("sunny", 0, test=lambda belief, args, value: bool(value)))}
+    put = Operator("put", (t, q), (Precondition(atom("holding", t), 1), Precondition(atom("free", q), 1)),
+                   (atom("lies", t, q), atom("free", q, value=False), atom("holding", t, value=False)),
+                   param_types=("tool", None))
+    dom = Domain("shed", preds, (put,), types={"tool": None})
+    init = State([atom("holding", "sprayer"), atom("free", "0.0,2.0")])
+    prob = Problem(dom, {"sprayer": "tool"}, SymbolicBelief(init),
+                   Goal.of([atom("lies", "sprayer", "0.0,2.0")], dom.rules), "shed")
+    assert unbindable_parameters(dom, prob.all_objects, prob.init) is None
+    ep = Episode(prob, SymbolicWorld(dom, init), prob.init, "shed")
+    m = run_episode(ep, parse_strategy("hpn", max_actions=20, time_limit=10), seed=0)
+    assert m.outcome is Outcome.REACHED, m.reason

@@ -13,6 +13,7 @@ from typing import Any
 
 from nowplan.core.atoms import Goal
 from nowplan.core.levels import flat_levels
+from nowplan.errors import NowplanError
 from nowplan.planning.config import PlannerConfig
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.regression import plan
@@ -32,7 +33,10 @@ def unreachable_alone(problem: Any, belief: Any) -> str:
         if left <= 0.05:
             break
         cfg = PlannerConfig(time_limit=min(TIME_EACH, left), relevant_to=problem.goal)
-        res = plan(domain, problem.objects, belief, Goal.of([a], domain.rules), flat_levels(), cfg)
+        try:
+            res = plan(domain, problem.objects, belief, Goal.of([a], domain.rules), flat_levels(), cfg)
+        except NowplanError:  # (a model the flat regression cannot plan: the run's own reason stands)
+            return ""
         if res.status is PlanStatus.UNSOLVABLE:
             dead.append(str(a))
     if not dead or len(dead) == len(unmet) > 1:

@@ -1,6 +1,7 @@
 """Operator parameters the planner can never bind to a value the belief holds (checked once per run).
 
-The planner binds an operator's parameters from the goal (through its effects), from its
+The planner binds an operator's parameters from the goal (through the effects that make a fact
+true), from its
 generators, by joining its static preconditions with the listed facts, and otherwise from the
 problem's objects of the parameter's type.  (A domain without generators, tested or valued
 predicates is ground once from the facts that can become true, which binds such parameters; one
@@ -33,6 +34,9 @@ def unbindable_parameters(domain: Domain, objects: Mapping[str, Any], belief: An
         bound = {v for g in op.generators for v in g.outputs}
         bound |= {a for p in op.preconditions if p.static or p.atom.predicate in statics
                   for a in p.atom.args if isinstance(a, Var)}
+        # an effect that makes a fact true is unified with the goal's atoms, which binds its arguments
+        # to any value (put(t, q) with free(q) and lies(t, q) binds q from a goal lies(sprayer, "0,2"))
+        bound |= {a for e in op.effects if e.value is not False for a in e.args if isinstance(a, Var)}
         for pre in op.preconditions:
             a = pre.atom
             if pre.static or a.predicate in statics:
