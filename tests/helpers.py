@@ -1,10 +1,14 @@
-"""Shared helpers for the tests: replaying plans in a symbolic state, process states."""
+"""Shared helpers for the tests: replaying plans in a symbolic state, process states, example domains."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from nowplan.core.domain import Domain
+from nowplan.domains import registry
+from nowplan.domains.registry import DomainSpec
 from nowplan.core.state import State
 from nowplan.planning.plan import Plan
 
@@ -31,3 +35,16 @@ def process_alive(pid: int) -> bool:
     except (FileNotFoundError, ProcessLookupError, IndexError):
         return False
     return fields[0] != "Z"
+
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def example_spec(monkeypatch: pytest.MonkeyPatch, name: str) -> DomainSpec:
+    """The example domain ``examples/NAME`` (package ``NAME_domain``) found as a user's plugin is: on the
+    path and named in ``NOWPLAN_DOMAINS``, with a fresh discovery (the registry restored afterwards)."""
+    monkeypatch.syspath_prepend(str(EXAMPLES / name))
+    monkeypatch.setattr(registry, "_REGISTRY", {})
+    monkeypatch.setattr(registry, "_DISCOVERED", False)
+    monkeypatch.setenv("NOWPLAN_DOMAINS", f"{name}_domain")
+    return registry.get_domain(name)

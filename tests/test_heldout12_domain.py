@@ -9,23 +9,16 @@ shed, with charges that are never refilled; poses proposed by goal-free generato
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import pytest
 
 from nowplan.api import NowplanError, Outcome, parse_strategy, run_episode
-from nowplan.domains import registry
 from nowplan.domains.registry import DomainSpec
-
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+from tests.helpers import example_spec
 
 
 def _spec(monkeypatch: pytest.MonkeyPatch) -> DomainSpec:
-    monkeypatch.syspath_prepend(str(EXAMPLES / "greenhouse"))
-    monkeypatch.setattr(registry, "_REGISTRY", {})
-    monkeypatch.setattr(registry, "_DISCOVERED", False)
-    monkeypatch.setenv("NOWPLAN_DOMAINS", "greenhouse_domain")
-    return registry.get_domain("greenhouse")
+    return example_spec(monkeypatch, "greenhouse")
 
 
 def test_two_plants_with_a_noisy_sensor_are_tended_in_the_world(monkeypatch: pytest.MonkeyPatch) -> None:

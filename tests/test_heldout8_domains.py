@@ -17,16 +17,15 @@ believed at odds of 1 in 2, and HPN quoting the planner's clamped time limit as 
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import pytest
 
 from nowplan.api import Outcome, ScenarioError, parse_strategy, run_episode
 from nowplan.domains import registry
 from nowplan.domains.registry import DomainSpec
+from tests.helpers import EXAMPLES, example_spec
 from tests.test_matrix import STRATEGIES
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 MONITORS = {"monitor", "monitor-cost", "monitor-goal", "monitor-restore", "monitor-rule-cost"}
 # the monitor compares point states: the drone's belief is none; the ward's predicate maybe is a test
 REFUSED = {"drone": ({"domain-planner"} | MONITORS, "domain-planner|not a point state"),
@@ -35,11 +34,7 @@ FAST = ["hpn", "flat", "online", "hpn+aggressive"]
 
 
 def _spec(monkeypatch: pytest.MonkeyPatch, name: str) -> DomainSpec:
-    monkeypatch.syspath_prepend(str(EXAMPLES / name))
-    monkeypatch.setattr(registry, "_REGISTRY", {})
-    monkeypatch.setattr(registry, "_DISCOVERED", False)
-    monkeypatch.setenv("NOWPLAN_DOMAINS", f"{name}_domain")
-    return registry.get_domain(name)
+    return example_spec(monkeypatch, name)
 
 
 def _run(monkeypatch: pytest.MonkeyPatch, name: str, strategy: str, seed: int) -> None:

@@ -15,23 +15,16 @@ at the same level was quick, and the shortcuts could use the call's whole time l
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import pytest
 
 from nowplan.api import Outcome, parse_strategy, run_episode
-from nowplan.domains import registry
 from nowplan.domains.registry import DomainSpec
-
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+from tests.helpers import example_spec
 
 
 def _spec(monkeypatch: pytest.MonkeyPatch) -> DomainSpec:
-    monkeypatch.syspath_prepend(str(EXAMPLES / "warehouse"))
-    monkeypatch.setattr(registry, "_REGISTRY", {})
-    monkeypatch.setattr(registry, "_DISCOVERED", False)
-    monkeypatch.setenv("NOWPLAN_DOMAINS", "warehouse_domain")
-    return registry.get_domain("warehouse")
+    return example_spec(monkeypatch, "warehouse")
 
 
 @pytest.mark.parametrize("strategy", ["hpn", "flat", "online", "hpn+monitor", "hpn+aggressive"])

@@ -14,7 +14,6 @@ tested predicate
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 import pytest
@@ -27,18 +26,14 @@ from nowplan.domains import registry
 from nowplan.domains.registry import DomainSpec
 from nowplan.planning.config import PlannerConfig
 from nowplan.planning.regression import plan
+from tests.helpers import EXAMPLES, example_spec
 from tests.test_matrix import STRATEGIES
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 MONITORS = {"monitor", "monitor-cost", "monitor-goal", "monitor-restore", "monitor-rule-cost"}
 
 
 def _spec(monkeypatch: pytest.MonkeyPatch, name: str) -> DomainSpec:
-    monkeypatch.syspath_prepend(str(EXAMPLES / name))
-    monkeypatch.setattr(registry, "_REGISTRY", {})
-    monkeypatch.setattr(registry, "_DISCOVERED", False)
-    monkeypatch.setenv("NOWPLAN_DOMAINS", f"{name}_domain")
-    return registry.get_domain(name)
+    return example_spec(monkeypatch, name)
 
 
 @pytest.fixture()

@@ -23,6 +23,7 @@ from nowplan.acting.strategy import parse_strategy
 from nowplan.domains import registry
 from nowplan.domains.registry import DomainSpec
 from nowplan.errors import ModelError, ScenarioError
+from tests.helpers import example_spec
 from tests.test_matrix import STRATEGIES
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "house"
@@ -31,11 +32,7 @@ REFUSED = {"domain-planner"}  # the house has no planner of its own
 
 @pytest.fixture()
 def house(monkeypatch: pytest.MonkeyPatch) -> DomainSpec:
-    monkeypatch.syspath_prepend(str(EXAMPLE))
-    monkeypatch.setattr(registry, "_REGISTRY", {})
-    monkeypatch.setattr(registry, "_DISCOVERED", False)
-    monkeypatch.setenv("NOWPLAN_DOMAINS", "house_domain")
-    return registry.get_domain("house")
+    return example_spec(monkeypatch, "house")
 
 
 def test_the_example_is_a_plugin_with_an_entry_point(house: DomainSpec) -> None:

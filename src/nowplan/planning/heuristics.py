@@ -57,7 +57,7 @@ def relax_unsupported(grounder: Grounder, belief: Any) -> str | None:
     return why
 
 
-def tests_only(domain: Any) -> bool:
+def lazy_by_default(domain: Any) -> bool:
     """Whether the lazy relaxation estimates in place of the ground one by default: tested
     predicates are all that keeps the ground relaxation from the domain (no generators, every
     predicate boolean), or every generator declares that its values do not read the goal

@@ -24,7 +24,7 @@ from nowplan.planning.ground_task import GroundTask
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
 from nowplan.planning.hadd_relevant import RelevantHadd
-from nowplan.planning.heuristics import ground_task, relax_unsupported, tests_only
+from nowplan.planning.heuristics import ground_task, relax_unsupported, lazy_by_default
 from nowplan.planning.plan import PlanStatus
 from nowplan.planning.preimage import static_drop
 from nowplan.planning.relaxed import LazyRelaxed, Supporter
@@ -153,7 +153,7 @@ class _Search:
         # test such as "the item may be there") is relaxed lazily rather than estimated by counting
         # unmet atoms, which left a blind search (a held-out search domain: 38k nodes for a 10-step plan)
         lazy = self.config.lazy_relaxation
-        if not lazy and not self._can_relax and tests_only(self.grounder.domain):
+        if not lazy and not self._can_relax and lazy_by_default(self.grounder.domain):
             lazy = True
             _log_fallback(self.grounder.domain.name, name, str(self._no_relax), lazy=True)
         if lazy or (kind != "add" and self._can_relax):
