@@ -2,7 +2,9 @@
 
 Grounding joins each operator's positive preconditions against the facts a
 relaxed (delete-free) exploration reaches from the initial state, until a
-fixpoint; parameters no such precondition binds are enumerated by type.
+fixpoint (semi-naively: after the first round only the bindings that use a
+new fact, :mod:`nowplan.planning.joins`); parameters no such precondition
+binds are enumerated by type.
 Static preconditions (predicates no operator changes) are checked at every
 level, as the regression planner's grounder does; the others count only
 when their criticality is kept at the action's level.  A grounding is
@@ -14,15 +16,15 @@ grounding into an integer task.
 
 from __future__ import annotations
 
-import itertools
 import logging
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.core.atoms import Atom, Var
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator
+from nowplan.planning.joins import FactIndex, OperatorJoin
 
 log = logging.getLogger(__name__)
 
@@ -129,7 +131,7 @@ def _restrict(g: Grounding, operators: frozenset[str], init: set[Atom], level: i
     """What :func:`_ground` finds from ``init`` over ``operators``, filtered from ``g`` (a grounding
     of all operators whose atoms cover ``init``): every action reachable from ``init`` is in ``g``
     (reachability is monotone in the start), so a relaxed exploration over ``g``'s actions of these
-    operators, joining the conditions :class:`_Join` joins (static or kept at ``level``), reaches the
+    operators, joining the conditions :class:`~nowplan.planning.joins.OperatorJoin` joins (static or kept at ``level``), reaches the
     same atoms and actions without binding anything again."""
     acts = [a for a in g.actions if a.operator.name in operators]
     reached = set(init)
@@ -185,7 +187,7 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
         facts.setdefault(a.predicate, set()).add(a.args)
     schemas = (*(op for op in domain.operators if operators is None or op.name in operators),
                *domain.axioms)  # an axiom's conditions are kept at every level
-    joins = [_Join(op, statics, level, facts) for op in schemas]
+    joins = [OperatorJoin(op, statics, level, facts) for op in schemas]
     actions: list[Action] = list(prev.actions) if prev is not None else []
     seen: set[tuple[str, tuple[Any, ...]]] = {a.key for a in actions}
     fresh: set[str] | None = None  # the operators the first round joins (None: all)
@@ -193,7 +195,8 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
         had = prev.operators
         fresh = set() if had is None else {op.name for op in schemas if op.name not in had}
     changed: set[str] | None = None  # predicates with new facts in the last round (None: all)
-    index = _Index(facts)  # kept across rounds: each round's new facts are added to its tables
+    index = FactIndex(facts)  # kept across rounds: each round's new facts are added to its tables
+    delta = FactIndex({})  # the facts new in the last round (semi-naive rounds, see joins.py)
     while changed is None or changed:
         new: list[Atom] = []
         for op, join in zip(schemas, joins, strict=True):
@@ -201,7 +204,9 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
                 continue  # nothing new to join against: the same bindings as last round
             if changed is None and fresh is not None and op.name not in fresh:
                 continue  # ``prev`` has every binding of this operator over its facts
-            for args in join.bindings(index, by_type, type_sets):
+            found = (join.bindings(index, by_type, type_sets) if changed is None
+                     else join.new_bindings(index, delta, changed, by_type, type_sets))
+            for args in found:
                 key = (op.name, args)
                 if key in seen:
                     continue
@@ -215,10 +220,13 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
                         reached.add(e)
                         new.append(e)
         changed = set()
+        news: dict[str, set[tuple[Any, ...]]] = {}
         for e in new:
             facts.setdefault(e.predicate, set()).add(e.args)
+            news.setdefault(e.predicate, set()).add(e.args)
             changed.add(e.predicate)
         index.extend(new)
+        delta = FactIndex(news)
     return Grounding(_undominated(actions, statics, level), reached, statics, operators)
 
 
@@ -267,140 +275,6 @@ def _negative_statics_hold(act: Action, statics: frozenset[str], facts: Mapping[
     return True
 
 
-class _Index:
-    """Facts of a predicate by the values at some argument positions, built on demand and extended by
-    :meth:`extend` as the fixpoint reaches facts (not rebuilt every round: on visit-all 16x16 the
-    rebuilds of the static ``connected`` tables took a third of the grounding)."""
-
-    def __init__(self, facts: Mapping[str, set[tuple[Any, ...]]]) -> None:
-        self.facts = facts
-        self.tables: dict[tuple[str, tuple[int, ...]], dict[tuple[Any, ...], list[tuple[Any, ...]]]] = {}
-        self.by_pred: dict[str, list[tuple[tuple[int, ...], dict[tuple[Any, ...], list[tuple[Any, ...]]]]]] = {}
-        self.arity: dict[tuple[str, tuple[int, ...]], int] = {}
-
-    def extend(self, new: Iterable[Atom]) -> None:
-        """Add facts just reached (not in ``facts`` when the tables were built) to the tables built."""
-        for e in new:
-            for positions, t in self.by_pred.get(e.predicate, ()):
-                if len(e.args) == self.arity[(e.predicate, positions)]:
-                    t.setdefault(tuple(e.args[i] for i in positions), []).append(e.args)
-
-    def lookup(self, pred: str, positions: tuple[int, ...], arity: int) -> dict[tuple[Any, ...], list[tuple[Any, ...]]]:
-        key = (pred, positions)
-        t = self.tables.get(key)
-        if t is None:
-            t = {}
-            for args in self.facts.get(pred, ()):
-                if len(args) == arity:
-                    t.setdefault(tuple(args[i] for i in positions), []).append(args)
-            self.tables[key] = t
-            self.by_pred.setdefault(pred, []).append((positions, t))
-            self.arity[key] = arity
-        return t
-
-
-class _Join:
-    """An operator's positive conditions compiled into a join plan over parameter slots.
-
-    The conditions joined are the static ones and those kept at ``level``;
-    each step looks facts up by the slots already bound (an index per
-    predicate and bound positions), then binds the rest.
-    """
-
-    def __init__(self, op: Operator, statics: frozenset[str], level: int,
-                 facts: Mapping[str, set[tuple[Any, ...]]]) -> None:
-        self.op = op
-        slot = {v: i for i, v in enumerate(op.params)}
-        conds = [
-            p.atom for p in op.preconditions
-            if p.atom.value is True and (p.atom.predicate in statics or p.criticality > level)
-        ]
-        self.predicates = frozenset(c.predicate for c in conds)
-        bound: set[Var] = set()
-        # per step: predicate, arity, bound positions, how to build the lookup key (slot or constant),
-        # and the positions that bind new slots (a slot repeated in one atom is checked after binding)
-        self.steps: list[tuple[str, int, tuple[int, ...], tuple[tuple[bool, Any], ...],
-                               tuple[tuple[int, int], ...]]] = []
-        remaining = list(conds)
-        while remaining:  # the most constrained condition first
-            best = max(remaining, key=lambda a: (
-                sum(1 for t in a.args if not isinstance(t, Var) or t in bound),
-                -len(facts.get(a.predicate, ()))))
-            remaining.remove(best)
-            positions: list[int] = []
-            keyparts: list[tuple[bool, Any]] = []
-            binds: list[tuple[int, int]] = []
-            fresh: set[Var] = set()
-            for i, t in enumerate(best.args):
-                if isinstance(t, Var):
-                    if t in bound:
-                        positions.append(i)
-                        keyparts.append((True, slot[t]))
-                    else:
-                        binds.append((i, slot[t]))
-                        fresh.add(t)
-                else:
-                    positions.append(i)
-                    keyparts.append((False, t))
-            bound |= fresh
-            self.steps.append((best.predicate, len(best.args), tuple(positions), tuple(keyparts), tuple(binds)))
-        self.free = [(i, op.param_types[i] if op.param_types else None)
-                     for i, v in enumerate(op.params) if v not in bound]
-        self.typed = [(i, t) for i, t in enumerate(op.param_types) if t is not None] if op.param_types else []
-        self.slot_type: dict[int, str] = dict(self.typed)
-
-    def bindings(self, index: _Index, by_type: Mapping[str | None, list[str]],
-                 type_sets: Mapping[str | None, frozenset[str]]) -> Iterator[tuple[Any, ...]]:
-        n = len(self.op.params)
-        steps = self.steps
-        objects = type_sets[None]
-        # a slot's type is checked as soon as a fact binds it (a value that is not an object, e.g. a
-        # number, passes, as in the final check below): a condition shared by several types (logistics'
-        # ``at`` of packages and vehicles) then prunes the join early instead of multiplying its partial
-        # bindings by the facts of the other types
-        wrong = {sl: objects - type_sets.get(t, frozenset()) for sl, t in self.slot_type.items()}
-        checks = [tuple((pos, sl, wrong.get(sl)) for pos, sl in binds) for *_, binds in steps]
-
-        def join(k: int, cur: list[Any]) -> Iterator[list[Any]]:
-            if k == len(steps):
-                yield cur
-                return
-            pred, arity, positions, keyparts, _binds = steps[k]
-            table = index.lookup(pred, positions, arity)
-            key = tuple(cur[v] if is_slot else v for is_slot, v in keyparts)
-            check = checks[k]
-            for args in table.get(key, ()):
-                nxt = list(cur)
-                ok = True
-                for pos, sl, bad in check:
-                    have = nxt[sl]
-                    v = args[pos]
-                    if have is _UNBOUND:
-                        if bad and v in bad:
-                            ok = False
-                            break
-                        nxt[sl] = v
-                    elif have != v:
-                        ok = False
-                        break
-                if ok:
-                    yield from join(k + 1, nxt)
-
-        for b in join(0, [_UNBOUND] * n):
-            if any(b[i] in objects and b[i] not in type_sets.get(t, ()) for i, t in self.typed
-                   if b[i] is not _UNBOUND):
-                continue
-            if not self.free:
-                yield tuple(b)
-                continue
-            for combo in itertools.product(*(by_type.get(t, []) for _, t in self.free)):
-                full = list(b)
-                for (i, _), v in zip(self.free, combo, strict=True):
-                    full[i] = v
-                yield tuple(full)
-
-
-_UNBOUND = object()
 
 
 def _extension(old: Operator, op: Operator | None) -> tuple[int, tuple[int | None, ...]] | None:
