@@ -15,3 +15,16 @@ def test_flat_finds_and_stores_the_gem_with_a_noisy_detector(monkeypatch: pytest
     m = run_episode(spec.scenario("noisy")(seed), parse_strategy("flat", max_actions=150), seed=seed)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.goal_in_world is True
+
+
+def test_refine_flat_plans_concretely_when_the_root_step_refines_without_an_action(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """The mine's hierarchy (route and battery in one class) is not downward refinable: HPN's root
+    step is refined again and again without an action (``dig`` seed 0: "no progress").  With
+    refine-flat the executive plans that goal concretely instead of giving up."""
+    spec = example_spec(monkeypatch, "mine")
+    plain = run_episode(spec.scenario("dig")(0), parse_strategy("hpn", max_actions=150), seed=0)
+    assert plain.outcome is Outcome.FAILED and "no progress" in plain.reason
+    m = run_episode(spec.scenario("dig")(0), parse_strategy("hpn+refine-flat", max_actions=150), seed=0)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert m.goal_in_world is True

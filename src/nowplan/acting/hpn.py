@@ -435,6 +435,14 @@ class Executive:
                         f"made for it) refined {self.strategy.max_refinements} times without an action "
                         "in between"
                     )
+                    if f.root and self.strategy.refine_flat and key not in self._flat_steps:
+                        # abstract plans that refine but never reach an action (no downward
+                        # refinement: a held-out mine's battery and route in one class): plan concretely
+                        self._flat_steps.add(key)
+                        self._refinements[key] = 0
+                        self.trace.emit("note", plan_id=f.plan_id,
+                                        text=f"executive: refine-flat: {why}; planning the goal concretely")
+                        continue
                     if f.root:
                         outcome, reason = Outcome.FAILED, f"no progress: {why}"
                         break
