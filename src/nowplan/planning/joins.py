@@ -33,6 +33,8 @@ UNBOUND = object()  # a parameter slot no condition has bound yet
 # and the positions that bind new slots (a slot repeated in one atom is checked after binding)
 Step = tuple[str, int, tuple[int, ...], tuple[tuple[bool, Any], ...], tuple[tuple[int, int], ...]]
 Table = dict[tuple[Any, ...], list[tuple[Any, ...]]]
+# per step: (position in the fact, slot it binds, the objects of a wrong type for that slot or None)
+Check = tuple[tuple[int, int, frozenset[str] | None], ...]
 
 
 class FactIndex:
@@ -77,7 +79,8 @@ class OperatorJoin:
     """
 
     def __init__(self, op: Operator, statics: frozenset[str], level: int,
-                 facts: Mapping[str, set[tuple[Any, ...]]]) -> None:
+                 facts: Mapping[str, set[tuple[Any, ...]]],
+                 type_sets: Mapping[str | None, frozenset[str]]) -> None:
         self.op = op
         self._slot = {v: i for i, v in enumerate(op.params)}
         self.conds = [
@@ -86,12 +89,22 @@ class OperatorJoin:
         ]
         self.predicates = frozenset(c.predicate for c in self.conds)
         self._sizes = {c.predicate: len(facts.get(c.predicate, ())) for c in self.conds}
-        self.steps, bound = self._plan(None)
-        self._delta_steps: dict[int, list[Step]] = {}
+        self.typed = [(i, t) for i, t in enumerate(op.param_types) if t is not None] if op.param_types else []
+        self._type_sets = type_sets
+        objects = type_sets[None]
+        # a slot's type is checked as soon as a fact binds it (a value that is not an object, e.g. a
+        # number, passes, as in the final check of _bindings): a condition shared by several types
+        # (logistics' ``at`` of packages and vehicles) then prunes the join early instead of
+        # multiplying its partial bindings by the facts of the other types
+        self._wrong = {sl: objects - type_sets.get(t, frozenset()) for sl, t in self.typed}
+        steps, bound = self._plan(None)
+        self._full = (steps, self._checks(steps))
+        self._delta: dict[int, tuple[list[Step], list[Check]]] = {}
         self.free = [(i, op.param_types[i] if op.param_types else None)
                      for i, v in enumerate(op.params) if v not in bound]
-        self.typed = [(i, t) for i, t in enumerate(op.param_types) if t is not None] if op.param_types else []
-        self.slot_type: dict[int, str] = dict(self.typed)
+
+    def _checks(self, steps: list[Step]) -> list[Check]:
+        return [tuple((pos, sl, self._wrong.get(sl)) for pos, sl in binds) for *_, binds in steps]
 
     def _plan(self, first: int | None) -> tuple[list[Step], set[Var]]:
         """The join steps, ``conds[first]`` first if given, then the most constrained condition next
@@ -128,35 +141,28 @@ class OperatorJoin:
             steps.append((best.predicate, len(best.args), tuple(positions), tuple(keyparts), tuple(binds)))
         return steps, bound
 
-    def bindings(self, index: FactIndex, by_type: Mapping[str | None, list[str]],
-                 type_sets: Mapping[str | None, frozenset[str]]) -> Iterator[tuple[Any, ...]]:
+    def bindings(self, index: FactIndex, by_type: Mapping[str | None, list[str]]) -> Iterator[tuple[Any, ...]]:
         """Every binding of the parameters over ``index``'s facts (typed; free parameters by type)."""
-        return self._bindings(self.steps, index, None, by_type, type_sets)
+        return self._bindings(*self._full, index, None, by_type)
 
     def new_bindings(self, index: FactIndex, delta: FactIndex, changed: set[str],
-                     by_type: Mapping[str | None, list[str]],
-                     type_sets: Mapping[str | None, frozenset[str]]) -> Iterator[tuple[Any, ...]]:
+                     by_type: Mapping[str | None, list[str]]) -> Iterator[tuple[Any, ...]]:
         """The bindings over ``index``'s facts that use at least one fact of ``delta`` (whose
         predicates are ``changed``); a binding may come more than once."""
         for j, c in enumerate(self.conds):
             if c.predicate not in changed:
                 continue
-            steps = self._delta_steps.get(j)
-            if steps is None:
-                steps = self._delta_steps[j] = self._plan(j)[0]
-            yield from self._bindings(steps, index, delta, by_type, type_sets)
+            plan = self._delta.get(j)
+            if plan is None:
+                steps = self._plan(j)[0]
+                plan = self._delta[j] = (steps, self._checks(steps))
+            yield from self._bindings(*plan, index, delta, by_type)
 
-    def _bindings(self, steps: list[Step], index: FactIndex, delta: FactIndex | None,
-                  by_type: Mapping[str | None, list[str]],
-                  type_sets: Mapping[str | None, frozenset[str]]) -> Iterator[tuple[Any, ...]]:
+    def _bindings(self, steps: list[Step], checks: list[Check], index: FactIndex, delta: FactIndex | None,
+                  by_type: Mapping[str | None, list[str]]) -> Iterator[tuple[Any, ...]]:
         n = len(self.op.params)
+        type_sets = self._type_sets
         objects = type_sets[None]
-        # a slot's type is checked as soon as a fact binds it (a value that is not an object, e.g. a
-        # number, passes, as in the final check below): a condition shared by several types (logistics'
-        # ``at`` of packages and vehicles) then prunes the join early instead of multiplying its partial
-        # bindings by the facts of the other types
-        wrong = {sl: objects - type_sets.get(t, frozenset()) for sl, t in self.slot_type.items()}
-        checks = [tuple((pos, sl, wrong.get(sl)) for pos, sl in binds) for *_, binds in steps]
         last = len(steps)
 
         def join(k: int, cur: list[Any]) -> Iterator[list[Any]]:

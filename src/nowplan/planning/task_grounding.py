@@ -187,7 +187,7 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
         facts.setdefault(a.predicate, set()).add(a.args)
     schemas = (*(op for op in domain.operators if operators is None or op.name in operators),
                *domain.axioms)  # an axiom's conditions are kept at every level
-    joins = [OperatorJoin(op, statics, level, facts) for op in schemas]
+    joins = [OperatorJoin(op, statics, level, facts, type_sets) for op in schemas]
     actions: list[Action] = list(prev.actions) if prev is not None else []
     seen: set[tuple[str, tuple[Any, ...]]] = {a.key for a in actions}
     fresh: set[str] | None = None  # the operators the first round joins (None: all)
@@ -204,8 +204,8 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
                 continue  # nothing new to join against: the same bindings as last round
             if changed is None and fresh is not None and op.name not in fresh:
                 continue  # ``prev`` has every binding of this operator over its facts
-            found = (join.bindings(index, by_type, type_sets) if changed is None
-                     else join.new_bindings(index, delta, changed, by_type, type_sets))
+            found = (join.bindings(index, by_type) if changed is None
+                     else join.new_bindings(index, delta, changed, by_type))
             for args in found:
                 key = (op.name, args)
                 if key in seen:
