@@ -25,6 +25,21 @@ def test_refine_flat_plans_concretely_when_the_root_step_refines_without_an_acti
     spec = example_spec(monkeypatch, "mine")
     plain = run_episode(spec.scenario("dig")(0), parse_strategy("hpn", max_actions=150), seed=0)
     assert plain.outcome is Outcome.FAILED and "no progress" in plain.reason
+    assert "refine-flat" in plain.reason  # the reason names the switch that would have gone on
     m = run_episode(spec.scenario("dig")(0), parse_strategy("hpn+refine-flat", max_actions=150), seed=0)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.goal_in_world is True
+
+
+def test_refine_flat_plans_concretely_when_the_guard_sees_a_cycle_of_a_particle_belief(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """``dig`` seed 1: the abstract plans close the gate the goal wants shut, the next refinement
+    opens it again, fails deeper and pops back, so the gate toggles.  The belief is a particle belief,
+    which refine-flat's own symbolic-state count cannot see; the progress guard's cycle (its
+    fingerprint and the stack's goals) now makes refine-flat plan the goal concretely (before: a
+    livelock after 11 actions)."""
+    spec = example_spec(monkeypatch, "mine")
+    m = run_episode(spec.scenario("dig")(1), parse_strategy("hpn+refine-flat", max_actions=150), seed=1)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert m.goal_in_world is True
+    assert m.cycles >= 1  # the fallback came from a cycle, not from the other two triggers

@@ -30,7 +30,7 @@ from nowplan.acting.dead_end import unreachable_alone
 from nowplan.acting.progress import Cycle, start_warnings
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
-from nowplan.acting.refine_flat import FlatSteps, call_config, refinement_key, root_time_share
+from nowplan.acting.refine_flat import FlatSteps, call_config, flat_hint, refinement_key, root_time_share
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.acting.whole import plan_whole_problem
 from nowplan.belief.protocols import HasHeuristic, check_belief
@@ -369,7 +369,9 @@ class Executive:
         return self.guard.situation(self, self.belief, (f.plan.goal for f in self.stack))
 
     def after_cycle(self, cyc: Cycle) -> None:
-        """A cycle closed: every mechanism hears of it (before the guard's livelock check)."""
+        """A cycle closed: refine-flat and every mechanism hear of it (before the guard's livelock check)."""
+        if self.strategy.refine_flat:
+            self._flat_steps.on_cycle(self, cyc)
         for m in self.mechanisms:
             m.after_cycle(self, cyc)
 
@@ -435,16 +437,11 @@ class Executive:
                         f"made for it) refined {self.strategy.max_refinements} times without an action "
                         "in between"
                     )
-                    if f.root and self.strategy.refine_flat and key not in self._flat_steps:
-                        # abstract plans that refine but never reach an action (no downward
-                        # refinement: a held-out mine's battery and route in one class): plan concretely
-                        self._flat_steps.add(key)
-                        self._refinements[key] = 0
-                        self.trace.emit("note", plan_id=f.plan_id,
-                                        text=f"executive: refine-flat: {why}; planning the goal concretely")
-                        continue
+                    if self._flat_steps.fall_back(self, f, key, why, reset=True):
+                        continue  # abstract plans that refine but never reach an action (not downward
+                        # refinable: a held-out mine's battery and route in one class): plan concretely
                     if f.root:
-                        outcome, reason = Outcome.FAILED, f"no progress: {why}"
+                        outcome, reason = Outcome.FAILED, f"no progress: {why}{flat_hint(self, key)}"
                         break
                     self.trace.emit("note", plan_id=f.plan_id, text=f"executive: gave up: {why}")
                     self.pop("failed")
@@ -466,13 +463,8 @@ class Executive:
                         new = refine_without_swaps(self, new, step.goal, levels, f, action)
                 if new is None:
                     consecutive_failures += 1
-                    if f.root and self.strategy.refine_flat and key not in self._flat_steps:
-                        # not even an abstract plan was found: plan the goal concretely
-                        self._flat_steps.add(key)
-                        self.trace.emit("note", plan_id=f.plan_id,
-                                        text="executive: refine-flat: no abstract plan "
-                                             f"({self._last_failure}); planning the goal concretely")
-                        continue
+                    if self._flat_steps.fall_back(self, f, key, f"no abstract plan ({self._last_failure})"):
+                        continue  # not even an abstract plan was found: plan the goal concretely
                     if f.root:
                         timed_out = self._last_status is PlanStatus.TIME_LIMIT
                         if not timed_out and look_again(self.belief, self.trace, looks, self._last_failure):
@@ -480,6 +472,8 @@ class Executive:
                             continue
                         outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
                         reason = f"no plan for the goal ({self._last_failure}){self.model_hint}"
+                        if not concrete(self.domain, levels):
+                            reason += flat_hint(self, key)
                         if self._last_status is PlanStatus.UNSOLVABLE:
                             reason += unreachable_alone(self.problem, self.belief)
                         if timed_out and self.remaining_time() <= 0.05:

@@ -22,6 +22,7 @@ from nowplan.planning.regression import concrete
 
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive, Frame
+    from nowplan.acting.progress import Cycle
 
 CYCLE_VISITS = 3  # visits of one symbolic state that count as a cycle
 # the part of the run's remaining time the root's abstract plan may take under refine-flat: the rest
@@ -35,6 +36,15 @@ def root_time_share(ex: Executive, f: Frame, key: Hashable, levels: LevelMap) ->
     if not (f.root and ex.strategy.refine_flat and key not in ex._flat_steps):
         return 1.0
     return 1.0 if concrete(ex.domain, levels) else ROOT_ABSTRACT_SHARE
+
+
+def flat_hint(ex: Executive, key: Hashable) -> str:
+    """What to try when the root gives up on its abstract plans with refine-flat off: "" with it on or
+    where the goal was planned concretely already (then the hierarchy is not the cause)."""
+    if ex.strategy.refine_flat or key in ex._flat_steps:
+        return ""
+    return ("; the criticalities may not be downward refinable (abstract plans that no refinement "
+            "reaches): the switch refine-flat (hpn+refine-flat) plans such a goal concretely")
 
 
 def call_config(cfg: PlannerConfig, root: bool) -> PlannerConfig:
@@ -75,6 +85,20 @@ class FlatSteps:
     def add(self, key: Hashable) -> None:
         self.steps.add(key)
 
+    def fall_back(self, ex: Executive, f: Frame, key: Hashable, why: str, reset: bool = False) -> bool:
+        """Under refine-flat, plan the root step ``key`` concretely from now on (``why``: its abstract
+        plans found none, or refined without an action); ``False`` where refine-flat is off, ``f`` is
+        no root or the step is planned concretely already (then the executive gives up as without).
+        ``reset``: the step's refinement count starts again (its allowance was spent on abstract plans)."""
+        if not (f.root and ex.strategy.refine_flat) or key in self.steps:
+            return False
+        self.steps.add(key)
+        if reset:
+            ex._refinements[key] = 0
+        ex.trace.emit("note", plan_id=f.plan_id,
+                      text=f"executive: refine-flat: {why}; planning the goal concretely")
+        return True
+
     def check_cycle(self, ex: Executive) -> None:
         """A symbolic state reached a third time means the hierarchical plans cycle
         (refinements that succeed but undo each other): plan the current root goal concretely."""
@@ -89,14 +113,26 @@ class FlatSteps:
         # the belief's state itself (hashed and compared by its fluents, no sorted atom list made)
         state = ex.belief.state
         self.visits[state] += 1
+        if self.visits[state] >= CYCLE_VISITS:
+            self._flatten_root(ex, f"state reached {CYCLE_VISITS} times")
+
+    def on_cycle(self, ex: Executive, cyc: Cycle) -> None:
+        """The progress guard saw the belief and the plan stack's goals repeat with no failure and no
+        exogenous change in between (any belief with a fingerprint, a particle belief too, where
+        :meth:`check_cycle` sees symbolic states only): the hierarchical plans undo each other, so plan
+        the root goal concretely (once; later cycles go on to the guard's livelock bound)."""
+        if cyc.clean and ex.stack and ex.stack[0].root:
+            self._flatten_root(ex, f"the guard's cycle ({cyc.describe()})")
+
+    def _flatten_root(self, ex: Executive, why: str) -> None:
         root = ex.stack[0]
         key = refinement_key(root)
-        if self.visits[state] < CYCLE_VISITS or key in self.steps:
+        if key in self.steps:
             return
         self.steps.add(key)
         ex.trace.emit("note", plan_id=root.plan_id,
-                      text=f"executive: refine-flat: state reached {CYCLE_VISITS} times: the hierarchical "
-                           "plans cycle; planning the goal concretely")
+                      text=f"executive: refine-flat: {why}: the hierarchical plans cycle; "
+                           "planning the goal concretely")
         while len(ex.stack) > 1:
             ex.pop("cycle")
         self.visits.clear()

@@ -21,9 +21,9 @@ from typing import TYPE_CHECKING, Any
 from nowplan.core.atoms import Atom, Goal, Var
 from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
-from nowplan.core.operators import Action, Generator, Operator, ReadsFn, reads_nothing
+from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
-from nowplan.errors import ModelError, NowplanError
+from nowplan.planning.generators_run import run_generators
 from nowplan.planning.grounding_index import (
     _effects_by_predicate, _FillPlan, _is_plain, _per_atom, _per_state, _PerAtom, _PerState, _shared, completed,
     context_key, point_state, unify_effect,
@@ -379,50 +379,11 @@ class Grounder:
     def _run_generators(
         self, op: Operator, b: dict[Var, Any], goal: Goal | Callable[[], Goal]
     ) -> Iterator[dict[Var, Any]]:
+        """The bindings of ``op``'s generators extending ``b`` (:mod:`nowplan.planning.generators_run`)."""
         if not op.generators:
-            yield b
-            return
-        if callable(goal):
-            goal = goal()
-
-        def rec(i: int, cur: dict[Var, Any]) -> Iterator[dict[Var, Any]]:
-            if i == len(op.generators):
-                yield cur
-                return
-            gen = op.generators[i]
-            if all(v in cur for v in gen.outputs):
-                yield from rec(i + 1, cur)
-                return
-            # (a generator may run before its inputs are bound: an effect that binds none of them unified
-            # with the goal; NAMO's read them with bindings.get.  One that fails is a domain error in one
-            # line, not a traceback: a held-out drone's generator raised KeyError on its own input)
-            try:
-                values = iter(gen.fn(dict(cur), goal, self.belief, self.context))
-            except NowplanError:
-                raise
-            except Exception as e:  # the domain's code: name it and the fix
-                raise generator_error(gen, op, cur, e) from e
-            n = 0
-            while n < self.max_generator_values:
-                try:
-                    vals = next(values)
-                except StopIteration:
-                    break
-                except NowplanError:
-                    raise
-                except Exception as e:
-                    raise generator_error(gen, op, cur, e) from e
-                n += 1
-                nxt = dict(cur)
-                if any(k in nxt and nxt[k] != v for k, v in vals.items()):
-                    continue
-                nxt.update(vals)
-                yield from rec(i + 1, nxt)
-
-        try:
-            yield from rec(0, b)
-        finally:
-            del rec  # it refers to itself (and to the grounder): a cycle only the collector would free
+            return iter((b,))
+        return run_generators(op, b, goal() if callable(goal) else goal, self.belief, self.context,
+                              self.max_generator_values)
 
     def _fill_plan(self, op: Operator) -> _FillPlan:
         """What :meth:`_fill` needs of ``op``, worked out once per operator."""
@@ -515,17 +476,8 @@ class Grounder:
         try:
             yield from completed(op, join(0, b), allobj, typed, later, check, self.objects_of)
         finally:
-            del join  # it refers to itself (see _run_generators)
+            del join  # it refers to itself: a cycle only the collector would free
 
 
 _UNSET = object()
 
-
-def generator_error(gen: Generator, op: Operator, bound: Mapping[Var, Any], e: Exception) -> ModelError:
-    """A domain's generator that raised, in one line: which, where, and the likely fix."""
-    unbound = [str(v) for v in gen.inputs if v not in bound]
-    return ModelError(
-        f"generator {gen.name} of operator {op.name} raised {type(e).__name__}: {e}"
-        + (f" (its inputs {', '.join(unbound)} were unbound: a generator may run before they are bound; "
-           "read them with bindings.get and yield nothing then)" if unbound else "")
-    )
