@@ -37,7 +37,9 @@ def run_one(levels: Mapping[str, tuple[str, dict[str, Any]]], episodes: Mapping[
         ep = episodes[domain](seed, **kw)
         m = run_episode(ep, parse_strategy(strategy, max_actions=max_actions, time_limit=time_limit), seed=seed)
         row.update(outcome=m.outcome.value, reason=m.reason, actions=m.actions, cycles=m.cycles,
-                   goal_in_world=m.goal_in_world, disagreement=list(m.disagreement))
+                   goal_in_world=m.goal_in_world, disagreement=list(m.disagreement),
+                   execution_cost=round(m.execution_cost, 3), action_counts=dict(m.action_counts),
+                   failed_actions=m.failed_actions, exogenous_changes=m.exogenous_changes)
     except Hang:
         row.update(outcome="hang", reason=f"no answer after {time_limit * 2 + 10:g} s", actions=None)
     except NowplanError as e:  # refused before the run, with its one-line reason
