@@ -58,7 +58,10 @@ what it uses.
 * :func:`run_episode` with :func:`parse_strategy` (``"hpn"``, ``"flat"``,
   ``"online+reuse"``, …; :func:`strategy_names`) gives :class:`Metrics`
   with an :class:`Outcome`; :class:`Trace` records a run as JSONL.
-* :func:`plan` with :class:`PlannerConfig` plans once (a :class:`PlanResult`).
+* :func:`plan` with :class:`PlannerConfig` plans once (a :class:`PlanResult`).  Without
+  ``levels`` it plans at the domain's *top* (most abstract) level, as the executive's first call
+  does; pass ``levels=flat_levels()`` for a concrete plan (every precondition counts) or a
+  :class:`LevelMap` for one level of the hierarchy.
 * Errors: :class:`NowplanError`, :class:`ModelError`, :class:`ScenarioError`.
 """
 
@@ -106,9 +109,11 @@ from nowplan.core.operators import (
     Precondition,
     Resource,
     ResourceUse,
+    StateFreeCost,
     reads_nothing,
     static,
 )
+from nowplan.core.levels import LevelMap, flat_levels
 from nowplan.core.state import State
 from nowplan.domains.registry import DomainSpec, Episode, ScenarioFn
 from nowplan.errors import ModelError, NowplanError, ScenarioError
@@ -132,7 +137,7 @@ __all__ = [
     "DomainSpec", "Episode", "ScenarioFn", "ResourceModel", "MonitorSupport",
     # running
     "run_episode", "parse_strategy", "strategy_names", "Strategy", "Metrics", "Outcome", "Trace",
-    "plan", "PlannerConfig", "PlanResult", "PlanStatus",
+    "plan", "PlannerConfig", "PlanResult", "PlanStatus", "LevelMap", "flat_levels", "StateFreeCost",
     # errors
     "NowplanError", "ModelError", "ScenarioError",
 ]

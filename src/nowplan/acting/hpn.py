@@ -215,6 +215,7 @@ class Executive:
         meta = self._made.pop(id(plan), {})
         self.metrics.plans_made -= 1
         self.metrics.plan_failures += 1
+        self.metrics.plans_rejected += 1
         self.trace.emit("plan_failed", parent=parent.plan_id, parent_step=parent.i,
                         goal=[str(a) for a in plan.goal], status="rejected", reason=reason,
                         cpu_s=meta.get("cpu_s", 0.0))

@@ -30,6 +30,7 @@ class Metrics:
     plans_made: int = 0
     replans: int = 0
     plan_failures: int = 0
+    plans_rejected: int = 0  # of plan_failures: plans made but set aside (aggressive, a refinement's floors)
     wall_s: float = 0.0
     # judged in the world (see nowplan.worlds.base.Inspectable): does the goal hold in the world's
     # true state (None: the world cannot tell), and the goal's atoms on which belief and world disagree
@@ -56,6 +57,7 @@ class Metrics:
             "plans_made": self.plans_made,
             "replans": self.replans,
             "plan_failures": self.plan_failures,
+            "plans_rejected": self.plans_rejected,
             "wall_s": round(self.wall_s, 6),
             "goal_in_world": self.goal_in_world,
             "goal_in_belief": self.goal_in_belief,
@@ -72,7 +74,9 @@ class Metrics:
             f"actions: {self.actions} [{counts}]\n"
             f"execution cost: {self.execution_cost:g}\n"
             f"plans made: {self.plans_made}, replans: {self.replans}, "
-            f"planner failures: {self.plan_failures}\n"
+            f"planner failures: {self.plan_failures}"
+            + (f" ({self.plans_rejected} of them plans made but set aside)" if self.plans_rejected else "")
+            + "\n"
             f"planning CPU time: {self.planning_cpu_s:.3f} s; wall time of the whole run: {self.wall_s:.3f} s "
             "(planning, acting, the simulated world, and drawing frames if any)"
             + (f"\nbelief and world disagree on: {', '.join(self.disagreement)}" if self.disagreement else "")

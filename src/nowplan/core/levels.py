@@ -29,6 +29,10 @@ ActionKey = tuple[str, tuple[object, ...]]
 
 @dataclass(frozen=True)
 class LevelMap:
+    """A level per operator instance: ``top`` for all but the ``overrides``, with the ``floors`` of
+    the refinements above (see the module docstring); ``LevelMap(domain.top_level)`` is the
+    hierarchy's top, :func:`flat_levels` a map at which every instance is concrete."""
+
     top: int
     overrides: frozenset[tuple[ActionKey, int]] = frozenset()
     # operator name -> the most abstract level any of its instances has (set by next_level)

@@ -414,7 +414,12 @@ def plan_forward(
     if why is not None:
         if config.engine == "forward":
             raise UsageError(f"the forward engine cannot plan here: {why}; use engine='regression'")
-        log.debug("forward search does not apply (%s): regression search", why)
+        said = domain.facts.derived
+        if said.get("forward_unsupported") != why:  # once per domain and reason at INFO (every call asks)
+            said["forward_unsupported"] = why
+            log.info("forward search does not apply (%s): the regression search plans instead", why)
+        else:
+            log.debug("forward search does not apply (%s): regression search", why)
         return None
     now = _clock(config)
     deadline = now() + config.time_limit

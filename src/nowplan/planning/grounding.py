@@ -23,7 +23,7 @@ from nowplan.belief.protocols import ListsFacts
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
-from nowplan.planning.generators_run import run_generators
+from nowplan.planning.generators_run import Misses, run_generators
 from nowplan.planning.grounding_index import (
     _effects_by_predicate, _FillPlan, _is_plain, _per_atom, _per_state, _PerAtom, _PerState, _shared, completed,
     context_key, point_state, unify_effect,
@@ -110,6 +110,8 @@ class Grounder:
             self._cache = self.per_state.achievers
             self._gen_cache = self.per_state.by_reading
             self._static_cache = self.per_state.holds  # (the domain's test, as the search's holds)
+        # generators whose proposals were all skipped (kept with the state's answers, which reuse them)
+        self.misses = self.per_state.misses if self.per_state is not None else Misses()
         self._last_reading: tuple[Atom, Goal, tuple[Hashable, ...]] | None = None  # (a goal is immutable)
         self.kept = False  # was the last answer of achievers() kept (the same list object next time)?
         # ground actions of the domain, one object per instance (planners keep data on them)
@@ -383,7 +385,7 @@ class Grounder:
         if not op.generators:
             return iter((b,))
         return run_generators(op, b, goal() if callable(goal) else goal, self.belief, self.context,
-                              self.max_generator_values)
+                              self.max_generator_values, self.misses)
 
     def _fill_plan(self, op: Operator) -> _FillPlan:
         """What :meth:`_fill` needs of ``op``, worked out once per operator."""

@@ -15,6 +15,7 @@ import itertools
 from collections.abc import Callable, Hashable, Iterator
 from typing import Any
 
+from nowplan.planning.generators_run import Misses
 from nowplan.core.atoms import Atom, Var
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator
@@ -97,6 +98,7 @@ class _PerState:
         self.fholds: dict[int, bool] = {}  # the same by fact id
         self.held: set[int] = set()  # the fact ids found true
         self.costs: dict[tuple[str, tuple[Any, ...]], float] = {}  # belief-dependent action costs
+        self.misses = Misses()  # generators whose proposals were all skipped (Grounder.misses)
 
 
 _STATES_PER_DOMAIN = 4

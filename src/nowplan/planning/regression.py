@@ -29,6 +29,7 @@ from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
+from nowplan.planning.generators_run import misses_hint
 from nowplan.planning.config import PlannerConfig
 from nowplan.planning.forward import plan_forward
 from nowplan.planning.task import forward_unsupported
@@ -242,8 +243,10 @@ def _plan(
     common = dict(
         expanded=search.expanded, generated=search.generated, cpu_time_s=cpu, attempts=tuple(attempts)
     )
+    misses = search.grounder.misses
     search.release()  # freed now, not by the collector (see _Search.release)
     if status is not PlanStatus.SOLVED or steps is None:
+        reason += misses_hint(misses)
         log.info("planning failed for %s: %s (%s)", goal, status.value, reason)
         return PlanResult(status, None, reason, method=method, **common)  # type: ignore[arg-type]
     p = Plan(tuple(PlanStep(a, g) for a, g in steps), levels)

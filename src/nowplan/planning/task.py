@@ -52,8 +52,10 @@ def forward_unsupported(domain: Domain, belief: Any) -> str | None:
         return "the belief does not list its facts"
     if isinstance(belief, HasUnknowns) and belief.unknowns():
         return "the belief is unsure of some fluents either way (a forward state is a closed world)"
-    if any(op.generators for op in domain.operators):
-        return "operators have generators"
+    for op in domain.operators:
+        if op.generators:
+            return (f"operator {op.name} has a generator ({op.generators[0].name}; the forward task is "
+                    "grounded without generators)")
     for p in domain.predicates.values():
         if p.test is not None:
             return f"predicate {p.name} has a test"
