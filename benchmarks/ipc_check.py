@@ -163,6 +163,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--problems", type=int, default=1, help="problems per domain folder (name order)")
     ap.add_argument("--no-fd", action="store_true")
     ap.add_argument("--out", type=Path)
+    ap.add_argument("--plan-args", default="", metavar="ARGS",
+                    help="extra options for every `nowplan plan` run, e.g. '--cost-type one'")
     args = ap.parse_args(argv)
     # nowplan runs from this checkout's sources: compile their bytecode once, as `pip install` does (and as
     # benchmarks/classical.py does; the Fast Downward driver's is installed compiled), else with
@@ -180,7 +182,7 @@ def main(argv: list[str] | None = None) -> int:
     ratios: list[float] = []
     for name, dom, prob in pairs(args.folder, args.problems):
         n += 1
-        ours = run(dom, prob, args.time_limit, [])
+        ours = run(dom, prob, args.time_limit, args.plan_args.split())
         fd = run_fd(driver, dom, prob, args.time_limit) if driver is not None else None
         acc += ours.accepted
         sol += ours.solved

@@ -127,3 +127,38 @@ def test_out_of_memory_is_one_line(capsys: pytest.CaptureFixture[str], monkeypat
     code, out, err = run(capsys, str(LOG / "domain.pddl"), str(LOG / "p01.pddl"))
     assert code == 1 and out == ""
     assert err.count("\n") == 1 and "out of memory" in err and "--max-nodes" in err
+
+
+COST_DOMAIN = """(define (domain detour)
+  (:requirements :typing :action-costs)
+  (:types place)
+  (:predicates (at ?p - place) (road ?a ?b - place) (toll ?a ?b - place))
+  (:functions (total-cost))
+  (:action drive :parameters (?a ?b - place)
+    :precondition (and (at ?a) (road ?a ?b))
+    :effect (and (not (at ?a)) (at ?b) (increase (total-cost) 1)))
+  (:action fly :parameters (?a ?b - place)
+    :precondition (and (at ?a) (toll ?a ?b))
+    :effect (and (not (at ?a)) (at ?b) (increase (total-cost) 100))))
+"""
+COST_PROBLEM = """(define (problem detour-1) (:domain detour)
+  (:objects s x y g - place)
+  (:init (at s) (road s x) (road x y) (road y g) (toll s g) (= (total-cost) 0))
+  (:goal (at g))
+  (:metric minimize (total-cost)))
+"""
+
+
+def test_cost_type_decides_what_the_heuristic_prefers(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    # one flight (cost 100) or three drives (cost 3): with unit costs (Fast Downward's lama-first) the relaxed
+    # plan is the flight; with cost + 1 (the default) the drives; --improve 0 keeps the first plan
+    (tmp_path / "d.pddl").write_text(COST_DOMAIN)
+    (tmp_path / "p.pddl").write_text(COST_PROBLEM)
+    args = [str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"), "--json", "--improve", "0"]
+    code, out, _ = run(capsys, *args)
+    assert code == 0 and json.loads(out)["cost"] == 3
+    code, out, _ = run(capsys, *args, "--cost-type", "one")
+    doc = json.loads(out)
+    assert code == 0 and doc["cost"] == 100 and doc["plan"] == ["(fly s g)"]
+    code, out, _ = run(capsys, *args, "--cost-type", "normal")
+    assert code == 0 and json.loads(out)["cost"] == 3

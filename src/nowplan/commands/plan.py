@@ -74,6 +74,10 @@ def register(subparsers: Any) -> None:
     p.add_argument("--heuristic", choices=("ff", "add", "max"), default="ff",
                    help="heuristic of --search gbfs and astar: h_FF (default), h_add or h_max "
                         "(lama always uses h_FF and the landmark count)")
+    p.add_argument("--cost-type", choices=("one", "plusone", "normal"), default="plusone",
+                   help="action costs as the forward heuristics see them (FD's adapt_costs): plusone (cost + 1; "
+                        "default), one (unit costs, as Fast Downward's lama-first, often faster and dearer "
+                        "where costs differ) or normal")
     p.add_argument("--level", type=_level, default="flat",
                    help="'flat' (default: a concrete plan), 'top' (the most abstract level) or a number")
     p.add_argument("--json", action="store_true", help="print a JSON document instead of the plan")
@@ -126,6 +130,7 @@ def run(args: argparse.Namespace) -> int:
             engine="auto" if args.engine == "nowplan" else args.engine,
             search=args.search,
             forward_heuristic=args.heuristic,
+            cost_type=args.cost_type,
             improve=args.improve,
             max_nodes=REGRESSION_NODES if args.max_nodes is None else args.max_nodes,
             forward_max_nodes=FORWARD_NODES if args.max_nodes is None else args.max_nodes,

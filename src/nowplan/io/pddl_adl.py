@@ -56,6 +56,9 @@ from nowplan.io.pddl_ast import (
 
 MAX_QUANTIFIED = 10_000  # instances of one quantifier's variables
 MAX_DISJUNCTS = 256  # disjuncts of one condition in DNF
+# nodes of one condition in negation normal form while derived predicates' definitions are substituted into
+# it: past this the DNF bound is out of reach in practice, and reading fails over to evaluating them by rules
+MAX_SUBSTITUTED_NODES = 200_000
 MAX_CONDITIONS = 10  # distinct effect conditions of one action (2**10 variants)
 MAX_OPERATORS = 1024  # operators compiled from one action
 
@@ -122,15 +125,26 @@ Derived = Mapping[str, Sequence[tuple[tuple[str, ...], Formula]]]
 
 def to_nnf(
     f: Formula, sub: dict[str, str], objects_of: ObjectsOf, static: StaticValue, neg: bool = False,
-    derived: Derived | None = None,
+    derived: Derived | None = None, budget: list[int] | None = None,
 ) -> NNF:
     """``f`` (negated when ``neg``) in negation normal form, quantifiers expanded, statics evaluated.
 
-    Atoms of (non-recursive) derived predicates are replaced by their definitions.
+    Atoms of (non-recursive) derived predicates are replaced by their definitions; then the condition may
+    have at most :data:`MAX_SUBSTITUTED_NODES` nodes (``budget``: what is left of them, shared by the
+    recursive calls), else :class:`TooLarge` is raised as soon as that is known, not after the expansion
+    (IPC-2004 optical telegraph: four ``blocked`` goals, each a ``forall`` over the transitions of three
+    rules of ``exists``, expanded to millions of nodes before the DNF bound refused them).
     """
+    if derived:
+        if budget is None:
+            budget = [MAX_SUBSTITUTED_NODES]
+        budget[0] -= 1
+        if budget[0] < 0:
+            raise TooLarge(f"substituting the derived predicates' definitions gives more than "
+                           f"{MAX_SUBSTITUTED_NODES} nodes in negation normal form")
     if isinstance(f, FAtom) and derived and f.pred in derived:
         args = _sub(f.args, sub)
-        bodies = [to_nnf(body, dict(zip(params, args, strict=True)), objects_of, static, neg, derived)
+        bodies = [to_nnf(body, dict(zip(params, args, strict=True)), objects_of, static, neg, derived, budget)
                   for params, body in derived[f.pred]]
         return _junction("and" if neg else "or", bodies)
     if isinstance(f, FAtom):
@@ -140,17 +154,17 @@ def to_nnf(
             return known
         return LitNode(lit, f.line)
     if isinstance(f, FNot):
-        return to_nnf(f.arg, sub, objects_of, static, not neg, derived)
+        return to_nnf(f.arg, sub, objects_of, static, not neg, derived, budget)
     if isinstance(f, FAnd | FOr):
         op = "and" if isinstance(f, FAnd) else "or"
         if neg:
             op = "or" if op == "and" else "and"
-        return _junction(op, [to_nnf(p, sub, objects_of, static, neg, derived) for p in f.parts])
+        return _junction(op, [to_nnf(p, sub, objects_of, static, neg, derived, budget) for p in f.parts])
     assert isinstance(f, FQuant)
     op = "and" if (f.kind == "forall") != neg else "or"
     parts = []
     for inst in _instances(f.params, objects_of, f"the ({f.kind} ...) on line {f.line}"):
-        parts.append(to_nnf(f.body, {**sub, **inst}, objects_of, static, neg, derived))
+        parts.append(to_nnf(f.body, {**sub, **inst}, objects_of, static, neg, derived, budget))
         if parts[-1] is (op == "or"):  # a true disjunct / false conjunct decides it
             break
     return _junction(op, parts)
