@@ -64,7 +64,7 @@ class SimulatedWorld:
     * :meth:`apply` — run it (change the true state);
     * :meth:`fault` — optionally, a fault of the domain's own (a sticky door), drawn from ``self.rng``;
     * :meth:`exogenous_change` — optionally, change the world by itself; returns what changed, as text;
-      :attr:`has_exogenous` says whether it can;
+      :attr:`has_exogenous` says whether it can; :meth:`seen` which of the changes the agent notices;
     * :meth:`observe` — the observation's ``data`` after an action (default ``None``).
     """
 
@@ -109,6 +109,13 @@ class SimulatedWorld:
     def observe(self, action: Action, success: bool) -> Any:
         return None
 
+    def seen(self, changes: list[str]) -> list[str]:
+        """The exogenous changes just made that the agent notices (``Observation.exogenous``; default:
+        all).  A world whose changes can happen out of the agent's view returns fewer: the change is
+        made all the same, and the belief learns of it only through what :meth:`observe` shows (the
+        progress guard and refine-flat treat a reported change as news, an unseen one as none)."""
+        return changes
+
     # -- the loop --------------------------------------------------------------------------
     def execute(self, action: Action) -> Observation:
         self.asked.append(action)
@@ -131,7 +138,8 @@ class SimulatedWorld:
             if changes:
                 self.exogenous_events += 1
         log.debug("world executed %s: %s", action, why or "success")
-        return Observation(why is None, self.observe(action, why is None), tuple(changes), info)
+        return Observation(why is None, self.observe(action, why is None), tuple(self.seen(changes) if changes else ()),
+                           info)
 
 
 @runtime_checkable
