@@ -16,7 +16,11 @@ With hysteresis, two kinds:
 * *cycles*: after the progress guard saw a cycle (:mod:`nowplan.acting.progress`, e.g. a
   replan toward another item after every action that shuttles the robot between two
   rooms) the executive is *committed* and the current plan is kept until it is finished or
-  fails; replanning after every action resumes then.
+  fails; replanning after every action resumes then.  A commitment ends at the first belief
+  not held before, so replans that undo the agent's work can cycle again from there (a
+  held-out tidy house: pick the book, put it back, four times); after ``WITHDRAW_AFTER``
+  cycles the mechanism stops replanning from the root for the rest of the run (a note in the
+  trace), and the executive goes on as plain HPN: the loop ends by a decision, not a budget.
 """
 
 from __future__ import annotations
@@ -27,9 +31,11 @@ from nowplan.acting.mechanisms import Mechanism, Switch, register_switch
 
 if TYPE_CHECKING:
     from nowplan.acting.hpn import Executive
+    from nowplan.acting.progress import Cycle
     from nowplan.planning.plan import Plan
 
 TIE = 1e-6  # relative cost difference below which two plans cost the same
+WITHDRAW_AFTER = 2  # cycles the guard saw after which aggressive replanning stops for the run
 
 
 def rest_cost(ex: Executive) -> float:
@@ -49,8 +55,19 @@ def plan_cost(ex: Executive, plan: Plan) -> float:
 class AggressiveReplan(Mechanism):
     name = "aggressive"
 
+    def __init__(self) -> None:
+        self.cycles = 0
+        self.withdrawn = False
+
+    def after_cycle(self, ex: Executive, cycle: Cycle) -> None:
+        self.cycles += 1
+        if self.cycles >= WITHDRAW_AFTER and not self.withdrawn:
+            self.withdrawn = True
+            ex.trace.emit("note", text=f"aggressive: {self.cycles} cycles ({cycle.describe()}); no more "
+                                       "replanning from the root after every action in this run")
+
     def after_action(self, ex: Executive) -> None:
-        if ex.committed or len(ex.stack) <= 1 or ex.goal_holds():
+        if self.withdrawn or ex.committed or len(ex.stack) <= 1 or ex.goal_holds():
             return
         root, top = ex.stack[0], ex.stack[1]
         goal = ex.next_step(root).goal  # the first stage that does not hold yet, else the goal

@@ -49,6 +49,9 @@ class FactTable:
         self.gkeys: list[tuple[Hashable, ...]] = []
         self.sort_key: list[tuple[str, tuple[Term, ...]]] = []
         self._pairs: dict[tuple[int, int], bool] = {}
+        # per fact: the facts its plain conflicts were asked against, and those it conflicts with
+        self._checked: dict[int, set[int]] = {}
+        self._clash: dict[int, set[int]] = {}
         # ground actions by (operator index, arguments): one object per instance, so what a
         # planner keeps on an action (its facts' ids) outlives one call
         self.actions: dict[tuple[int, tuple[Any, ...]], Action] = {}
@@ -130,6 +133,27 @@ class FactTable:
             a, b = self.atoms[x], self.atoms[y]
             r = self._pairs[key] = any(c(a, b) or c(b, a) for c in self.plain)
         return r
+
+    def plain_clash(self, e: int, fs: frozenset[int], removed: set[int]) -> bool:
+        """Does ``e`` plainly conflict with a fact of ``fs`` not in ``removed``?
+
+        ``any(plain_conflict(r, e) for r in fs if r not in removed)``, with each pair asked
+        once and kept per fact as sets, so that a search asking again (every successor of every
+        node) does set operations instead of one call per pair.
+        """
+        chk = self._checked.get(e)
+        if chk is None:
+            chk = self._checked[e] = set()
+            self._clash[e] = set()
+        clash = self._clash[e]
+        if not chk.issuperset(fs):
+            for r in fs.difference(chk):
+                if self.plain_conflict(r, e):
+                    clash.add(r)
+                chk.add(r)
+        if clash.isdisjoint(fs):
+            return False
+        return not clash.intersection(fs).issubset(removed)
 
     def consistent(self, fs: Iterable[int]) -> bool:
         """No two facts of ``fs`` share a fluent with incompatible values or a conflict rule's key."""

@@ -124,11 +124,9 @@ def regress(table: FactTable, node: NodeIndex, info: ActionFacts) -> frozenset[i
             if o is not None and o != e and o not in removed:
                 return None
         if table.plain:
-            for r in fs:
-                if r not in removed:
-                    for e in info.effs:
-                        if table.plain_conflict(r, e):
-                            return None
+            for e in info.effs:
+                if table.plain_clash(e, fs, removed):
+                    return None
     if not info.pre:
         return fs.difference(removed) if removed else fs
     fl = table.fluent
@@ -170,12 +168,10 @@ def regress(table: FactTable, node: NodeIndex, info: ActionFacts) -> frozenset[i
                     return None
                 local[k] = n
         if table.plain:
-            kept = [r for r in fs if r not in removed]
             news = list(new.values())
             for i, n in enumerate(news):
-                for b in kept:
-                    if table.plain_conflict(n, b):
-                        return None
+                if table.plain_clash(n, fs, removed):
+                    return None
                 for b in news[i + 1 :]:
                     if table.plain_conflict(n, b):
                         return None
