@@ -19,7 +19,10 @@ generates was checked whole when it was made, so only a root goal can be
 contradictory, and the search regresses a contradictory root with the
 Goal-level :func:`~nowplan.planning.preimage.preimage` instead
 (:meth:`FactTable.consistent` decides).  Plain pairwise conflict rules are
-asked once per pair of facts (the table keeps the answer).
+asked once per pair of facts, and the table keeps per fact the facts it was
+checked against and those it conflicts with, so a successor's check is a few
+set operations (:meth:`FactTable.plain_clash`; on a held-out domain with plain
+rules the pairwise calls were half of ``regress``'s time).
 """
 
 from __future__ import annotations
