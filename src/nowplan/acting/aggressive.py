@@ -56,18 +56,16 @@ class AggressiveReplan(Mechanism):
     name = "aggressive"
 
     def __init__(self) -> None:
-        self.cycles = 0
-        self.withdrawn = False
+        self.cycles = 0  # cycles the guard saw in this run; WITHDRAW_AFTER of them end the replanning
 
     def after_cycle(self, ex: Executive, cycle: Cycle) -> None:
         self.cycles += 1
-        if self.cycles >= WITHDRAW_AFTER and not self.withdrawn:
-            self.withdrawn = True
+        if self.cycles == WITHDRAW_AFTER:
             ex.trace.emit("note", text=f"aggressive: {self.cycles} cycles ({cycle.describe()}); no more "
                                        "replanning from the root after every action in this run")
 
     def after_action(self, ex: Executive) -> None:
-        if self.withdrawn or ex.committed or len(ex.stack) <= 1 or ex.goal_holds():
+        if self.cycles >= WITHDRAW_AFTER or ex.committed or len(ex.stack) <= 1 or ex.goal_holds():
             return
         root, top = ex.stack[0], ex.stack[1]
         goal = ex.next_step(root).goal  # the first stage that does not hold yet, else the goal

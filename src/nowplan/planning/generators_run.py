@@ -42,7 +42,7 @@ class Misses:
 
 
 def misses_hint(misses: Misses) -> str:
-    """"; generator G of operator O ..." for a reason of no plan, or "" when nothing was skipped."""
+    """The clause "; generator G of operator O ..." for a reason of no plan ("" when nothing was skipped)."""
     if not misses:
         return ""
     (op, gen), (n, bound) = max(misses.calls.items(), key=lambda kv: kv[1][0])

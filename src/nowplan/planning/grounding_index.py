@@ -15,10 +15,10 @@ import itertools
 from collections.abc import Callable, Hashable, Iterator
 from typing import Any
 
-from nowplan.planning.generators_run import Misses
 from nowplan.core.atoms import Atom, Var
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator
+from nowplan.planning.generators_run import Misses
 
 
 def unify_effect(effect: Atom, target: Atom, domain: Domain) -> dict[Var, Any] | None:
