@@ -1,4 +1,4 @@
-"""The compiled kernel of the forward engine; everything else is configured in pyproject.toml.
+"""The compiled kernels (the forward engine's, the regression search's loop); everything else is configured in pyproject.toml.
 
 ``optional=True``: without a C compiler the install still succeeds and the
 forward search runs its pure-Python code (slower).
@@ -15,6 +15,12 @@ setup(
                      "src/nowplan/planning/_kernel_wastar.h", "src/nowplan/planning/_kernel_axioms.h",
                      "src/nowplan/planning/_kernel_costs.h", "src/nowplan/planning/_kernel_pngs.h"],
             optional=True,
-        )
+        ),
+        Extension(
+            "nowplan.planning._kernel_regress",
+            sources=["src/nowplan/planning/_kernel_regress.c"],
+            depends=["src/nowplan/planning/_kernel_heap.h"],
+            optional=True,
+        ),
     ]
 )

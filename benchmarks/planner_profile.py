@@ -17,6 +17,14 @@ For each marsupial problem (``regime × packages × trial``) and strategy (``hpn
     .venv/bin/python benchmarks/planner_profile.py --regimes single --sizes 8 --trials 0 \\
         --strategies hpn --no-logistics --profile prof.txt
 
+``--flat-logistics 10,14,20`` adds one flat ``--engine regression`` call per generated logistics
+problem and seed (a search of hundreds of nodes per call: the per-node figure of the search itself);
+``--loop python`` runs the regression search's Python loop instead of its compiled one
+(:mod:`nowplan.planning.regression_native`) for an A/B in one session:
+
+    .venv/bin/python benchmarks/planner_profile.py --regimes single,both --sizes 3,5,8 --trials 0,1 \
+        --strategies hpn --logistics 20 --flat-logistics 10,14,20 --loop python --tag python --out AB.jsonl
+
 ``--profile FILE`` runs everything under cProfile and writes the top 20 functions
 by cumulative and by internal time.  Times are CPU seconds (``time.process_time``);
 the machine is shared, so compare ratios within one run.
@@ -42,6 +50,7 @@ import nowplan.planning.regression as regression
 from nowplan.acting.run import run_episode
 from nowplan.acting.strategy import parse_strategy
 from nowplan.belief.symbolic import SymbolicBelief
+from nowplan.core.levels import flat_levels
 from nowplan.domains.marsupial.flatcmp import timed_run
 from nowplan.domains.marsupial.scenarios import episode
 from nowplan.domains.registry import Episode
@@ -49,6 +58,7 @@ from nowplan.experiments import progress
 from nowplan.io.logistics_gen import generate_logistics
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning.regression import PlannerConfig
+from nowplan.planning.regression_search import _Search
 from nowplan.worlds.symbolic import SymbolicWorld
 
 DATA = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl" / "logistics"
@@ -135,6 +145,26 @@ def logistics_run(n: int, seed: int, limit: float, ctr: Counter) -> dict[str, An
     cpu = time.process_time() - c0
     ok = bool(p.domain.satisfies(ep.world.state, p.goal))
     return row("logistics", f"log-{n}", seed, "hpn", m, cpu, ok, executed, ctr)
+
+
+def flat_logistics_run(n: int, seed: int, limit: float) -> dict[str, Any]:
+    """One flat regression call on a generated logistics problem (the search's own nodes per second)."""
+    c, loc, a, _ = LOGISTICS[n]
+    with tempfile.TemporaryDirectory() as tmp:
+        prob = Path(tmp) / f"p-c{c}-l{loc}-a{a}-n{n}-s{seed}.pddl"
+        prob.write_text(generate_logistics(c, loc, a, n, seed=seed))
+        p = load_pddl(DATA / "domain.pddl", prob)
+    cfg = PlannerConfig(time_limit=limit, clock="cpu", engine="regression", serialization=False,
+                        monotonic=False, max_nodes=200_000, weight=2.0)  # as nowplan plan --engine regression
+    c0 = time.process_time()
+    res = regression.plan(p.domain, p.objects, SymbolicBelief(p.init), p.goal, flat_levels(), cfg)
+    cpu = time.process_time() - c0
+    steps = [] if res.plan is None else [str(s.action) for s in res.plan.steps[1:]]
+    return {"domain": "logistics-flat", "problem": f"log-{n}", "trial": seed, "strategy": "regression",
+            "outcome": res.status.value, "goal_holds": res.solved, "cost": None if res.plan is None else len(steps),
+            "n_actions": len(steps), "calls": 1, "joint": 0, "nodes": res.expanded, "generated": res.generated,
+            "plan_cpu": round(cpu, 4), "joint_cpu": 0.0,
+            "nodes_per_s": round(res.expanded / cpu) if cpu else None, "cpu": round(cpu, 4), "actions": digest(steps)}
 
 
 def row(domain: str, problem: str, trial: int, strategy: str, m: Any, cpu: float, ok: bool,
@@ -245,6 +275,9 @@ def main() -> int:
     ap.add_argument("--strategies", default="hpn,hpn+peephole")
     ap.add_argument("--logistics", default="20", help="logistics package counts (flat_logistics sizes)")
     ap.add_argument("--no-logistics", action="store_true")
+    ap.add_argument("--flat-logistics", default="", help="logistics package counts for one flat regression call each")
+    ap.add_argument("--loop", choices=("compiled", "python"), default="compiled",
+                    help="the regression search's loop: compiled where it runs (default) or Python")
     ap.add_argument("--no-marsupial", action="store_true")
     ap.add_argument("--logistics-seeds", default="0,1")
     ap.add_argument("--limit-s", type=float, default=600.0, help="CPU s per run")
@@ -268,6 +301,7 @@ def main() -> int:
 
         model.PLANNER = dataclasses.replace(model.PLANNER, **overrides(args.planner))
     LOGISTICS_PLANNER.update(overrides(args.logistics_planner))
+    _Search.native = args.loop == "compiled"
     ctr = Counter()
     ctr.install()
     jobs: list[Any] = []
@@ -281,6 +315,9 @@ def main() -> int:
         for n in map(int, args.logistics.split(",")):
             for seed in map(int, args.logistics_seeds.split(",")):
                 jobs.append(lambda n=n, s=seed: logistics_run(n, s, args.limit_s, ctr))
+    for n in map(int, filter(None, args.flat_logistics.split(","))):
+        for seed in map(int, args.logistics_seeds.split(",")):
+            jobs.append(lambda n=n, s=seed: flat_logistics_run(n, s, args.limit_s))
     prof = cProfile.Profile() if args.profile else None
     rows = []
     bar = progress.bar(len(jobs), "planner_profile")

@@ -79,6 +79,11 @@ class Successors:
         return out
 
     @property
+    def uniform(self) -> bool:
+        """Every fact's templates are the problem's shared ones, at the top level (no level overrides)."""
+        return self._shared is not None and not self._over_keys and not self._over_ops
+
+    @property
     def _shared(self) -> dict[int, list[Template]] | None:
         """The templates kept in the ground task for this call's top level (numeric costs only)."""
         if self._shared_store is False:

@@ -1,0 +1,194 @@
+"""The regression A*'s loop compiled (``_kernel_regress.c``), for the calls it can run.
+
+:func:`nowplan.planning.regression_astar.astar` is the reference; the compiled loop makes the
+same pre-images, orders the frontier by the same ``(f, h, r, idle, stamp)`` and keeps the same
+costs, stamps and parents, so it returns the same plan with the same counters
+(``tests/test_regression_native.py`` checks both on random problems).  It runs a call when
+
+* the estimate is the ground h_add of :class:`~nowplan.planning.hadd_kernel.KernelHadd` (a
+  fixed value per fact: no domain estimate, no lazy relaxation, so eager search: nothing is
+  deferred) and its values are whole numbers (so a sum does not depend on its order);
+* the call has no forbidden first steps and no generator that may give up, and its root goal
+  is consistent (a serialized or monotonic call, ``order`` or ``protect``, runs there too);
+* the successor templates are the problem's shared ones (numeric costs, no level overrides,
+  achievers that read nothing of the goal) and every fact is a plain value (equality rule) with
+  keyed conflict rules only.
+
+Otherwise :func:`run` returns ``None`` and the Python loop runs.  The facts, actions and
+achievers are registered once per ground task and top level (kept in ``task.memo``): a fact's
+achievers the first time a search meets it.  ``NOWPLAN_PURE_PYTHON=1`` switches it off, as it
+does the forward kernel.
+
+Profile that led here (``nowplan plan --engine regression`` on generated logistics-20, seed 0,
+cProfile): 84,826 successor regressions in 758 expansions; ``subgoals.regress`` 0.42 s and the
+successor bookkeeping ``make`` 0.24 s of the search's 1.25 s.
+"""
+
+from __future__ import annotations
+
+import importlib
+import logging
+from collections.abc import Hashable, Sequence
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
+
+from nowplan.core.atoms import Atom, Goal
+from nowplan.core.facts import FactTable
+from nowplan.core.operators import Action
+from nowplan.planning.hadd_kernel import KernelHadd
+from nowplan.planning.native import pure_python_forced
+from nowplan.planning.plan import PlanStatus
+
+if TYPE_CHECKING:
+    from nowplan.planning.regression_search import _Search
+
+log = logging.getLogger(__name__)
+
+API = 2  # REGRESS_API in _kernel_regress.c
+
+_mod: ModuleType | None | bool = False  # not imported yet
+
+
+def _module() -> ModuleType | None:
+    global _mod
+    if _mod is False:
+        try:
+            m = importlib.import_module("nowplan.planning._kernel_regress")
+        except ImportError as e:
+            log.debug("the regression loop's kernel is not available (%s): its Python code runs", e)
+            _mod = None
+        else:
+            if getattr(m, "API", None) != API:
+                log.debug("the regression loop's kernel is stale (API %s, expected %s; rebuild it with pip "
+                          "install -e .): its Python code runs", getattr(m, "API", None), API)
+                _mod = None
+            else:
+                _mod = m
+    return _mod if isinstance(_mod, ModuleType) else None
+
+
+def available() -> bool:
+    """Whether the compiled loop is built and not switched off."""
+    return not pure_python_forced() and _module() is not None
+
+
+class Compiled:
+    """One ground task's facts, actions and achievers at one top level, as the compiled loop knows them."""
+
+    def __init__(self, mod: ModuleType, table: FactTable) -> None:
+        self.mod = mod
+        self.table = table
+        self.loop: Any = mod.Regressor(bool(table.keyed))
+        self.acts: list[Action] = []  # by index (kept alive: the index is by identity)
+        self.index: dict[int, int] = {}  # id(action) -> index
+        self.keys: dict[Hashable, int] = {}
+        self.ok = True  # False once a fact that is not a plain value is met: the Python loop runs
+
+    def sync(self) -> bool:
+        """Add the facts the loop does not know yet and rank them all as ``FactTable.sorted`` does."""
+        T, loop = self.table, self.loop
+        n = len(T.atoms)
+        start = loop.facts
+        if start == n:
+            return self.ok
+        keys = self.keys
+        for f in range(start, n):
+            if not T.equality[f]:
+                self.ok = False
+            ids = []
+            for k in T.gkeys[f]:
+                i = keys.get(k)
+                if i is None:
+                    i = keys[k] = len(keys)
+                ids.append(i)
+            loop.add_fact(T.fluent[f], ids)
+        order = sorted(range(n), key=T.sort_key.__getitem__)
+        rank = [0] * n
+        for i, f in enumerate(order):
+            rank[f] = i
+        loop.set_rank(rank)
+        return self.ok
+
+    def need(self, search: _Search, goal: Goal, f: int) -> bool:
+        """Register fact ``f``'s successor templates (``False``: this call runs in Python)."""
+        T = self.table
+        if not self.ok or not search.grounder.shares_answer(T.atoms[f]):
+            return False
+        temps = search._successors(f, lambda: goal)
+        self.sync()
+        out = []
+        for act, info, cost in temps:
+            i = self.index.get(id(act))
+            if i is None:
+                effs = [x for pair in info.eff_fl for x in pair]
+                keys = self.keys
+                ekeys: list[int] = []
+                for k, e in info.eff_keys:
+                    ki = keys.get(k)
+                    if ki is None:
+                        ki = keys[k] = len(keys)
+                    ekeys += (ki, e)
+                i = self.loop.add_action(effs, ekeys, info.self_clash, list(info.pre), float(cost), list(info.all_effs))
+                self.index[id(act)] = i
+                self.acts.append(act)
+            out.append(i)
+        self.loop.set_achievers(f, out)
+        return self.ok
+
+
+def _compiled(search: _Search, mod: ModuleType) -> Compiled | None:
+    task = search._task
+    if task is None:
+        return None
+    key = ("regression loop", search.levels.top, search.drop)
+    c = task.memo.get(key)
+    if not isinstance(c, Compiled) or c.table is not search.table:
+        c = Compiled(mod, search.table)
+        task.memo[key] = c
+    return c
+
+
+def run(
+    search: _Search, goal: Goal, max_nodes: int, order: Sequence[Atom] | None = None,
+    protect: frozenset[Atom] = frozenset(),
+) -> tuple[PlanStatus, list[tuple[Action | None, Goal]] | None, str] | None:
+    """The call through the compiled loop, or ``None`` where it cannot run it (see the module docstring);
+    ``order`` and ``protect`` as in :func:`~nowplan.planning.regression_astar.astar`."""
+    mod = _module()
+    if mod is None or pure_python_forced():
+        return None
+    T = search.table
+    hadd = search.hadd
+    if (not isinstance(hadd, KernelHadd) or callable(search.domain_h) or search.relaxed is not None
+            or search.forbidden_first or search.gave_up is not None or T.plain or not search.config.weight > 0):
+        return None
+    if not search._successors.uniform:
+        return None
+    root = T.ids_of(goal.atoms)
+    if not root or not search.grounder.shares_answer(T.atoms[next(iter(root))]) or not T.consistent(root):
+        return None
+    order_ids = None if order is None else [T.id(a) for a in order]
+    guard = list(T.ids_of(protect))
+    comp = _compiled(search, mod)
+    if comp is None or not comp.sync():
+        return None
+    stop = search.now
+    deadline = search.deadline
+    status, nodes, acts, expanded, generated = comp.loop.search(
+        list(root), hadd.values, search.fholds, lambda f: comp.need(search, goal, f),
+        lambda: stop() > deadline, float(search.config.weight), int(max_nodes), not search.config.held_rewrites,
+        order_ids, guard)
+    if status == mod.UNSUPPORTED:
+        return None
+    search.expanded += expanded
+    search.generated += generated
+    if status == mod.SOLVED:
+        steps: list[tuple[Action | None, Goal]] = [(None, T.goal(nodes[0]))]
+        for a, prev in zip(acts, nodes[1:], strict=True):
+            steps.append((comp.acts[a], T.goal(prev)))
+        return PlanStatus.SOLVED, steps, ""
+    if status == mod.NODE_LIMIT:
+        return PlanStatus.NODE_LIMIT, None, f"expanded {max_nodes} nodes without a plan"
+    if status == mod.TIME_LIMIT:
+        return PlanStatus.TIME_LIMIT, None, f"time limit of {search.config.time_limit:g} s reached"
+    return PlanStatus.UNSOLVABLE, None, "search space exhausted: no plan at this level"

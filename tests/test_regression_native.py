@@ -1,0 +1,147 @@
+"""The regression A*'s compiled loop (regression_native.py, _kernel_regress.c) against the Python loop.
+
+Both must return the same status, the same plan with the same pre-images and the same node
+counts, on the property test's random STRIPS families at every level and on the bundled PDDL
+problems; and the compiled loop must really have run (a test that compares the Python loop with
+itself cannot fail).  Where it cannot run a call it says so by returning ``None``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from nowplan.core.atoms import Atom, Goal, Var
+from nowplan.core.domain import Domain, Predicate
+from nowplan.core.levels import flat_levels
+from nowplan.core.operators import Operator, Precondition
+from nowplan.core.state import State
+from nowplan.io.pddl_read import load_pddl
+from nowplan.planning import regression_native
+from nowplan.planning.plan import PlanStatus
+from nowplan.planning.regression import PlannerConfig, plan
+from nowplan.planning.regression_search import _Search
+from tests.kernel_support import PDDL, PROBLEMS
+from tests.test_planner_property import FAMILIES, QUICK, check_contract, level_maps, witness_reaches_goal
+
+needs_loop = pytest.mark.skipif(not regression_native.available(),
+                                reason="the regression loop's kernel is not built (or NOWPLAN_PURE_PYTHON is set)")
+pytestmark = needs_loop
+
+CONFIG = replace(QUICK, heuristic="hadd", engine="regression")
+
+
+def _steps(res):
+    if res.plan is None:
+        return None
+    return [(None if s.action is None else s.action.key, frozenset(s.goal.atoms)) for s in res.plan.steps]
+
+
+class _Count:
+    """Wraps regression_native.run: how many calls the compiled loop answered."""
+
+    def __init__(self) -> None:
+        self.ran = 0
+        self.real = regression_native.run
+
+    def __call__(self, *args):
+        out = self.real(*args)
+        if out is not None:
+            self.ran += 1
+        return out
+
+
+def _both(monkeypatch, *args):
+    count = _Count()
+    monkeypatch.setattr(regression_native, "run", count)
+    out = []
+    for native in (False, True):
+        monkeypatch.setattr(_Search, "native", native)
+        out.append(plan(*args))
+    return out[0], out[1], count.ran
+
+
+def _same(py, c, what=""):
+    assert c.status is py.status, (what, c.reason, py.reason)
+    assert c.reason == py.reason, what
+    assert _steps(c) == _steps(py), what
+    assert (c.expanded, c.generated) == (py.expanded, py.generated), what
+
+
+@pytest.mark.parametrize("family", sorted(set(FAMILIES) - {"hanoi"}))
+@pytest.mark.timeout(300, method="thread")
+@settings(max_examples=10, deadline=None, suppress_health_check=list(HealthCheck))
+@given(data=st.data())
+def test_the_compiled_loop_searches_as_the_python_loop(family, data):
+    case = data.draw(FAMILIES[family], label="case")
+    witness_reaches_goal(case)
+    shortcuts = data.draw(st.booleans(), label="shortcuts")
+    config = replace(CONFIG, serialization=shortcuts, monotonic=shortcuts,
+                     max_nodes=data.draw(st.sampled_from([20, 1_000]), label="max_nodes"),
+                     held_rewrites=data.draw(st.booleans(), label="held_rewrites"))
+    objects = {o: None for o in case.objects}
+    for name, levels in data.draw(level_maps(case), label="levels"):
+        with pytest.MonkeyPatch.context() as mp:
+            py, c, _ = _both(mp, case.domain, objects, case.init, case.goal, levels, config)
+        _same(py, c, name)
+        if c.status is PlanStatus.SOLVED:
+            check_contract(case, levels, c, concrete=name == "flat")
+
+
+@pytest.mark.parametrize("domain,problem", PROBLEMS)
+def test_bundled_pddl_problems_plan_alike(monkeypatch, domain, problem):
+    p = load_pddl(str(PDDL / domain / "domain.pddl"), str(PDDL / domain / problem))
+    py, c, ran = _both(monkeypatch, p.domain, p.objects, p.init, p.goal, flat_levels(),
+                       replace(CONFIG, max_nodes=3_000, serialization=False, monotonic=False))
+    _same(py, c, problem)
+    assert ran >= 1, "the compiled loop never ran"
+
+
+def test_the_loop_runs_on_a_blocks_problem():
+    """A held goal fact undone and re-achieved (test_deferred's case), through the compiled loop."""
+    from tests.test_deferred import BLOCKS
+
+    init = State([Atom("on", ("a", "b")), Atom("ontable", ("b",)), Atom("ontable", ("c",)),
+                  Atom("clear", ("a",)), Atom("clear", ("c",)), Atom("handempty", ())])
+    goal = Goal.of([Atom("on", ("a", "b")), Atom("on", ("b", "c"))])
+    with pytest.MonkeyPatch.context() as mp:
+        py, c, ran = _both(mp, BLOCKS, {o: None for o in "abc"}, init, goal, flat_levels(),
+                           replace(CONFIG, serialization=False, monotonic=False))
+    assert ran == 1
+    _same(py, c)
+    assert c.status is PlanStatus.SOLVED and len(c.plan) == 6
+
+
+x = Var("x")
+HALF = Domain(
+    "half", {"p": Predicate("p", 1), "q": Predicate("q", 1)},
+    (Operator("make", (x,), (Precondition(Atom("q", (x,)), 1),), (Atom("p", (x,)),), cost=0.5),
+     Operator("prep", (x,), (), (Atom("q", (x,)),), cost=1.0)),
+)
+
+
+def test_fractional_estimates_run_in_python(monkeypatch):
+    """h_add values of 1.5 would be summed in another order in C: the call runs in Python, alike."""
+    goal = Goal.of([Atom("p", ("a",)), Atom("p", ("b",))])
+    py, c, ran = _both(monkeypatch, HALF, {"a": None, "b": None}, State([]), goal, flat_levels(),
+                       replace(CONFIG, serialization=False, monotonic=False))
+    assert ran == 0
+    _same(py, c)
+    assert c.status is PlanStatus.SOLVED and len(c.plan) == 4
+
+
+def test_the_loop_refuses_bad_ids():
+    mod = regression_native._module()
+    assert mod is not None
+    loop = mod.Regressor(False)
+    loop.add_fact(0, [])
+    with pytest.raises(ValueError):
+        loop.add_action([0, 5], [], False, [], 1.0, [5])  # fact 5 was never added
+    with pytest.raises(IndexError):
+        loop.set_achievers(3, [])
+    with pytest.raises(ValueError):
+        loop.search([7], [0.0], lambda f: True, lambda f: False, None, 1.0, 10, False, None, [])
+    assert loop.facts == 1 and loop.actions == 0
