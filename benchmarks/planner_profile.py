@@ -283,6 +283,51 @@ def fit(paths: list[Path]) -> None:
         print(f"| {tag} | {regime} | {cells} | {' | '.join(fits)} |")
 
 
+def loop_table(paths: list[Path]) -> None:
+    """Rows tagged ``python-R`` / ``compiled-R`` (rounds R): per group, each loop's median over the
+    rounds of the summed planning CPU and nodes/s, the search's own nodes/s (flat rows), the
+    ratio, and whether both loops expanded the same nodes and executed the same actions."""
+    import statistics as st
+    from collections import defaultdict
+
+    sums: dict[tuple[str, str], dict[str, dict[str, list[float]]]] = defaultdict(lambda: defaultdict(
+        lambda: defaultdict(list)))
+    same: dict[tuple[str, str], set[tuple[str, tuple[Any, ...]]]] = defaultdict(set)
+    per: dict[tuple[str, str, str, str], list[float]] = defaultdict(lambda: [0.0, 0.0, 0.0, 0.0])
+    for path in paths:
+        for line in path.read_text().splitlines():
+            r = json.loads(line)
+            loop, _, rnd = r["tag"].partition("-")
+            group = (r["domain"], r["problem"].rsplit("-", 1)[0] if r["domain"] == "marsupial" else r["problem"])
+            acc = per[(*group, loop, rnd)]
+            acc[0] += r["plan_cpu"]
+            acc[1] += r["nodes"]
+            acc[2] += r.get("search_cpu", 0.0)
+            acc[3] += r["calls"]
+            same[group].add((loop, (r["problem"], r["trial"], r["nodes"], r["actions"])))
+    for (dom, prob, loop, _), (cpu, nodes, scpu, calls) in per.items():
+        cell = sums[(dom, prob)][loop]
+        cell["cpu"].append(cpu)
+        cell["nps"].append(nodes / cpu if cpu else 0.0)
+        cell["snps"].append(nodes / scpu if scpu else 0.0)
+        cell["nodes"].append(nodes)
+        cell["calls"].append(calls)
+    print("| group | calls | nodes | Python loop: planning CPU s, nodes/s (search alone) | compiled: planning CPU s, "
+          "nodes/s (search alone) | CPU ratio | same nodes and actions |")
+    print("|---|---|---|---|---|---|---|")
+    for group, loops in sums.items():
+        py, c = loops["python"], loops["compiled"]
+
+        def cell(x: dict[str, list[float]]) -> str:
+            out = f"{st.median(x['cpu']):.3f}, {st.median(x['nps']):,.0f}"
+            return out + (f" ({st.median(x['snps']):,.0f})" if st.median(x["snps"]) else "")
+
+        rows = {loop: {k for lp, k in same[group] if lp == loop} for loop in ("python", "compiled")}
+        print(f"| {' '.join(group)} | {st.median(c['calls']):.0f} | {st.median(c['nodes']):,.0f} | {cell(py)} | "
+              f"{cell(c)} | {st.median(py['cpu']) / st.median(c['cpu']):.1f}x | "
+              f"{'yes' if rows['python'] == rows['compiled'] else 'NO'} |")
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--regimes", default="single,both")
@@ -302,11 +347,16 @@ def main() -> int:
     ap.add_argument("--planner", default="", help="marsupial PlannerConfig overrides, e.g. heuristic=hff,weight=1")
     ap.add_argument("--logistics-planner", default="", help="logistics PlannerConfig overrides")
     ap.add_argument("--tag", default="", help="a label stored in each row")
+    ap.add_argument("--loop-table", type=Path, nargs="+",
+                    help="print the Python/compiled loop A/B table of rows tagged python-R / compiled-R and stop")
     ap.add_argument("--summarize", type=Path, nargs="+", help="print tables from stored rows and stop")
     ap.add_argument("--fit", action="store_true",
                     help="with --summarize: HPN's growth per tag and regime (fitted exponents of plan CPU, "
                          "calls and CPU per call against the number of packages)")
     args = ap.parse_args()
+    if args.loop_table:
+        loop_table(args.loop_table)
+        return 0
     if args.summarize:
         (fit if args.fit else summarize)(args.summarize)
         return 0
