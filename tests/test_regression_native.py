@@ -115,6 +115,26 @@ def test_the_loop_runs_on_a_blocks_problem():
     assert c.status is PlanStatus.SOLVED and len(c.plan) == 6
 
 
+def test_a_level_map_with_overrides_runs_in_the_loop():
+    """stack(a, b) at level 1 (its preconditions dropped), the rest concrete: the call asks each fact's
+    templates for itself (set_local_achievers) and still plans as the Python loop."""
+    from nowplan.core.levels import LevelMap
+    from tests.test_deferred import BLOCKS
+
+    init = State([Atom("on", ("a", "b")), Atom("ontable", ("b",)), Atom("ontable", ("c",)),
+                  Atom("clear", ("a",)), Atom("clear", ("c",)), Atom("handempty", ())])
+    goal = Goal.of([Atom("on", ("a", "b")), Atom("on", ("b", "c"))])
+    levels = LevelMap(0, frozenset({(("stack", ("a", "b")), 1)}))
+    cfg = replace(CONFIG, serialization=False, monotonic=False)
+    with pytest.MonkeyPatch.context() as mp:
+        py, c, ran = _both(mp, BLOCKS, {o: None for o in "abc"}, init, goal, levels, cfg)
+        flat_py, flat_c, flat_ran = _both(mp, BLOCKS, {o: None for o in "abc"}, init, goal, flat_levels(), cfg)
+    assert ran == 1 and flat_ran == 1
+    _same(py, c)
+    _same(flat_py, flat_c)
+    assert c.status is PlanStatus.SOLVED and len(c.plan) < len(flat_c.plan)  # the override changed the search
+
+
 x = Var("x")
 HALF = Domain(
     "half", {"p": Predicate("p", 1), "q": Predicate("q", 1)},
@@ -143,5 +163,5 @@ def test_the_loop_refuses_bad_ids():
     with pytest.raises(IndexError):
         loop.set_achievers(3, [])
     with pytest.raises(ValueError):
-        loop.search([7], [0.0], lambda f: True, lambda f: False, None, 1.0, 10, False, None, [])
+        loop.search([7], [0.0], lambda f: True, lambda f: False, None, 1.0, 10, False, None, [], False)
     assert loop.facts == 1 and loop.actions == 0

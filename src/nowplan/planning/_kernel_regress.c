@@ -9,7 +9,9 @@
  * fact and call: whether a fact holds (`holds(f)`), and a fact's achievers the first time the
  * search meets it (`need(f)`, which registers them with add_action / set_achievers and returns
  * False where the call must run in Python instead).  The facts, actions and achievers persist
- * across calls (one object per ground task and level, regression_native.py).  A serialized call
+ * across calls (one object per ground task and level, regression_native.py); a call whose level map
+ * puts some actions at other levels (`local`) asks every fact's achievers once in the call instead
+ * (set_local_achievers), since its templates of those actions differ.  A serialized call
  * (seed 002 V-B: `order`, a node is its facts and its focus) and a monotonic one (`protect`: no
  * step may change those facts' fluents) run here too.
  */
@@ -22,7 +24,7 @@
 
 #include "_kernel_heap.h"
 
-#define REGRESS_API 2
+#define REGRESS_API 3
 enum { RS_SOLVED, RS_EXHAUSTED, RS_NODE_LIMIT, RS_TIME_LIMIT, RS_UNSUPPORTED };
 
 typedef struct { int32_t *v; size_t n, cap; } Vec;
@@ -72,6 +74,10 @@ typedef struct {
     size_t caph, capfl, capk, capt;
     int8_t *holds;        /* -1 unknown, 0, 1 */
     int32_t *pos, never;  /* a fact's first position in the call's order, `never` when not in it */
+    uint8_t *asked;       /* by fact: its call-local achievers are set (lstart/llen into lach) */
+    int32_t *lstart, *llen;
+    Vec lach;
+    int in_call;
     uint32_t *guardmark;  /* by fluent: 1 where the call protects a fact of it (guardfact) */
     int32_t *guardfact;
     uint32_t *flmark, *newmark, *kmark, *lkmark, *remmark, *chmark, *tried;
@@ -190,7 +196,7 @@ static void Regressor_dealloc(Regressor *R) {
                   R->es, R->el, R->ks, R->kl, R->ps, R->pl, R->clash, R->cost, R->effs.v, R->ekeys.v, R->pres.v,
                   R->holds, R->flmark, R->newmark, R->kmark, R->lkmark, R->remmark, R->chmark, R->tried,
                   R->flfact, R->newfact, R->kfact, R->lkfact, R->as, R->al, R->alls.v, R->pos, R->guardmark,
-                  R->guardfact};
+                  R->guardfact, R->asked, R->lstart, R->llen, R->lach.v};
     for (size_t i = 0; i < sizeof(ps) / sizeof(ps[0]); i++) PyMem_Free(ps[i]);
     Py_TYPE(R)->tp_free((PyObject *)R);
 }
@@ -350,6 +356,7 @@ typedef struct {
     double *hv;
     Py_ssize_t nv;
     uint32_t epoch, mk;  /* the expansion's and the successor's stamps */
+    int local;           /* achievers asked per call (set_local_achievers), not the persistent ones */
 } Call;
 
 /* the scratch arrays sized for the facts, fluents, keys and actions known now */
@@ -365,6 +372,12 @@ static int fit(Regressor *R) {
     c = R->caph;
     if (grow((void **)&R->pos, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
     for (size_t i = R->caph; i < c; i++) R->pos[i] = R->never;
+    c = R->caph;
+    if (grow((void **)&R->asked, &c, (size_t)R->nf + 1, 1) < 0) return -1;
+    c = R->caph;
+    if (grow((void **)&R->lstart, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
+    c = R->caph;
+    if (grow((void **)&R->llen, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
     R->caph = c;
     uint32_t **flm[] = {&R->flmark, &R->newmark, &R->guardmark};
     int32_t **flf[] = {&R->flfact, &R->newfact, &R->guardfact};
@@ -415,15 +428,40 @@ static int hval(Call *C, int32_t f, double *out) {
 /* the achievers of f known (asked of Python once): 1, 0 where the call must run in Python, -1 error */
 static int known(Call *C, int32_t f) {
     Regressor *R = C->R;
-    if (R->ach_len[f] >= 0) return 1;
+    if (C->local ? R->asked[f] : R->ach_len[f] >= 0) return 1;
     PyObject *r = PyObject_CallFunction(C->need_fn, "i", (int)f);
     if (r == NULL) return -1;
     int t = PyObject_IsTrue(r);
     Py_DECREF(r);
     if (t <= 0) return t;
     if (fit(R) < 0) return -1;
-    if (R->ach_len[f] < 0) { PyErr_SetString(PyExc_RuntimeError, "need() did not set the achievers"); return -1; }
+    if (C->local ? !R->asked[f] : R->ach_len[f] < 0) {
+        PyErr_SetString(PyExc_RuntimeError, "need() did not set the achievers");
+        return -1;
+    }
     return 1;
+}
+
+/* set_local_achievers(fact, actions): the fact's templates for the running call only */
+static PyObject *Regressor_set_local_achievers(Regressor *R, PyObject *args) {
+    int f;
+    PyObject *acts;
+    if (!PyArg_ParseTuple(args, "iO", &f, &acts)) return NULL;
+    if (!R->in_call) { PyErr_SetString(PyExc_RuntimeError, "set_local_achievers outside a search"); return NULL; }
+    if (fit(R) < 0) return NULL;
+    if (f < 0 || f >= R->nf || (size_t)f >= R->caph) { PyErr_SetString(PyExc_IndexError, "fact id not added"); return NULL; }
+    size_t a0 = R->lach.n;
+    if (read_ints(acts, "achievers", &R->lach) < 0) { R->lach.n = a0; return NULL; }
+    for (size_t i = a0; i < R->lach.n; i++)
+        if (R->lach.v[i] >= R->na) {
+            R->lach.n = a0;
+            PyErr_SetString(PyExc_IndexError, "action id not added");
+            return NULL;
+        }
+    R->lstart[f] = (int32_t)a0;
+    R->llen[f] = (int32_t)(R->lach.n - a0);
+    R->asked[f] = 1;
+    Py_RETURN_NONE;
 }
 
 static inline int stamp_less(int32_t a0, int32_t a1, int32_t a2, int32_t b0, int32_t b1, int32_t b2) {
@@ -454,21 +492,23 @@ static PyObject *int_list(const int32_t *v, int32_t n) {
     return l;
 }
 
-/* search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect)
+/* search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local)
  *   -> (status, [facts of the path's nodes, the solved one first], [actions], expanded, generated)
- * order: None or the serialization's fact ids; protect: the monotonic call's fact ids */
+ * order: None or the serialization's fact ids; protect: the monotonic call's fact ids; local: the
+ * call's achievers are asked per fact in the call (need sets them with set_local_achievers) */
 static PyObject *Regressor_search(Regressor *R, PyObject *args) {
     PyObject *root, *hvals, *holds_fn, *need_fn, *stop, *order, *protect;
     double weight;
     long long max_nodes;
-    int no_rewrites;
-    if (!PyArg_ParseTuple(args, "OOOOOdLpOO", &root, &hvals, &holds_fn, &need_fn, &stop, &weight, &max_nodes,
-                          &no_rewrites, &order, &protect))
+    int no_rewrites, local;
+    if (!PyArg_ParseTuple(args, "OOOOOdLpOOp", &root, &hvals, &holds_fn, &need_fn, &stop, &weight, &max_nodes,
+                          &no_rewrites, &order, &protect, &local))
         return NULL;
+    if (R->in_call) { PyErr_SetString(PyExc_RuntimeError, "search() is not re-entrant"); return NULL; }
     int has_order = order != Py_None;
     int32_t focus0 = 0;
     Vec ov = {0};
-    Call C = {R, holds_fn, need_fn, NULL, 0, 0, 0};
+    Call C = {R, holds_fn, need_fn, NULL, 0, 0, 0, local};
     Nodes S = {0};
     RQueue Q = {0};
     Vec cur = {0}, allowed = {0}, child = {0}, newl = {0};
@@ -479,6 +519,9 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
     int32_t solved = -1;
 
     if (fit(R) < 0) goto done;
+    R->in_call = 1;
+    R->lach.n = 0;
+    memset(R->asked, 0, R->caph);
     for (int32_t f = 0; f < R->nf; f++) R->holds[f] = -1;
     memset(R->flmark, 0, R->capfl * sizeof(uint32_t));
     memset(R->newmark, 0, R->capfl * sizeof(uint32_t));
@@ -600,9 +643,10 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
             int kn = known(&C, target);
             if (kn < 0) goto done;
             if (kn == 0) { status = RS_UNSUPPORTED; goto finish; }
-            int32_t a0 = R->ach_start[target], alen = R->ach_len[target];
+            int32_t a0 = local ? R->lstart[target] : R->ach_start[target];
+            int32_t alen = local ? R->llen[target] : R->ach_len[target];
             for (int32_t j = 0; j < alen; j++) {
-                int32_t a = R->ach.v[a0 + j];
+                int32_t a = local ? R->lach.v[a0 + j] : R->ach.v[a0 + j];
                 if (R->tried[a] == ep) continue;
                 R->tried[a] = ep;
                 /* ---- make: regress the node through a (subgoals.regress) */
@@ -789,6 +833,7 @@ finish:
         out = Py_BuildValue("(iNNLL)", status, paths, acts, exp, generated);
     }
 done:
+    R->in_call = 0;
     PyMem_Free(C.hv);
     PyMem_Free(cur.v);
     PyMem_Free(allowed.v);
@@ -809,8 +854,10 @@ static PyMethodDef Regressor_methods[] = {
     {"add_action", (PyCFunction)Regressor_add_action, METH_VARARGS,
      "add_action(effects, effect_keys, self_clash, pre, cost) -> index"},
     {"set_achievers", (PyCFunction)Regressor_set_achievers, METH_VARARGS, "set_achievers(fact, actions)"},
+    {"set_local_achievers", (PyCFunction)Regressor_set_local_achievers, METH_VARARGS,
+     "set_local_achievers(fact, actions): for the running call only"},
     {"search", (PyCFunction)Regressor_search, METH_VARARGS,
-     "search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect)"},
+     "search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local)"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -10,9 +10,10 @@ costs, stamps and parents, so it returns the same plan with the same counters
   deferred) and its values are whole numbers (so a sum does not depend on its order);
 * the call has no forbidden first steps and no generator that may give up, and its root goal
   is consistent (a serialized or monotonic call, ``order`` or ``protect``, runs there too);
-* the successor templates are the problem's shared ones (numeric costs, no level overrides,
-  achievers that read nothing of the goal) and every fact is a plain value (equality rule) with
-  keyed conflict rules only.
+* the successor templates are the problem's shared ones (numeric costs, achievers that read
+  nothing of the goal; where the level map puts some actions at other levels, the call asks
+  every fact's templates once, as the Python loop does) and every fact is a plain value
+  (equality rule) with keyed conflict rules only.
 
 Otherwise :func:`run` returns ``None`` and the Python loop runs.  The facts, actions and
 achievers are registered once per ground task and top level (kept in ``task.memo``): a fact's
@@ -44,7 +45,7 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
-API = 2  # REGRESS_API in _kernel_regress.c
+API = 3  # REGRESS_API in _kernel_regress.c
 
 _mod: ModuleType | None | bool = False  # not imported yet
 
@@ -80,7 +81,7 @@ class Compiled:
         self.table = table
         self.loop: Any = mod.Regressor(bool(table.keyed))
         self.acts: list[Action] = []  # by index (kept alive: the index is by identity)
-        self.index: dict[int, int] = {}  # id(action) -> index
+        self.index: dict[tuple[int, int], int] = {}  # (id(action), id(its facts at a level)) -> index
         self.keys: dict[Hashable, int] = {}
         self.ok = True  # False once a fact that is not a plain value is met: the Python loop runs
 
@@ -109,8 +110,9 @@ class Compiled:
         loop.set_rank(rank)
         return self.ok
 
-    def need(self, search: _Search, goal: Goal, f: int) -> bool:
-        """Register fact ``f``'s successor templates (``False``: this call runs in Python)."""
+    def need(self, search: _Search, goal: Goal, f: int, local: bool) -> bool:
+        """Register fact ``f``'s successor templates (``False``: this call runs in Python); ``local``:
+        for this call only (its level map puts some of the actions at other levels)."""
         T = self.table
         if not self.ok or not search.grounder.shares_answer(T.atoms[f]):
             return False
@@ -118,7 +120,7 @@ class Compiled:
         self.sync()
         out = []
         for act, info, cost in temps:
-            i = self.index.get(id(act))
+            i = self.index.get((id(act), id(info)))  # (info: kept on the action per level, so its id stays its own)
             if i is None:
                 effs = [x for pair in info.eff_fl for x in pair]
                 keys = self.keys
@@ -129,10 +131,13 @@ class Compiled:
                         ki = keys[k] = len(keys)
                     ekeys += (ki, e)
                 i = self.loop.add_action(effs, ekeys, info.self_clash, list(info.pre), float(cost), list(info.all_effs))
-                self.index[id(act)] = i
+                self.index[(id(act), id(info))] = i
                 self.acts.append(act)
             out.append(i)
-        self.loop.set_achievers(f, out)
+        if local:
+            self.loop.set_local_achievers(f, out)
+        else:
+            self.loop.set_achievers(f, out)
         return self.ok
 
 
@@ -162,8 +167,10 @@ def run(
     if (not isinstance(hadd, KernelHadd) or callable(search.domain_h) or search.relaxed is not None
             or search.forbidden_first or search.gave_up is not None or T.plain or not search.config.weight > 0):
         return None
-    if not search._successors.uniform:
+    succ = search._successors
+    if not succ.shares:
         return None
+    local = not succ.uniform
     root = T.ids_of(goal.atoms)
     if not root or not search.grounder.shares_answer(T.atoms[next(iter(root))]) or not T.consistent(root):
         return None
@@ -175,9 +182,9 @@ def run(
     stop = search.now
     deadline = search.deadline
     status, nodes, acts, expanded, generated = comp.loop.search(
-        list(root), hadd.values, search.fholds, lambda f: comp.need(search, goal, f),
+        list(root), hadd.values, search.fholds, lambda f: comp.need(search, goal, f, local),
         lambda: stop() > deadline, float(search.config.weight), int(max_nodes), not search.config.held_rewrites,
-        order_ids, guard)
+        order_ids, guard, local)
     if status == mod.UNSUPPORTED:
         return None
     search.expanded += expanded

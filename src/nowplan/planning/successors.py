@@ -79,6 +79,11 @@ class Successors:
         return out
 
     @property
+    def shares(self) -> bool:
+        """The templates come from the problem's shared store (numeric costs; see the module docstring)."""
+        return self._shared is not None
+
+    @property
     def uniform(self) -> bool:
         """Every fact's templates are the problem's shared ones, at the top level (no level overrides)."""
         return self._shared is not None and not self._over_keys and not self._over_ops
