@@ -37,6 +37,8 @@ from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.axioms import evaluator
+from nowplan.planning.forward_generators import NotEnumerable
+from nowplan.planning.generators_run import misses_hint
 from nowplan.planning.hff import CostType, Kind, RelaxedHeuristic
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep
 from nowplan.planning.postprocess import eliminate_actions
@@ -363,6 +365,7 @@ def forward_plan(
     cache_costs: bool = False,
     relevant_to: Goal | None = None,
     hidden_costs: bool = False,
+    generator_values: int = 8,
 ) -> tuple[ForwardResult, list[tuple[Action | None, Goal]] | None]:
     """Ground, search and regress: the result and the plan's steps (``None`` unless solved).
 
@@ -371,10 +374,13 @@ def forward_plan(
     cost an estimate of their hidden preconditions too (:mod:`nowplan.planning.hidden_costs`).
     """
     task = build_task(domain, objects, belief, goal, levels, cost_of, cache_costs=cache_costs,
-                      relevant_to=relevant_to, hidden_costs=hidden_costs)
+                      relevant_to=relevant_to, hidden_costs=hidden_costs, generator_values=generator_values)
     res = search(task, method=method, heuristic=heuristic, cost_type=cost_type, weight=weight,
                  max_nodes=max_nodes, out_of_time=out_of_time)
     if res.status is not PlanStatus.SOLVED or res.actions is None:
+        misses = task.memo.get("generator misses")
+        if misses:  # generators whose proposals were all skipped: named, as the regression search does
+            res.reason += misses_hint(misses)
         return res, None
     pos: dict[Any, int] = task.memo.get("position") or {act.key: i for i, act in enumerate(task.actions)}
     found = eliminate_actions(task, [pos[a.key] for a in res.actions])
@@ -432,15 +438,21 @@ def plan_forward(
             c = costs[act.key] = act.cost(belief)
         return c
 
-    res, steps = forward_plan(
-        domain, objects, belief, goal, levels, cost_of,
-        method=config.search, heuristic=config.forward_heuristic, cost_type=config.cost_type,
-        weight=config.weight,
-        max_nodes=config.max_nodes if config.forward_max_nodes is None else config.forward_max_nodes,
-        out_of_time=lambda: now() > deadline,
-        improve=config.improve, cache_costs=True, relevant_to=config.relevant_to,
-        hidden_costs=config.hidden_costs,
-    )
+    try:
+        res, steps = forward_plan(
+            domain, objects, belief, goal, levels, cost_of,
+            method=config.search, heuristic=config.forward_heuristic, cost_type=config.cost_type,
+            weight=config.weight,
+            max_nodes=config.max_nodes if config.forward_max_nodes is None else config.forward_max_nodes,
+            out_of_time=lambda: now() > deadline,
+            improve=config.improve, cache_costs=True, relevant_to=config.relevant_to,
+            hidden_costs=config.hidden_costs, generator_values=config.max_generator_values,
+        )
+    except NotEnumerable as e:  # a generator's values are not objects: the regression search grounds them
+        if config.engine == "forward":
+            raise UsageError(f"the forward engine cannot plan here: {e}; use engine='regression'") from None
+        log.info("forward search does not apply (%s): the regression search plans instead", e)
+        return None
     method = f"forward:{config.search}"
     common: dict[str, Any] = dict(expanded=res.expanded, generated=res.generated, method=method,
                                   attempts=(f"{method}:{res.status.value}",))

@@ -32,6 +32,7 @@ from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 from nowplan.planning.fact_mutex import Excluder, FactMutex
+from nowplan.planning.forward_generators import generators_unsupported
 from nowplan.planning.relevance import relevant_operators
 from nowplan.planning.task_grounding import Grounding, grounding
 
@@ -52,10 +53,9 @@ def forward_unsupported(domain: Domain, belief: Any) -> str | None:
         return "the belief does not list its facts"
     if isinstance(belief, HasUnknowns) and belief.unknowns():
         return "the belief is unsure of some fluents either way (a forward state is a closed world)"
-    for op in domain.operators:
-        if op.generators:
-            return (f"operator {op.name} has a generator ({op.generators[0].name}; the forward task is "
-                    "grounded without generators)")
+    why = generators_unsupported(domain)  # generators that read nothing of the goal are grounded
+    if why is not None:
+        return why
     for p in domain.predicates.values():
         if p.test is not None:
             return f"predicate {p.name} has a test"
@@ -167,6 +167,7 @@ def build_task(
     cache_costs: bool = False,
     relevant_to: Goal | None = None,
     hidden_costs: bool = False,
+    generator_values: int = 8,
 ) -> Task:
     """The integer task for ``goal`` from ``belief`` with each action at its level in ``levels``.
 
@@ -189,10 +190,13 @@ def build_task(
 
     ``hidden_costs``: an action that hides preconditions at its level costs its own cost plus
     ``h_max`` of the hidden ones from this state (:mod:`nowplan.planning.hidden_costs`).
+    ``generator_values``: at most this many values per generator call, for operators with generators
+    that read nothing of the goal (:mod:`nowplan.planning.forward_generators`).
     """
     top = max([levels.top, *(lv for _, lv in levels.overrides)])
     low = min([levels.top, *(lv for _, lv in levels.overrides), *(lv for _, lv in levels.floors)])
-    gr = grounding(domain, objects, belief, top, relevant_operators(domain, objects, goal, low, relevant_to))
+    gr = grounding(domain, objects, belief, top, relevant_operators(domain, objects, goal, low, relevant_to),
+                   generator_values=generator_values)
     statics = gr.statics
     true_now = {a for a in belief.atoms() if a.value is True}
     goal_negs = frozenset(a.negate() for a in goal.atoms if a.value is False and a.predicate not in statics)
@@ -217,6 +221,8 @@ def build_task(
             st.costs = cost
     task = Task(st.facts, st.index, st.actions, pre, add, dele, cost, init, (),
                 by_pre=by_pre, no_pre=no_pre, axioms=st.axioms)
+    if gr.misses:
+        task.memo["generator misses"] = gr.misses  # (named if the search fails: forward.forward_plan)
     if by_pre is st.by_pre:  # no row moved: the structure's fact -> actions rows serve this task
         if st.pre_rows is None:
             st.pre_rows = pre_rows(task)

@@ -24,6 +24,8 @@ from typing import Any
 from nowplan.core.atoms import Atom, Var
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator
+from nowplan.planning.forward_generators import GeneratorFilter
+from nowplan.planning.generators_run import Misses
 from nowplan.planning.joins import FactIndex, OperatorJoin
 
 log = logging.getLogger(__name__)
@@ -44,6 +46,8 @@ class Grounding:
     tasks: dict[Any, Any] = field(default_factory=dict, repr=False)
     # effect atom -> the actions with that effect (made on the first ask, see adders_of)
     adders: dict[Atom, list[Action]] | None = field(default=None, repr=False)
+    # generator calls whose proposals all disagreed with a bound output (forward_generators)
+    misses: Misses | None = field(default=None, repr=False)
 
 
 def adders_of(g: Grounding) -> dict[Atom, list[Action]]:
@@ -75,16 +79,26 @@ _CACHE_SIZE = 16
 
 
 def _key_of(domain: Domain, objects: Mapping[str, str | None], belief: Any, statics: frozenset[str],
-            level: int) -> Any:
+            level: int, generator_values: int = 8) -> Any:
     facts = tuple(sorted((p, tuple(sorted(map(repr, belief.facts(p))))) for p in statics))
     # the domain itself (held by the cache, so its identity cannot be reused by another domain)
     # operators compare without their costs: two domains equal but for costs must not share actions
     costs = tuple(id(o.cost) if callable(o.cost) else o.cost for o in domain.operators)
-    return (domain, costs, tuple(sorted(objects.items(), key=repr)), facts, level)
+    # generators read the belief: their actions serve this state only (forward_generators); and
+    # operators compare without their generators' functions (held by the cached domain: ids unique)
+    state = None
+    if _has_generators(domain):
+        fns = tuple(id(g.fn) for o in domain.operators for g in o.generators)
+        state = (frozenset(belief.atoms()), generator_values, fns)
+    return (domain, costs, tuple(sorted(objects.items(), key=repr)), facts, level, state)
+
+
+def _has_generators(domain: Domain) -> bool:
+    return any(op.generators for op in domain.operators)
 
 
 def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, level: int,
-              operators: frozenset[str] | None = None) -> Grounding:
+              operators: frozenset[str] | None = None, generator_values: int = 8) -> Grounding:
     """The reachable actions for ``belief`` at ``level`` (cached across calls), of at least the
     operators named in ``operators`` (``None``: all; e.g. those relevant to a goal,
     :mod:`nowplan.planning.relevance`).
@@ -93,9 +107,11 @@ def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, le
     reached every fact true there) serves if it has these operators; else the new grounding
     starts from the latest such grounding and adds what is missing (the union of the operators,
     and the facts ``belief`` adds), keeping its actions: a run whose goals need more and more of
-    the domain grounds each action once."""
+    the domain grounds each action once.  Operators with generators (that read nothing of the goal)
+    keep the bindings their generators propose from ``belief``, at most ``generator_values`` per call
+    (:mod:`nowplan.planning.forward_generators`), and such a grounding serves ``belief``'s state only."""
     statics = domain.static_predicates
-    base = _key_of(domain, objects, belief, statics, level)
+    base = _key_of(domain, objects, belief, statics, level, generator_values)
     init = {a for a in belief.atoms() if a.value is True}
     prev: Grounding | None = None
     for (b, ops), g in reversed(_CACHE.items()):  # the latest first
@@ -110,7 +126,10 @@ def grounding(domain: Domain, objects: Mapping[str, str | None], belief: Any, le
             prev = g
     if prev is not None:
         operators = None if operators is None or prev.operators is None else operators | prev.operators
-    return _file((base, operators), _ground(domain, objects, init, statics, level, operators, prev))
+    gens = None
+    if _has_generators(domain):
+        gens = GeneratorFilter(belief, frozenset({**dict(domain.constants), **dict(objects)}), generator_values)
+    return _file((base, operators), _ground(domain, objects, init, statics, level, operators, prev, gens))
 
 
 def clear_cache() -> None:
@@ -173,7 +192,7 @@ def _objects_by_type(domain: Domain, objects: Mapping[str, str | None]) -> dict[
 
 def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
             statics: frozenset[str], level: int, operators: frozenset[str] | None = None,
-            prev: Grounding | None = None) -> Grounding:
+            prev: Grounding | None = None, gens: GeneratorFilter | None = None) -> Grounding:
     """The fixpoint of relaxed reachability from ``start`` (and ``prev``'s facts) over the operators
     named in ``operators`` (``None``: all).  ``prev``, a grounding of the same objects, static facts and
     level, is extended: its actions are kept (the same objects, with their ground atoms), and when
@@ -213,6 +232,8 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
                 act = Action(op, args)
                 if not _negative_statics_hold(act, statics, facts):
                     continue
+                if gens is not None and op.generators and not gens.accepts(op, args):
+                    continue  # not a value the generators propose (NotEnumerable: not an object)
                 seen.add(key)
                 actions.append(act)
                 for e in act.effects():
@@ -227,7 +248,8 @@ def _ground(domain: Domain, objects: Mapping[str, str | None], start: set[Atom],
             changed.add(e.predicate)
         index.extend(new)
         delta = FactIndex(news)
-    return Grounding(_undominated(actions, statics, level), reached, statics, operators)
+    return Grounding(_undominated(actions, statics, level), reached, statics, operators,
+                     misses=gens.misses if gens is not None and gens.misses else None)
 
 
 def _undominated(actions: list[Action], statics: frozenset[str], level: int) -> list[Action]:
