@@ -416,7 +416,7 @@ def plan_forward(
     from nowplan.errors import UsageError
     from nowplan.planning.config import _clock
 
-    why = forward_unsupported(domain, belief)
+    why = forward_unsupported(domain, belief) or domain.facts.derived.get("forward not enumerable")
     if why is not None:
         if config.engine == "forward":
             raise UsageError(f"the forward engine cannot plan here: {why}; use engine='regression'")
@@ -451,6 +451,7 @@ def plan_forward(
     except NotEnumerable as e:  # a generator's values are not objects: the regression search grounds them
         if config.engine == "forward":
             raise UsageError(f"the forward engine cannot plan here: {e}; use engine='regression'") from None
+        domain.facts.derived["forward not enumerable"] = str(e)  # the later calls do not try again
         log.info("forward search does not apply (%s): the regression search plans instead", e)
         return None
     method = f"forward:{config.search}"
