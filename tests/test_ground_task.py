@@ -10,7 +10,7 @@ import pytest
 
 from nowplan.core.atoms import Atom, Goal
 from nowplan.core.levels import flat_levels
-from nowplan.core.operators import Action
+from nowplan.core.operators import Action, StateFreeCost
 from nowplan.io.pddl_read import load_pddl
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.ground_task import instances
@@ -48,7 +48,9 @@ def test_bulk_task_equals_binding_each_action(dom, prob):
             a = T.atoms[f]
             assert twin == (T.id(a.negate()) if a.value is False else -1)
         assert [T.atoms[e] for e in task.effects[k]] == list(ga.effects)
-        assert task.fixed_cost[k] == (None if callable(act.operator.cost) else float(act.operator.cost))
+        c = act.operator.cost  # a StateFreeCost is a number per instance; another callable reads the belief
+        assert task.fixed_cost[k] == (act.cost(None) if isinstance(c, StateFreeCost) else
+                                      None if callable(c) else float(c))
     assert [ga.action.key for ga in task.acts] == [ga.action.key for ga in ref]
 
 

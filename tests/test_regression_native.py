@@ -100,6 +100,19 @@ def test_bundled_pddl_problems_plan_alike(monkeypatch, domain, problem):
     assert ran >= 1, "the compiled loop never ran"
 
 
+IPC_STYLE = PDDL.parents[3] / "tests" / "data" / "pddl_ipc_style"
+
+
+@pytest.mark.parametrize("name", ["transport", "floortile", "zenotravel", "briefcase"])
+def test_ipc_style_problems_with_action_costs_plan_alike(monkeypatch, name):
+    """Costs from static numeric functions (a StateFreeCost per action): the ground h_add and the loop."""
+    p = load_pddl(str(IPC_STYLE / f"{name}-domain.pddl"), str(IPC_STYLE / f"{name}-p01.pddl"))
+    py, c, ran = _both(monkeypatch, p.domain, p.objects, p.init, p.goal, flat_levels(),
+                       replace(CONFIG, max_nodes=3_000, serialization=False, monotonic=False))
+    _same(py, c, name)
+    assert ran >= 1, "the compiled loop never ran"
+
+
 def test_the_loop_runs_on_a_blocks_problem():
     """A held goal fact undone and re-achieved (test_deferred's case), through the compiled loop."""
     from tests.test_deferred import BLOCKS
@@ -163,5 +176,63 @@ def test_the_loop_refuses_bad_ids():
     with pytest.raises(IndexError):
         loop.set_achievers(3, [])
     with pytest.raises(ValueError):
-        loop.search([7], [0.0], lambda f: True, lambda f: False, None, 1.0, 10, False, None, [], False)
+        loop.search([7], [0.0], lambda f: True, lambda f: False, None, 1.0, 10, False, None, [], False, None)
     assert loop.facts == 1 and loop.actions == 0
+
+
+def _not_held_and_down(a: Atom, b: Atom) -> bool:
+    """A plain (pairwise) rule: a block held is neither on the table nor under another block."""
+    if a.predicate != "holding" or a.value is not True or b.value is not True:
+        return False
+    return (b.predicate == "ontable" and b.args == a.args) or (b.predicate == "on" and b.args[1] == a.args[0])
+
+
+def test_plain_conflict_rules_run_in_the_loop() -> None:
+    from tests.test_deferred import BLOCKS
+
+    dom = Domain(BLOCKS.name + "-plain", dict(BLOCKS.predicates), BLOCKS.operators,
+                 conflicts=(_not_held_and_down,))
+    assert dom.facts.plain
+    init = State([Atom("on", ("a", "b")), Atom("ontable", ("b",)), Atom("ontable", ("c",)),
+                  Atom("clear", ("a",)), Atom("clear", ("c",)), Atom("handempty", ())])
+    for goal in (Goal.of([Atom("on", ("a", "b")), Atom("on", ("b", "c"))]),
+                 Goal.of([Atom("on", ("c", "a")), Atom("ontable", ("b",))])):
+        for shortcuts in (False, True):
+            cfg = replace(CONFIG, serialization=shortcuts, monotonic=shortcuts)
+            with pytest.MonkeyPatch.context() as mp:
+                py, c, ran = _both(mp, dom, {o: None for o in "abc"}, init, goal, flat_levels(), cfg)
+            assert ran >= 1
+            _same(py, c, str(goal))
+            assert c.status is PlanStatus.SOLVED
+
+
+def test_the_tidy_house_plans_alike(monkeypatch):
+    """The held-out tidy house (plain conflict rules, a last-seen belief), its place cost declared a
+    StateFreeCost (the example's is a plain callable, so the ground h_add and this loop are not
+    used there): its top-level and flat calls."""
+    from dataclasses import replace as dc_replace
+
+    from nowplan.core.levels import LevelMap
+    from nowplan.core.operators import StateFreeCost
+    from tests.helpers import example_spec
+
+    example_spec(monkeypatch, "tidy")
+    from tidy_domain.scenarios import problem
+
+    p, belief = problem(0, "tidy")
+
+    class Free(StateFreeCost):
+        def __init__(self, fn):
+            self.fn = fn
+
+        def __call__(self, bindings, belief=None):
+            return self.fn(bindings, None)
+
+    ops = tuple(dc_replace(op, cost=Free(op.cost)) if callable(op.cost) else op for op in p.domain.operators)
+    dom = dc_replace(p.domain, operators=ops)
+    for levels in (LevelMap(dom.top_level), flat_levels()):
+        cfg = replace(CONFIG, max_nodes=2_000, shortcut_nodes=500)
+        with pytest.MonkeyPatch.context() as mp:
+            py, c, ran = _both(mp, dom, p.objects, belief, p.goal, levels, cfg)
+        assert ran >= 1, str(levels)
+        _same(py, c, str(levels))

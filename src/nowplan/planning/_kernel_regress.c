@@ -11,7 +11,8 @@
  * False where the call must run in Python instead).  The facts, actions and achievers persist
  * across calls (one object per ground task and level, regression_native.py); a call whose level map
  * puts some actions at other levels (`local`) asks every fact's achievers once in the call instead
- * (set_local_achievers), since its templates of those actions differ.  A serialized call
+ * (set_local_achievers), since its templates of those actions differ.  Plain (pairwise) conflict
+ * rules are asked of Python once per pair of facts (`conflict(x, y)`), the answers kept here.  A serialized call
  * (seed 002 V-B: `order`, a node is its facts and its focus) and a monotonic one (`protect`: no
  * step may change those facts' fluents) run here too.
  */
@@ -24,7 +25,7 @@
 
 #include "_kernel_heap.h"
 
-#define REGRESS_API 3
+#define REGRESS_API 4
 enum { RS_SOLVED, RS_EXHAUSTED, RS_NODE_LIMIT, RS_TIME_LIMIT, RS_UNSUPPORTED };
 
 typedef struct { int32_t *v; size_t n, cap; } Vec;
@@ -54,9 +55,13 @@ static int grow(void **p, size_t *cap, size_t n, size_t size) {
     return 0;
 }
 
+typedef struct { uint64_t key; uint8_t val; } PairEnt;  /* val 0 empty, 1 no conflict, 2 conflict */
+
 typedef struct {
     PyObject_HEAD
-    int has_conflicts;
+    int has_conflicts, has_plain;
+    PairEnt *pairs;       /* plain conflict answers by (min, max) fact pair, open addressing */
+    size_t npairs, cappairs;
     /* facts: fluent, sort rank, conflict keys (kstart/klen into keys) */
     int32_t nf;
     size_t capf;
@@ -196,18 +201,19 @@ static void Regressor_dealloc(Regressor *R) {
                   R->es, R->el, R->ks, R->kl, R->ps, R->pl, R->clash, R->cost, R->effs.v, R->ekeys.v, R->pres.v,
                   R->holds, R->flmark, R->newmark, R->kmark, R->lkmark, R->remmark, R->chmark, R->tried,
                   R->flfact, R->newfact, R->kfact, R->lkfact, R->as, R->al, R->alls.v, R->pos, R->guardmark,
-                  R->guardfact, R->asked, R->lstart, R->llen, R->lach.v};
+                  R->guardfact, R->asked, R->lstart, R->llen, R->lach.v, R->pairs};
     for (size_t i = 0; i < sizeof(ps) / sizeof(ps[0]); i++) PyMem_Free(ps[i]);
     Py_TYPE(R)->tp_free((PyObject *)R);
 }
 
 static PyObject *Regressor_new(PyTypeObject *type, PyObject *args, PyObject *kwds) {
-    static char *kw[] = {"has_conflicts", NULL};
-    int conflicts = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwds, "p", kw, &conflicts)) return NULL;
+    static char *kw[] = {"has_conflicts", "has_plain", NULL};
+    int conflicts = 0, plain = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwds, "p|p", kw, &conflicts, &plain)) return NULL;
     Regressor *R = (Regressor *)type->tp_alloc(type, 0);
     if (R == NULL) return NULL;
-    R->has_conflicts = conflicts;
+    R->has_conflicts = conflicts || plain;
+    R->has_plain = plain;
     return (PyObject *)R;
 }
 
@@ -352,7 +358,7 @@ static PyObject *Regressor_set_achievers(Regressor *R, PyObject *args) {
 
 typedef struct {
     Regressor *R;
-    PyObject *holds_fn, *need_fn;
+    PyObject *holds_fn, *need_fn, *conflict_fn;
     double *hv;
     Py_ssize_t nv;
     uint32_t epoch, mk;  /* the expansion's and the successor's stamps */
@@ -414,6 +420,52 @@ static int holds(Call *C, int32_t f) {
     if (t < 0) return -1;
     C->R->holds[f] = (int8_t)t;
     return t;
+}
+
+/* do the plain conflict rules exclude facts x and y together?  1, 0, -1 with an error set */
+static int plain_conflict(Call *C, int32_t x, int32_t y) {
+    Regressor *R = C->R;
+    uint64_t key = x < y ? ((uint64_t)(uint32_t)x << 32) | (uint32_t)y : ((uint64_t)(uint32_t)y << 32) | (uint32_t)x;
+    if (R->cappairs) {
+        size_t mask = R->cappairs - 1, i = (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & mask;
+        for (; R->pairs[i].val; i = (i + 1) & mask)
+            if (R->pairs[i].key == key) return R->pairs[i].val == 2;
+    }
+    PyObject *r = PyObject_CallFunction(C->conflict_fn, "ii", (int)x, (int)y);
+    if (r == NULL) return -1;
+    int t = PyObject_IsTrue(r);
+    Py_DECREF(r);
+    if (t < 0) return -1;
+    if ((R->npairs + 1) * 2 > R->cappairs) {  /* grow and rehash */
+        size_t cap = R->cappairs ? 2 * R->cappairs : 4096;
+        PairEnt *v = PyMem_Calloc(cap, sizeof(PairEnt));
+        if (v == NULL) { PyErr_NoMemory(); return -1; }
+        for (size_t k = 0; k < R->cappairs; k++) {
+            if (!R->pairs[k].val) continue;
+            size_t i = (size_t)((R->pairs[k].key * 0x9E3779B97F4A7C15ULL) >> 17) & (cap - 1);
+            while (v[i].val) i = (i + 1) & (cap - 1);
+            v[i] = R->pairs[k];
+        }
+        PyMem_Free(R->pairs);
+        R->pairs = v;
+        R->cappairs = cap;
+    }
+    size_t mask = R->cappairs - 1, i = (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & mask;
+    while (R->pairs[i].val) i = (i + 1) & mask;
+    R->pairs[i].key = key;
+    R->pairs[i].val = (uint8_t)(t ? 2 : 1);
+    R->npairs++;
+    return t;
+}
+
+/* does fact e plainly conflict with a fact of the node (cur, n facts) not removed in this successor? */
+static int plain_clash(Call *C, int32_t e, const int32_t *cur, int32_t n, uint32_t mk) {
+    for (int32_t i = 0; i < n; i++) {
+        if (C->R->remmark[cur[i]] == mk) continue;
+        int t = plain_conflict(C, e, cur[i]);
+        if (t) return t;
+    }
+    return 0;
 }
 
 /* the estimate of fact f: its relaxed cost (0 where it holds), inf beyond the values */
@@ -492,23 +544,28 @@ static PyObject *int_list(const int32_t *v, int32_t n) {
     return l;
 }
 
-/* search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local)
+/* search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local, conflict)
  *   -> (status, [facts of the path's nodes, the solved one first], [actions], expanded, generated)
  * order: None or the serialization's fact ids; protect: the monotonic call's fact ids; local: the
- * call's achievers are asked per fact in the call (need sets them with set_local_achievers) */
+ * call's achievers are asked per fact in the call (need sets them with set_local_achievers); conflict:
+ * conflict(x, y) -> bool, the plain conflict rules (None where there are none) */
 static PyObject *Regressor_search(Regressor *R, PyObject *args) {
-    PyObject *root, *hvals, *holds_fn, *need_fn, *stop, *order, *protect;
+    PyObject *root, *hvals, *holds_fn, *need_fn, *stop, *order, *protect, *conflict_fn;
     double weight;
     long long max_nodes;
     int no_rewrites, local;
-    if (!PyArg_ParseTuple(args, "OOOOOdLpOOp", &root, &hvals, &holds_fn, &need_fn, &stop, &weight, &max_nodes,
-                          &no_rewrites, &order, &protect, &local))
+    if (!PyArg_ParseTuple(args, "OOOOOdLpOOpO", &root, &hvals, &holds_fn, &need_fn, &stop, &weight, &max_nodes,
+                          &no_rewrites, &order, &protect, &local, &conflict_fn))
         return NULL;
+    if (R->has_plain && conflict_fn == Py_None) {
+        PyErr_SetString(PyExc_ValueError, "plain conflict rules need conflict(x, y)");
+        return NULL;
+    }
     if (R->in_call) { PyErr_SetString(PyExc_RuntimeError, "search() is not re-entrant"); return NULL; }
     int has_order = order != Py_None;
     int32_t focus0 = 0;
     Vec ov = {0};
-    Call C = {R, holds_fn, need_fn, NULL, 0, 0, 0, local};
+    Call C = {R, holds_fn, need_fn, conflict_fn, NULL, 0, 0, 0, local};
     Nodes S = {0};
     RQueue Q = {0};
     Vec cur = {0}, allowed = {0}, child = {0}, newl = {0};
@@ -679,6 +736,12 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
                         }
                     }
                     if (!ok) continue;
+                    for (int32_t i = 0; i < ne && R->has_plain; i++) {  /* FactTable.plain_clash */
+                        int t = plain_clash(&C, E[2 * i + 1], cur.v, n, mk);
+                        if (t < 0) goto done;
+                        if (t) { ok = 0; break; }
+                    }
+                    if (!ok) continue;
                 }
                 const int32_t *P = &R->pres.v[R->ps[a]];
                 int32_t np = R->pl[a];
@@ -711,6 +774,13 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
                             R->lkmark[key] = mk;
                             R->lkfact[key] = nf;
                         }
+                    }
+                    if (!ok) continue;
+                    for (size_t i = 0; i < newl.n && R->has_plain && ok; i++) {
+                        int t = plain_clash(&C, newl.v[i], cur.v, n, mk);
+                        for (size_t j = i + 1; j < newl.n && t == 0; j++) t = plain_conflict(&C, newl.v[i], newl.v[j]);
+                        if (t < 0) goto done;
+                        if (t) ok = 0;
                     }
                     if (!ok) continue;
                 }
@@ -857,7 +927,7 @@ static PyMethodDef Regressor_methods[] = {
     {"set_local_achievers", (PyCFunction)Regressor_set_local_achievers, METH_VARARGS,
      "set_local_achievers(fact, actions): for the running call only"},
     {"search", (PyCFunction)Regressor_search, METH_VARARGS,
-     "search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local)"},
+     "search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local, conflict)"},
     {NULL, NULL, 0, NULL},
 };
 
@@ -870,7 +940,7 @@ static PyGetSetDef Regressor_getset[] = {
 static PyTypeObject RegressorType = {
     PyVarObject_HEAD_INIT(NULL, 0)
     .tp_name = "nowplan.planning._kernel_regress.Regressor",
-    .tp_doc = "Regressor(has_conflicts): the regression A*'s loop over one ground task's facts and actions",
+    .tp_doc = "Regressor(has_conflicts, has_plain=False): the regression A*'s loop over one ground task's facts and actions",
     .tp_basicsize = sizeof(Regressor),
     .tp_flags = Py_TPFLAGS_DEFAULT,
     .tp_new = Regressor_new,

@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any
 from nowplan.core.atoms import Atom, Term, Var
 from nowplan.core.facts import FactTable
 from nowplan.core.levels import LevelMap
-from nowplan.core.operators import Action, Operator
+from nowplan.core.operators import Action, Operator, StateFreeCost
 
 if TYPE_CHECKING:
     from nowplan.planning.grounding import Grounder
@@ -208,7 +208,10 @@ class GroundTask:
             self.pre.extend(zip(*pre_cols) if pre_cols else [() for _ in instances])
             self.effects.extend(zip(*eff_cols) if eff_cols else [() for _ in instances])
             c = op.cost
-            self.fixed_cost.extend([None if callable(c) else float(c)] * len(instances))
+            if isinstance(c, StateFreeCost):  # the same in every belief: a number per instance, once
+                self.fixed_cost.extend([float(c(dict(zip(op.params, xs, strict=True)), None)) for xs in instances])
+            else:
+                self.fixed_cost.extend([None if callable(c) else float(c)] * len(instances))
             self.op.extend([i] * len(instances))
             self.args.extend(instances)
         self.n = len(self.op)

@@ -13,7 +13,8 @@ costs, stamps and parents, so it returns the same plan with the same counters
 * the successor templates are the problem's shared ones (numeric costs, achievers that read
   nothing of the goal; where the level map puts some actions at other levels, the call asks
   every fact's templates once, as the Python loop does) and every fact is a plain value
-  (equality rule) with keyed conflict rules only.
+  (equality rule); plain (pairwise) conflict rules are asked once per pair of facts
+  (``FactTable.plain_conflict``, kept by the loop).
 
 Otherwise :func:`run` returns ``None`` and the Python loop runs.  The facts, actions and
 achievers are registered once per ground task and top level (kept in ``task.memo``): a fact's
@@ -45,7 +46,7 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
-API = 3  # REGRESS_API in _kernel_regress.c
+API = 4  # REGRESS_API in _kernel_regress.c
 
 _mod: ModuleType | None | bool = False  # not imported yet
 
@@ -79,7 +80,7 @@ class Compiled:
     def __init__(self, mod: ModuleType, table: FactTable) -> None:
         self.mod = mod
         self.table = table
-        self.loop: Any = mod.Regressor(bool(table.keyed))
+        self.loop: Any = mod.Regressor(bool(table.keyed), bool(table.plain))
         self.acts: list[Action] = []  # by index (kept alive: the index is by identity)
         self.index: dict[tuple[int, int], int] = {}  # (id(action), id(its facts at a level)) -> index
         self.keys: dict[Hashable, int] = {}
@@ -165,7 +166,7 @@ def run(
     T = search.table
     hadd = search.hadd
     if (not isinstance(hadd, KernelHadd) or callable(search.domain_h) or search.relaxed is not None
-            or search.forbidden_first or search.gave_up is not None or T.plain or not search.config.weight > 0):
+            or search.forbidden_first or search.gave_up is not None or not search.config.weight > 0):
         return None
     succ = search._successors
     if not succ.shares:
@@ -184,7 +185,7 @@ def run(
     status, nodes, acts, expanded, generated = comp.loop.search(
         list(root), hadd.values, search.fholds, lambda f: comp.need(search, goal, f, local),
         lambda: stop() > deadline, float(search.config.weight), int(max_nodes), not search.config.held_rewrites,
-        order_ids, guard, local)
+        order_ids, guard, local, T.plain_conflict if T.plain else None)
     if status == mod.UNSUPPORTED:
         return None
     search.expanded += expanded
