@@ -19,7 +19,8 @@ setup(
         Extension(
             "nowplan.planning._kernel_regress",
             sources=["src/nowplan/planning/_kernel_regress.c"],
-            depends=["src/nowplan/planning/_kernel_heap.h"],
+            depends=["src/nowplan/planning/_kernel_heap.h", "src/nowplan/planning/_kernel_regress_store.h",
+                     "src/nowplan/planning/_kernel_regress_nodes.h", "src/nowplan/planning/_kernel_regress_call.h"],
             optional=True,
         ),
     ]

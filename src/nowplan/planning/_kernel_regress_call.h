@@ -1,0 +1,197 @@
+/* One call of the regression loop (_kernel_regress.c): its scratch arrays, and what it asks of Python once per
+ * fact (holds, need) or pair of facts (conflict). */
+/* ------------------------------------------------------------------ one call */
+
+typedef struct {
+    Regressor *R;
+    PyObject *holds_fn, *need_fn, *conflict_fn;
+    double *hv;
+    Py_ssize_t nv;
+    uint32_t epoch, mk;  /* the expansion's and the successor's stamps */
+    int local;           /* achievers asked per call (set_local_achievers), not the persistent ones */
+} Call;
+
+/* the scratch arrays sized for the facts, fluents, keys and actions known now */
+static int fit(Regressor *R) {
+    size_t c;
+    c = R->caph;
+    if (grow((void **)&R->holds, &c, (size_t)R->nf + 1, 1) < 0) return -1;
+    for (size_t i = R->caph; i < c; i++) R->holds[i] = -1;
+    c = R->caph;
+    if (grow((void **)&R->remmark, &c, (size_t)R->nf + 1, sizeof(uint32_t)) < 0) return -1;
+    c = R->caph;
+    if (grow((void **)&R->chmark, &c, (size_t)R->nf + 1, sizeof(uint32_t)) < 0) return -1;
+    c = R->caph;
+    if (grow((void **)&R->pos, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
+    for (size_t i = R->caph; i < c; i++) R->pos[i] = R->never;
+    c = R->caph;
+    if (grow((void **)&R->asked, &c, (size_t)R->nf + 1, 1) < 0) return -1;
+    c = R->caph;
+    if (grow((void **)&R->lstart, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
+    c = R->caph;
+    if (grow((void **)&R->llen, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
+    R->caph = c;
+    uint32_t **flm[] = {&R->flmark, &R->newmark, &R->guardmark};
+    int32_t **flf[] = {&R->flfact, &R->newfact, &R->guardfact};
+    for (int i = 0; i < 3; i++) {
+        c = R->capfl;
+        if (grow((void **)flm[i], &c, (size_t)R->nfl + 1, sizeof(uint32_t)) < 0) return -1;
+        c = R->capfl;
+        if (grow((void **)flf[i], &c, (size_t)R->nfl + 1, sizeof(int32_t)) < 0) return -1;
+    }
+    R->capfl = c;
+    uint32_t **km[] = {&R->kmark, &R->lkmark};
+    int32_t **kf[] = {&R->kfact, &R->lkfact};
+    for (int i = 0; i < 2; i++) {
+        c = R->capk;
+        if (grow((void **)km[i], &c, (size_t)R->nkey + 1, sizeof(uint32_t)) < 0) return -1;
+        c = R->capk;
+        if (grow((void **)kf[i], &c, (size_t)R->nkey + 1, sizeof(int32_t)) < 0) return -1;
+    }
+    R->capk = c;
+    c = R->capt;
+    if (grow((void **)&R->tried, &c, (size_t)R->na + 1, sizeof(uint32_t)) < 0) return -1;
+    R->capt = c;
+    return 0;
+}
+
+/* 1 if fact f holds, 0 if not, -1 with an error set */
+static int holds(Call *C, int32_t f) {
+    int8_t h = C->R->holds[f];
+    if (h >= 0) return h;
+    PyObject *r = PyObject_CallFunction(C->holds_fn, "i", (int)f);
+    if (r == NULL) return -1;
+    int t = PyObject_IsTrue(r);
+    Py_DECREF(r);
+    if (t < 0) return -1;
+    C->R->holds[f] = (int8_t)t;
+    return t;
+}
+
+/* do the plain conflict rules exclude facts x and y together?  1, 0, -1 with an error set */
+static int plain_conflict(Call *C, int32_t x, int32_t y) {
+    Regressor *R = C->R;
+    uint64_t key = x < y ? ((uint64_t)(uint32_t)x << 32) | (uint32_t)y : ((uint64_t)(uint32_t)y << 32) | (uint32_t)x;
+    if (R->cappairs) {
+        size_t mask = R->cappairs - 1, i = (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & mask;
+        for (; R->pairs[i].val; i = (i + 1) & mask)
+            if (R->pairs[i].key == key) return R->pairs[i].val == 2;
+    }
+    PyObject *r = PyObject_CallFunction(C->conflict_fn, "ii", (int)x, (int)y);
+    if (r == NULL) return -1;
+    int t = PyObject_IsTrue(r);
+    Py_DECREF(r);
+    if (t < 0) return -1;
+    if ((R->npairs + 1) * 2 > R->cappairs) {  /* grow and rehash */
+        size_t cap = R->cappairs ? 2 * R->cappairs : 4096;
+        PairEnt *v = PyMem_Calloc(cap, sizeof(PairEnt));
+        if (v == NULL) { PyErr_NoMemory(); return -1; }
+        for (size_t k = 0; k < R->cappairs; k++) {
+            if (!R->pairs[k].val) continue;
+            size_t i = (size_t)((R->pairs[k].key * 0x9E3779B97F4A7C15ULL) >> 17) & (cap - 1);
+            while (v[i].val) i = (i + 1) & (cap - 1);
+            v[i] = R->pairs[k];
+        }
+        PyMem_Free(R->pairs);
+        R->pairs = v;
+        R->cappairs = cap;
+    }
+    size_t mask = R->cappairs - 1, i = (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & mask;
+    while (R->pairs[i].val) i = (i + 1) & mask;
+    R->pairs[i].key = key;
+    R->pairs[i].val = (uint8_t)(t ? 2 : 1);
+    R->npairs++;
+    return t;
+}
+
+/* does fact e plainly conflict with a fact of the node (cur, n facts) not removed in this successor? */
+static int plain_clash(Call *C, int32_t e, const int32_t *cur, int32_t n, uint32_t mk) {
+    for (int32_t i = 0; i < n; i++) {
+        if (C->R->remmark[cur[i]] == mk) continue;
+        int t = plain_conflict(C, e, cur[i]);
+        if (t) return t;
+    }
+    return 0;
+}
+
+/* the estimate of fact f: its relaxed cost (0 where it holds), inf beyond the values */
+static int hval(Call *C, int32_t f, double *out) {
+    if (f < C->nv) { *out = C->hv[f]; return 0; }
+    int t = holds(C, f);
+    if (t < 0) return -1;
+    *out = t ? 0.0 : INFINITY;
+    return 0;
+}
+
+/* the achievers of f known (asked of Python once): 1, 0 where the call must run in Python, -1 error */
+static int known(Call *C, int32_t f) {
+    Regressor *R = C->R;
+    if (C->local ? R->asked[f] : R->ach_len[f] >= 0) return 1;
+    PyObject *r = PyObject_CallFunction(C->need_fn, "i", (int)f);
+    if (r == NULL) return -1;
+    int t = PyObject_IsTrue(r);
+    Py_DECREF(r);
+    if (t <= 0) return t;
+    if (fit(R) < 0) return -1;
+    if (C->local ? !R->asked[f] : R->ach_len[f] < 0) {
+        PyErr_SetString(PyExc_RuntimeError, "need() did not set the achievers");
+        return -1;
+    }
+    return 1;
+}
+
+/* set_local_achievers(fact, actions): the fact's templates for the running call only */
+static PyObject *Regressor_set_local_achievers(Regressor *R, PyObject *args) {
+    int f;
+    PyObject *acts;
+    if (!PyArg_ParseTuple(args, "iO", &f, &acts)) return NULL;
+    if (!R->in_call) { PyErr_SetString(PyExc_RuntimeError, "set_local_achievers outside a search"); return NULL; }
+    if (fit(R) < 0) return NULL;
+    if (f < 0 || f >= R->nf || (size_t)f >= R->caph) { PyErr_SetString(PyExc_IndexError, "fact id not added"); return NULL; }
+    size_t a0 = R->lach.n;
+    if (read_ints(acts, "achievers", &R->lach) < 0) { R->lach.n = a0; return NULL; }
+    for (size_t i = a0; i < R->lach.n; i++)
+        if (R->lach.v[i] >= R->na) {
+            R->lach.n = a0;
+            PyErr_SetString(PyExc_IndexError, "action id not added");
+            return NULL;
+        }
+    R->lstart[f] = (int32_t)a0;
+    R->llen[f] = (int32_t)(R->lach.n - a0);
+    R->asked[f] = 1;
+    Py_RETURN_NONE;
+}
+
+static inline int stamp_less(int32_t a0, int32_t a1, int32_t a2, int32_t b0, int32_t b1, int32_t b2) {
+    return a0 != b0 ? a0 < b0 : a1 != b1 ? a1 < b1 : a2 < b2;
+}
+
+static void sort_by(int32_t *v, int32_t n, const int32_t *key) {
+    for (int32_t i = 1; i < n; i++) {
+        int32_t x = v[i], kx = key ? key[x] : x, j = i - 1;
+        while (j >= 0 && (key ? key[v[j]] : v[j]) > kx) { v[j + 1] = v[j]; j--; }
+        v[j + 1] = x;
+    }
+}
+
+static int cmp_int(const void *a, const void *b) {
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
+static PyObject *int_list(const int32_t *v, int32_t n) {
+    PyObject *l = PyList_New(n);
+    if (l == NULL) return NULL;
+    for (int32_t i = 0; i < n; i++) {
+        PyObject *x = PyLong_FromLong(v[i]);
+        if (x == NULL) { Py_DECREF(l); return NULL; }
+        PyList_SET_ITEM(l, i, x);
+    }
+    return l;
+}
+
+/* search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local, conflict)
+ *   -> (status, [facts of the path's nodes, the solved one first], [actions], expanded, generated)
+ * order: None or the serialization's fact ids; protect: the monotonic call's fact ids; local: the
+ * call's achievers are asked per fact in the call (need sets them with set_local_achievers); conflict:
+ * conflict(x, y) -> bool, the plain conflict rules (None where there are none) */
