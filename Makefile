@@ -53,6 +53,12 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/classical.py --time-limit 10 --out benchmarks/results/classical_current
 	$(BIN)/python benchmarks/logistics_hpn_fd.py --packages 8,14,20 --seeds 0,1
 	$(BIN)/python benchmarks/flat_logistics.py --time-limit 30 --seeds 0,1
+	rm -rf benchmarks/results/planner_profile_current && mkdir -p benchmarks/results/planner_profile_current
+	for loop in python compiled; do $(BIN)/python benchmarks/planner_profile.py --regimes single,both --sizes 3,5,8 \
+	  --trials 0,1 --strategies hpn --logistics 20 --flat-logistics 10,14,20 --loop $$loop --tag $$loop-1 \
+	  --out benchmarks/results/planner_profile_current/planner_profile.jsonl > /dev/null; done
+	$(BIN)/python benchmarks/planner_profile.py --loop-table benchmarks/results/planner_profile_current/planner_profile.jsonl \
+	  > benchmarks/results/planner_profile_current/table.md
 	$(BIN)/python benchmarks/summarize.py
 
 clean:
