@@ -53,7 +53,8 @@ static int32_t nodes_find(Nodes *s, const int32_t *f, int32_t n, int32_t focus, 
         int32_t x = s->table[i];
         if (x == 0) return -1;
         RNode *d = &s->v[x - 1];
-        if (d->hash == h && d->len == n && d->focus == focus && memcmp(&s->facts.v[d->start], f, (size_t)n * sizeof(int32_t)) == 0)
+        if (d->hash == h && d->len == n && d->focus == focus &&
+            (n == 0 || memcmp(&s->facts.v[d->start], f, (size_t)n * sizeof(int32_t)) == 0))  /* (an empty child: NULL) */
             return x - 1;
         i = (i + 1) & mask;
     }
