@@ -8,6 +8,7 @@ itself cannot fail).  Where it cannot run a call it says so by returning ``None`
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import replace
 
 import pytest
@@ -176,7 +177,7 @@ def test_the_loop_refuses_bad_ids():
     with pytest.raises(IndexError):
         loop.set_achievers(3, [])
     with pytest.raises(ValueError):
-        loop.search([7], [0.0], lambda f: True, lambda f: False, None, 1.0, 10, False, None, [], False, None)
+        loop.search([7], [0.0], lambda f: True, lambda f: False, None, 1.0, 10, False, None, [], False, None, None)
     assert loop.facts == 1 and loop.actions == 0
 
 
@@ -207,9 +208,9 @@ def test_plain_conflict_rules_run_in_the_loop() -> None:
 
 
 def test_the_tidy_house_plans_alike(monkeypatch):
-    """The held-out tidy house (plain conflict rules, a last-seen belief), its place cost declared a
-    StateFreeCost (the example's is a plain callable, so the ground h_add and this loop are not
-    used there): its top-level and flat calls."""
+    """The held-out tidy house (plain conflict rules, a last-seen belief), its place cost as the
+    example has it (a plain callable: costed per call) and declared a StateFreeCost (a number per
+    ground action): its top-level and flat calls."""
     from dataclasses import replace as dc_replace
 
     from nowplan.core.levels import LevelMap
@@ -229,8 +230,8 @@ def test_the_tidy_house_plans_alike(monkeypatch):
             return self.fn(bindings, None)
 
     ops = tuple(dc_replace(op, cost=Free(op.cost)) if callable(op.cost) else op for op in p.domain.operators)
-    dom = dc_replace(p.domain, operators=ops)
-    for levels in (LevelMap(dom.top_level), flat_levels()):
+    for dom, levels in itertools.product((dc_replace(p.domain, operators=ops), p.domain),
+                                         (LevelMap(p.domain.top_level), flat_levels())):
         cfg = replace(CONFIG, max_nodes=2_000, shortcut_nodes=500)
         with pytest.MonkeyPatch.context() as mp:
             py, c, ran = _both(mp, dom, p.objects, belief, p.goal, levels, cfg)

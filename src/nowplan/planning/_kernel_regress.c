@@ -25,7 +25,7 @@
 
 #include "_kernel_heap.h"
 
-#define REGRESS_API 4
+#define REGRESS_API 5
 enum { RS_SOLVED, RS_EXHAUSTED, RS_NODE_LIMIT, RS_TIME_LIMIT, RS_UNSUPPORTED };
 
 #include "_kernel_regress_store.h"
@@ -33,12 +33,12 @@ enum { RS_SOLVED, RS_EXHAUSTED, RS_NODE_LIMIT, RS_TIME_LIMIT, RS_UNSUPPORTED };
 #include "_kernel_regress_call.h"
 
 static PyObject *Regressor_search(Regressor *R, PyObject *args) {
-    PyObject *root, *hvals, *holds_fn, *need_fn, *stop, *order, *protect, *conflict_fn;
+    PyObject *root, *hvals, *holds_fn, *need_fn, *stop, *order, *protect, *conflict_fn, *cost_fn;
     double weight;
     long long max_nodes;
     int no_rewrites, local;
-    if (!PyArg_ParseTuple(args, "OOOOOdLpOOpO", &root, &hvals, &holds_fn, &need_fn, &stop, &weight, &max_nodes,
-                          &no_rewrites, &order, &protect, &local, &conflict_fn))
+    if (!PyArg_ParseTuple(args, "OOOOOdLpOOpOO", &root, &hvals, &holds_fn, &need_fn, &stop, &weight, &max_nodes,
+                          &no_rewrites, &order, &protect, &local, &conflict_fn, &cost_fn))
         return NULL;
     if (R->has_plain && conflict_fn == Py_None) {
         PyErr_SetString(PyExc_ValueError, "plain conflict rules need conflict(x, y)");
@@ -48,7 +48,7 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
     int has_order = order != Py_None;
     int32_t focus0 = 0;
     Vec ov = {0};
-    Call C = {R, holds_fn, need_fn, conflict_fn, NULL, 0, 0, 0, local};
+    Call C = {R, holds_fn, need_fn, conflict_fn, cost_fn, NULL, 0, 0, 0, local};
     Nodes S = {0};
     RQueue Q = {0};
     Vec cur = {0}, allowed = {0}, child = {0}, newl = {0};
@@ -70,6 +70,7 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
     memset(R->remmark, 0, R->caph * sizeof(uint32_t));
     memset(R->chmark, 0, R->caph * sizeof(uint32_t));
     memset(R->tried, 0, R->capt * sizeof(uint32_t));
+    memset(R->cknown, 0, R->capt);
     memset(R->guardmark, 0, R->capfl * sizeof(uint32_t));
     if (has_order) {
         if (read_ints(order, "order", &ov) < 0) goto done;
@@ -283,7 +284,8 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
                         if (vpush(&child, newl.v[q++]) < 0) goto done;
                 }
                 int32_t cn = (int32_t)child.n;
-                double cost = R->cost[a];
+                double cost;
+                if (action_cost(&C, a, &cost) < 0) goto done;
                 /* a pure rewrite (rewrites.pure_rewrite): held facts traded for new held facts at no cost */
                 int rewrite = 0;
                 if (cost == 0.0) {
@@ -410,7 +412,7 @@ static PyMethodDef Regressor_methods[] = {
     {"set_local_achievers", (PyCFunction)Regressor_set_local_achievers, METH_VARARGS,
      "set_local_achievers(fact, actions): for the running call only"},
     {"search", (PyCFunction)Regressor_search, METH_VARARGS,
-     "search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local, conflict)"},
+     "search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local, conflict, cost)"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -4,7 +4,7 @@
 
 typedef struct {
     Regressor *R;
-    PyObject *holds_fn, *need_fn, *conflict_fn;
+    PyObject *holds_fn, *need_fn, *conflict_fn, *cost_fn;  /* cost_fn: None where the costs are the store's */
     double *hv;
     Py_ssize_t nv;
     uint32_t epoch, mk;  /* the expansion's and the successor's stamps */
@@ -51,6 +51,10 @@ static int fit(Regressor *R) {
     R->capk = c;
     c = R->capt;
     if (grow((void **)&R->tried, &c, (size_t)R->na + 1, sizeof(uint32_t)) < 0) return -1;
+    c = R->capt;
+    if (grow((void **)&R->ccost, &c, (size_t)R->na + 1, sizeof(double)) < 0) return -1;
+    c = R->capt;
+    if (grow((void **)&R->cknown, &c, (size_t)R->na + 1, 1) < 0) return -1;
     R->capt = c;
     return 0;
 }
@@ -66,6 +70,23 @@ static int holds(Call *C, int32_t f) {
     if (t < 0) return -1;
     C->R->holds[f] = (int8_t)t;
     return t;
+}
+
+/* action a's cost in this call: the store's, or asked of Python once (costs that read the belief) */
+static int action_cost(Call *C, int32_t a, double *out) {
+    Regressor *R = C->R;
+    if (C->cost_fn == Py_None) { *out = R->cost[a]; return 0; }
+    if (!R->cknown[a]) {
+        PyObject *r = PyObject_CallFunction(C->cost_fn, "i", (int)a);
+        if (r == NULL) return -1;
+        double v = PyFloat_AsDouble(r);
+        Py_DECREF(r);
+        if (v == -1.0 && PyErr_Occurred()) return -1;
+        R->ccost[a] = v;
+        R->cknown[a] = 1;
+    }
+    *out = R->ccost[a];
+    return 0;
 }
 
 /* do the plain conflict rules exclude facts x and y together?  1, 0, -1 with an error set */
@@ -190,8 +211,9 @@ static PyObject *int_list(const int32_t *v, int32_t n) {
     return l;
 }
 
-/* search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local, conflict)
+/* search(root, hvals, holds, need, stop, weight, max_nodes, no_rewrites, order, protect, local, conflict, cost)
  *   -> (status, [facts of the path's nodes, the solved one first], [actions], expanded, generated)
  * order: None or the serialization's fact ids; protect: the monotonic call's fact ids; local: the
  * call's achievers are asked per fact in the call (need sets them with set_local_achievers); conflict:
- * conflict(x, y) -> bool, the plain conflict rules (None where there are none) */
+ * conflict(x, y) -> bool, the plain conflict rules (None where there are none); cost: cost(a) -> float,
+ * an action's cost in this call where costs read the belief (None: the costs add_action stored) */

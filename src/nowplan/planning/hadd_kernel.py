@@ -15,18 +15,21 @@ at the call's top level; actions the level map puts at another level are passed
 with their own preconditions; a negative precondition whose atom is false is a
 fact of the explored state (free), as in ``hadd_ids``; so is every other negative
 fact that holds, which gives each fact that holds the value 0 and lets the search
-sum a subgoal's values without asking which of its facts hold.  Only for tasks whose
-action costs are numbers (a cost read off the belief would need every action
-costed per call) and when the kernel is built; :func:`kernel_hadd` says whether.
+sum a subgoal's values without asking which of its facts hold.  When the kernel is built
+(:func:`kernel_hadd` says whether); a task whose costs read the belief has every action
+costed in the call, and a kernel is compiled per distinct vector of costs (the latest
+``VARIABLE_KEPT`` are kept: the calls from one state, or from states where no cost changed,
+share one).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING
 
 from nowplan.core.levels import LevelMap
+from nowplan.core.operators import Action
 from nowplan.planning.ground_task import GroundTask
 from nowplan.planning.native import kernel_class
 
@@ -51,14 +54,23 @@ class _Compiled:
         return self.kernel.costs(true, over, off)
 
 
-def _compiled(task: GroundTask, top: int) -> _Compiled | None:
-    if not task.all_fixed:
+VARIABLE_KEPT = 4  # kernels kept per task and top level for costs that read the belief
+
+
+def _compiled(task: GroundTask, top: int, costs: list[float] | None = None) -> _Compiled | None:
+    """The task's kernel at ``top``; ``costs``: every action's cost in this call (a task whose costs
+    read the belief; ``None`` there: no kernel)."""
+    if not task.all_fixed and costs is None:
         return None
-    key = ("kernel hadd", top)
-    hit = task.memo.get(key)
     cls = kernel_class()
     if cls is None:
         return None
+    if task.all_fixed:
+        key: tuple[object, ...] = ("kernel hadd", top)
+    else:
+        assert costs is not None
+        key = ("kernel hadd", top, tuple(costs))
+    hit = task.memo.get(key)
     if isinstance(hit, _Compiled):
         return hit
     nf = len(task.table)
@@ -69,7 +81,7 @@ def _compiled(task: GroundTask, top: int) -> _Compiled | None:
             rows[f].append(k)
     by_pre = rows
     no_pre = [k for k, p in enumerate(pre) if not p]
-    cost = [float(c) for c in task.fixed_cost if c is not None]
+    cost = [float(c) for c in task.fixed_cost if c is not None] if costs is None else costs
     empty: list[list[int]] = [[] for _ in pre]
     kernel = cls(nf, pre, task.effects, empty, cost, [], by_pre, no_pre, "add")
     # every negative fact with its positive twin (-1: not in the table), so that each fact that
@@ -78,23 +90,37 @@ def _compiled(task: GroundTask, top: int) -> _Compiled | None:
     negatives = tuple((f, T.by_key.get((a.predicate, a.args, True), -1))
                       for f, a in enumerate(T.atoms[:nf]) if a.value is False)
     hit = task.memo[key] = _Compiled(kernel, nf, negatives)
+    if costs is not None:  # keep the latest few of the belief-dependent ones
+        kept = task.memo.setdefault(("kernel hadd variable", top), [])
+        assert isinstance(kept, list)
+        kept.append(key)
+        while len(kept) > VARIABLE_KEPT:
+            task.memo.pop(kept.pop(0), None)
     return hit
 
 
-def kernel_hadd(task: GroundTask, top: int) -> bool:
-    """Can :class:`KernelHadd` serve this task (kernel built, every cost a number)?"""
+def kernel_hadd(task: GroundTask, top: int, variable_costs: bool = False) -> bool:
+    """Can :class:`KernelHadd` serve this task (the kernel built; every cost a number, or
+    ``variable_costs``: the caller costs every action per call)?"""
+    if not task.all_fixed:
+        return variable_costs and kernel_class() is not None
     return _compiled(task, top) is not None
 
 
 class KernelHadd:
     """h_add of fact ids from one compiled exploration of every ground action (see the module docstring)."""
 
-    def __init__(self, task: GroundTask, levels: LevelMap, true_now: frozenset[int]) -> None:
-        comp = task.memo.get(("kernel hadd", levels.top))  # made by kernel_hadd
-        if not isinstance(comp, _Compiled):
-            comp = _compiled(task, levels.top)
+    def __init__(self, task: GroundTask, levels: LevelMap, true_now: frozenset[int],
+                 cost: Callable[[Action], float] | None = None) -> None:
+        costs = None
+        if not task.all_fixed:  # costs that read the belief: every action's, in this call
+            if cost is None:
+                raise ValueError("KernelHadd: this task's costs read the belief; pass cost")
+            fixed = task.fixed_cost
+            costs = [cost(task.action(k)) if fixed[k] is None else float(fixed[k] or 0.0) for k in range(task.n)]
+        comp = _compiled(task, levels.top, costs)
         if comp is None:
-            raise ValueError("KernelHadd needs the compiled kernel and numeric action costs (see kernel_hadd)")
+            raise ValueError("KernelHadd needs the compiled kernel (see kernel_hadd)")
         self.task = task
         over: list[tuple[int, list[int]]] = []
         for k, lv in task.lowered(levels).items():

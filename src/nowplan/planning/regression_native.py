@@ -10,9 +10,10 @@ costs, stamps and parents, so it returns the same plan with the same counters
   deferred) and its values are whole numbers (so a sum does not depend on its order);
 * the call has no forbidden first steps and no generator that may give up, and its root goal
   is consistent (a serialized or monotonic call, ``order`` or ``protect``, runs there too);
-* the successor templates are the problem's shared ones (numeric costs, achievers that read
-  nothing of the goal; where the level map puts some actions at other levels, the call asks
-  every fact's templates once, as the Python loop does) and every fact is a plain value
+* every fact's achievers are the problem's (no generator achieves it; where the level map puts
+  some actions at other levels, the call asks every fact's templates once, as the Python loop
+  does; where costs read the belief, the loop asks each action's cost once per call) and every
+  fact is a plain value
   (equality rule); plain (pairwise) conflict rules are asked once per pair of facts
   (``FactTable.plain_conflict``, kept by the loop).
 
@@ -46,7 +47,7 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
-API = 4  # REGRESS_API in _kernel_regress.c
+API = 5  # REGRESS_API in _kernel_regress.c
 
 _mod: ModuleType | None | bool = False  # not imported yet
 
@@ -168,10 +169,8 @@ def run(
     if (not isinstance(hadd, KernelHadd) or callable(search.domain_h) or search.relaxed is not None
             or search.forbidden_first or search.gave_up is not None or not search.config.weight > 0):
         return None
-    succ = search._successors
-    if not succ.shares:
-        return None
-    local = not succ.uniform
+    local = search._successors.overridden
+    task = search._task
     root = T.ids_of(goal.atoms)
     if not root or not search.grounder.shares_answer(T.atoms[next(iter(root))]) or not T.consistent(root):
         return None
@@ -185,7 +184,8 @@ def run(
     status, nodes, acts, expanded, generated = comp.loop.search(
         list(root), hadd.values, search.fholds, lambda f: comp.need(search, goal, f, local),
         lambda: stop() > deadline, float(search.config.weight), int(max_nodes), not search.config.held_rewrites,
-        order_ids, guard, local, T.plain_conflict if T.plain else None)
+        order_ids, guard, local, T.plain_conflict if T.plain else None,
+        None if task is None or task.all_fixed else (lambda a: search.cost(comp.acts[a])))
     if status == mod.UNSUPPORTED:
         return None
     search.expanded += expanded

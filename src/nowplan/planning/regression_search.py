@@ -170,8 +170,8 @@ class _Search:
         elif self._can_relax:
             if self._ground_hadd is None:
                 task = ground_task(self.grounder, self.drop)
-                if kernel_hadd(task, self.levels.top):  # one compiled exploration of every action
-                    self._ground_hadd = KernelHadd(task, self.levels, self.true_ids())
+                if kernel_hadd(task, self.levels.top, variable_costs=True):  # one compiled exploration of every action
+                    self._ground_hadd = KernelHadd(task, self.levels, self.true_ids(), self.cost)
                 else:
                     self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost, self.true_ids())
                 self._task = task

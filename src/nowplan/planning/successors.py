@@ -84,6 +84,11 @@ class Successors:
         return self._shared is not None
 
     @property
+    def overridden(self) -> bool:
+        """The level map puts some actions at other levels than its top (their templates differ)."""
+        return bool(self._over_keys or self._over_ops)
+
+    @property
     def uniform(self) -> bool:
         """Every fact's templates are the problem's shared ones, at the top level (no level overrides)."""
         return self._shared is not None and not self._over_keys and not self._over_ops
