@@ -71,6 +71,7 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
     memset(R->chmark, 0, R->caph * sizeof(uint32_t));
     memset(R->tried, 0, R->capt * sizeof(uint32_t));
     memset(R->cknown, 0, R->capt);
+    memset(R->pcmark, 0, R->caph * sizeof(uint32_t));
     memset(R->guardmark, 0, R->capfl * sizeof(uint32_t));
     if (has_order) {
         if (read_ints(order, "order", &ov) < 0) goto done;
@@ -163,6 +164,7 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
         double gcost = S.v[node].g, hnode = S.v[node].h;
         int32_t rnode = S.v[node].r;
         uint32_t ep = ++C.epoch;
+        R->pcl.n = 0;
         /* the node's index: its facts by fluent and by conflict key */
         for (int32_t i = 0; i < n; i++) {
             int32_t f = cur.v[i], fl = R->fluent[f];

@@ -25,6 +25,12 @@ static int fit(Regressor *R) {
     if (grow((void **)&R->pos, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
     for (size_t i = R->caph; i < c; i++) R->pos[i] = R->never;
     c = R->caph;
+    if (grow((void **)&R->pcmark, &c, (size_t)R->nf + 1, sizeof(uint32_t)) < 0) return -1;
+    c = R->caph;
+    if (grow((void **)&R->pcstart, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
+    c = R->caph;
+    if (grow((void **)&R->pclen, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
+    c = R->caph;
     if (grow((void **)&R->asked, &c, (size_t)R->nf + 1, 1) < 0) return -1;
     c = R->caph;
     if (grow((void **)&R->lstart, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
@@ -127,11 +133,19 @@ static int plain_conflict(Call *C, int32_t x, int32_t y) {
 
 /* does fact e plainly conflict with a fact of the node (cur, n facts) not removed in this successor? */
 static int plain_clash(Call *C, int32_t e, const int32_t *cur, int32_t n, uint32_t mk) {
-    for (int32_t i = 0; i < n; i++) {
-        if (C->R->remmark[cur[i]] == mk) continue;
-        int t = plain_conflict(C, e, cur[i]);
-        if (t) return t;
+    Regressor *R = C->R;
+    if (R->pcmark[e] != C->epoch) {  /* the node's facts e conflicts with, once per expansion */
+        R->pcstart[e] = (int32_t)R->pcl.n;
+        for (int32_t i = 0; i < n; i++) {
+            int t = plain_conflict(C, e, cur[i]);
+            if (t < 0) return -1;
+            if (t && vpush(&R->pcl, cur[i]) < 0) return -1;
+        }
+        R->pclen[e] = (int32_t)R->pcl.n - R->pcstart[e];
+        R->pcmark[e] = C->epoch;
     }
+    for (int32_t i = 0; i < R->pclen[e]; i++)
+        if (R->remmark[R->pcl.v[R->pcstart[e] + i]] != mk) return 1;
     return 0;
 }
 

@@ -53,6 +53,9 @@ typedef struct {
     int32_t *pos, never;  /* a fact's first position in the call's order, `never` when not in it */
     uint8_t *asked;       /* by fact: its call-local achievers are set (lstart/llen into lach) */
     double *ccost;        /* by action: its cost in this call, where costs read the belief (cknown) */
+    uint32_t *pcmark;     /* by fact: its plain conflicts with the expanded node are listed (== the stamp) */
+    int32_t *pcstart, *pclen;
+    Vec pcl;              /* those lists, one expansion's */
     uint8_t *cknown;
     int32_t *lstart, *llen;
     Vec lach;
@@ -71,7 +74,8 @@ static void Regressor_dealloc(Regressor *R) {
                   R->es, R->el, R->ks, R->kl, R->ps, R->pl, R->clash, R->cost, R->effs.v, R->ekeys.v, R->pres.v,
                   R->holds, R->flmark, R->newmark, R->kmark, R->lkmark, R->remmark, R->chmark, R->tried,
                   R->flfact, R->newfact, R->kfact, R->lkfact, R->as, R->al, R->alls.v, R->pos, R->guardmark,
-                  R->guardfact, R->asked, R->lstart, R->llen, R->lach.v, R->pairs, R->ccost, R->cknown};
+                  R->guardfact, R->asked, R->lstart, R->llen, R->lach.v, R->pairs, R->ccost, R->cknown, R->pcmark,
+                  R->pcstart, R->pclen, R->pcl.v};
     for (size_t i = 0; i < sizeof(ps) / sizeof(ps[0]); i++) PyMem_Free(ps[i]);
     Py_TYPE(R)->tp_free((PyObject *)R);
 }

@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import Any
 
-from nowplan.core.atoms import Atom, KeyedRule, contradiction
+from nowplan.core.atoms import Atom, KeyedRule
 from nowplan.core.domain import Domain
 
 
@@ -65,12 +65,20 @@ class Excluder:
                 for rule in self.keyed:
                     for k in rule.group_keys(e):
                         found.update(x for x in self.groups.get(k, ()) if x != e)
-                if self.plain:
-                    found.update(x for x in self.reached
-                                 if x != e and contradiction([e, x], self.rules, new=[x]) is not None)
+                if self.plain:  # what contradiction([e, x], new=[x]) adds to the keyed groups above
+                    found.update(x for x in self.reached if x != e and self._plain_clash(e, x))
                 hit = self.memo[e] = frozenset(found)
             out |= hit
         return out
+
+    def _plain_clash(self, e: Atom, x: Atom) -> bool:
+        """``x`` and ``e`` cannot hold together by the value rule of their fluent or a plain rule
+        (``contradiction``'s pairwise part; the keyed rules' pairs come from the groups, without
+        asking every rule's keys of both atoms per pair: 97,627 pairs on the held-out tidy house
+        took 2.3 s of a 5.3 s HPN run that way)."""
+        if x.key == e.key:
+            return not self.rules.rule(x.predicate).compatible(x.value, e.value)
+        return any(c(x, e) or c(e, x) for c in self.plain)
 
     def keys(self, a: Atom) -> tuple[Any, ...]:
         """The group keys of ``a`` under the keyed rules (two true atoms sharing one exclude each other)."""
