@@ -128,6 +128,21 @@ def test_values_that_are_not_objects_go_to_the_regression_search() -> None:
         plan(_timed_domain(), _objects(), STATE, goal, flat_levels(), PlannerConfig(time_limit=10, engine="forward"))
 
 
+def test_the_refusal_is_kept_for_the_later_calls(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Once a generator proposed a non-object, the domain's later calls do not ground forward again."""
+    import nowplan.planning.forward as forward
+
+    dom = _timed_domain()
+    goal = Goal.of([atom("waited", "cup")])
+    assert plan(dom, _objects(), STATE, goal, flat_levels(), PlannerConfig(time_limit=10)).solved
+    assert "not an object" in dom.facts.derived["forward not enumerable"]
+    grounded: list[Any] = []
+    real = forward.forward_plan
+    monkeypatch.setattr(forward, "forward_plan", lambda *a, **k: grounded.append(a) or real(*a, **k))
+    res = plan(dom, _objects(), STATE, goal, flat_levels(), PlannerConfig(time_limit=10))
+    assert res.solved and not res.method.startswith("forward") and not grounded
+
+
 def test_a_generator_that_reads_the_goal_keeps_the_forward_search_out() -> None:
     dom = _domain(Generator("where", (U,), _believed_spot, (T,)))
     assert "reads=reads_nothing" in (generators_unsupported(dom) or "")

@@ -183,16 +183,10 @@ static PyObject *Regressor_set_local_achievers(Regressor *R, PyObject *args) {
     if (!R->in_call) { PyErr_SetString(PyExc_RuntimeError, "set_local_achievers outside a search"); return NULL; }
     if (fit(R) < 0) return NULL;
     if (f < 0 || f >= R->nf || (size_t)f >= R->caph) { PyErr_SetString(PyExc_IndexError, "fact id not added"); return NULL; }
-    size_t a0 = R->lach.n;
-    if (read_ints(acts, "achievers", &R->lach) < 0) { R->lach.n = a0; return NULL; }
-    for (size_t i = a0; i < R->lach.n; i++)
-        if (R->lach.v[i] >= R->na) {
-            R->lach.n = a0;
-            PyErr_SetString(PyExc_IndexError, "action id not added");
-            return NULL;
-        }
+    int64_t a0 = read_achievers(R, acts, &R->lach);
+    if (a0 < 0) return NULL;
     R->lstart[f] = (int32_t)a0;
-    R->llen[f] = (int32_t)(R->lach.n - a0);
+    R->llen[f] = (int32_t)((int64_t)R->lach.n - a0);
     R->asked[f] = 1;
     Py_RETURN_NONE;
 }

@@ -209,22 +209,29 @@ static PyObject *Regressor_add_action(Regressor *R, PyObject *args) {
     return PyLong_FromLong(a);
 }
 
+/* append the action ids of `acts` to `into` (each below na): their start, or -1 with an error set */
+static int64_t read_achievers(Regressor *R, PyObject *acts, Vec *into) {
+    size_t a0 = into->n;
+    if (read_ints(acts, "achievers", into) < 0) { into->n = a0; return -1; }
+    for (size_t i = a0; i < into->n; i++)
+        if (into->v[i] >= R->na) {
+            into->n = a0;
+            PyErr_SetString(PyExc_IndexError, "action id not added");
+            return -1;
+        }
+    return (int64_t)a0;
+}
+
 /* set_achievers(fact, actions): the fact's successor templates in the search's order */
 static PyObject *Regressor_set_achievers(Regressor *R, PyObject *args) {
     int f;
     PyObject *acts;
     if (!PyArg_ParseTuple(args, "iO", &f, &acts)) return NULL;
     if (f < 0 || f >= R->nf) { PyErr_SetString(PyExc_IndexError, "fact id not added"); return NULL; }
-    size_t a0 = R->ach.n;
-    if (read_ints(acts, "achievers", &R->ach) < 0) { R->ach.n = a0; return NULL; }
-    for (size_t i = a0; i < R->ach.n; i++)
-        if (R->ach.v[i] >= R->na) {
-            R->ach.n = a0;
-            PyErr_SetString(PyExc_IndexError, "action id not added");
-            return NULL;
-        }
+    int64_t a0 = read_achievers(R, acts, &R->ach);
+    if (a0 < 0) return NULL;
     R->ach_start[f] = (int32_t)a0;
-    R->ach_len[f] = (int32_t)(R->ach.n - a0);
+    R->ach_len[f] = (int32_t)((int64_t)R->ach.n - a0);
     Py_RETURN_NONE;
 }
 
