@@ -143,6 +143,21 @@ def test_the_refusal_is_kept_for_the_later_calls(monkeypatch: pytest.MonkeyPatch
     assert res.solved and not res.method.startswith("forward") and not grounded
 
 
+def test_a_generator_that_needs_its_context_goes_to_the_regression_search() -> None:
+    """Forward grounding calls a generator with context None; one that reads the context raises there
+    (a domain error in one line) and the call is planned by the regression search instead."""
+    def needs_context(bindings: Mapping[Var, Any], goal: Any, belief: Any, ctx: Any) -> Iterator[dict[Var, Any]]:
+        ctx.extras  # noqa: B018  (raises AttributeError on None)
+        yield from _believed_spot(bindings, goal, belief, ctx)
+
+    from nowplan.planning.context import PlanningContext
+
+    dom = _domain(Generator("where", (U,), needs_context, (T,), reads=reads_nothing))
+    res = plan(dom, _objects(), STATE, GOAL, flat_levels(), PlannerConfig(time_limit=10), PlanningContext())
+    assert res.solved and not res.method.startswith("forward"), (res.method, res.reason)
+    assert "failed without a goal and context" in dom.facts.derived["forward not enumerable"]
+
+
 def test_a_generator_that_reads_the_goal_keeps_the_forward_search_out() -> None:
     dom = _domain(Generator("where", (U,), _believed_spot, (T,)))
     assert "reads=reads_nothing" in (generators_unsupported(dom) or "")

@@ -11,8 +11,9 @@ that effect names (as unifying it with a target binds them) and on the belief (c
 propose the rest of its values (at most ``max_values`` each, as the regression grounder draws
 them; :func:`nowplan.planning.generators_run.run_generators`).  A
 generator that proposes a value that is not an object of the problem (a pose, a number) cannot be
-enumerated that way: the call leaves the forward search (:class:`NotEnumerable`) and the
-regression search plans, as it did for every domain with generators before.
+enumerated that way, and one that fails without a goal and a planning context may need them:
+either way the call leaves the forward search (:class:`NotEnumerable`) and the regression search
+plans, as it did for every domain with generators before.
 
 Found on the held-out tidy house (``benchmarks/results/heldout14/README.md``, finding 2): its
 ``spot`` generator proposes free floor spots, objects of the problem, and declares
@@ -28,6 +29,7 @@ from typing import Any
 from nowplan.core.atoms import Goal
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Operator, reads_nothing
+from nowplan.errors import NowplanError
 from nowplan.planning.generators_run import Misses, run_generators
 
 _NO_GOAL = Goal(frozenset())
@@ -98,13 +100,17 @@ class GeneratorFilter:
             if allowed is None:
                 b = {op.params[i]: args[i] for i in bound}
                 found: set[tuple[Any, ...]] = set()
-                for full in run_generators(op, b, _NO_GOAL, self.belief, None, self.max_values, self.misses):
-                    vals = tuple(full.get(op.params[i]) for i in rest)
-                    for v in vals:
-                        if v not in self.objects:
-                            raise NotEnumerable(f"a generator of operator {op.name} proposed {v!r}, not an "
-                                                "object of the problem")
-                    found.add(vals)
+                try:
+                    for full in run_generators(op, b, _NO_GOAL, self.belief, None, self.max_values, self.misses):
+                        vals = tuple(full.get(op.params[i]) for i in rest)
+                        for v in vals:
+                            if v not in self.objects:
+                                raise NotEnumerable(f"a generator of operator {op.name} proposed {v!r}, not an "
+                                                    "object of the problem")
+                        found.add(vals)
+                except NowplanError as e:  # (one that needs a planning context: the regression search has one)
+                    raise NotEnumerable(f"a generator of operator {op.name} failed without a goal and context "
+                                        f"({e})") from None
                 allowed = self._allowed[key] = frozenset(found)
             if tuple(args[i] for i in rest) in allowed:
                 return True
