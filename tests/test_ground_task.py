@@ -122,3 +122,34 @@ def test_instances_are_fills_in_order(dom, prob):
     g = Grounder(p.domain, p.objects, p.init)
     for op in p.domain.operators:
         assert instances(g, op) == [tuple(b[v] for v in op.params) for b in g._fill(op, {})], op.name
+
+
+def test_a_state_free_cost_that_fails_for_an_unused_instance_is_asked_lazily() -> None:
+    """A PDDL cost function the :init leaves undefined for an instance no plan needs (IPC-2011
+    elevators p12: move-up-slow between floors its lift never serves) must not fail the call: the
+    instance's cost stays None in the ground task and is asked only if a search uses it."""
+    from nowplan.core.atoms import atom
+    from nowplan.core.domain import Domain, Predicate
+    from nowplan.core.operators import Operator, Precondition, StateFreeCost
+    from nowplan.core.atoms import Var
+    from nowplan.core.state import State
+    from nowplan.errors import ModelError
+    from nowplan.planning.plan import PlanStatus
+    from nowplan.planning.regression import plan
+
+    x, y = Var("x"), Var("y")
+
+    class Distance(StateFreeCost):
+        def __call__(self, bindings, belief=None):
+            if (bindings[x], bindings[y]) == ("c", "a"):
+                raise ModelError("no distance given from c to a")
+            return 2.0
+
+    dom = Domain("hops", {"at": Predicate("at", 1), "link": Predicate("link", 2)},
+                 (Operator("hop", (x, y), (Precondition(atom("at", x)), Precondition(atom("link", x, y))),
+                           (atom("at", y), atom("at", x, value=False)), cost=Distance()),))
+    init = State([atom("at", "a"), atom("link", "a", "b"), atom("link", "b", "c"), atom("link", "c", "a")])
+    res = plan(dom, {o: None for o in "abc"}, init, Goal.of([atom("at", "c")]), flat_levels(),
+               PlannerConfig(engine="regression", serialization=False, monotonic=False))
+    assert res.status is PlanStatus.SOLVED and [s.action.key for s in res.plan.steps[1:]] == [
+        ("hop", ("a", "b")), ("hop", ("b", "c"))]

@@ -162,6 +162,16 @@ def instances(grounder: Grounder, op: Operator) -> list[_Args]:
     return out
 
 
+def _state_free(c: StateFreeCost, op: Operator, args: tuple[Term, ...]) -> float | None:
+    """Instance ``args`` of ``op`` costed once; ``None`` (asked when a search uses it, as any cost that
+    reads the belief) where the cost cannot be had here: a PDDL cost function the :init leaves
+    undefined for an instance no plan reaches (IPC-2011 elevators p12) must not fail a call."""
+    try:
+        return float(c(dict(zip(op.params, args, strict=True)), None))
+    except Exception:  # (the domain's error, raised again where a search asks that action's cost)
+        return None
+
+
 class GroundTask:
     """The ground actions of a problem as fact ids (see the module docstring).
 
@@ -209,7 +219,7 @@ class GroundTask:
             self.effects.extend(zip(*eff_cols) if eff_cols else [() for _ in instances])
             c = op.cost
             if isinstance(c, StateFreeCost):  # the same in every belief: a number per instance, once
-                self.fixed_cost.extend([float(c(dict(zip(op.params, xs, strict=True)), None)) for xs in instances])
+                self.fixed_cost.extend([_state_free(c, op, xs) for xs in instances])
             else:
                 self.fixed_cost.extend([None if callable(c) else float(c)] * len(instances))
             self.op.extend([i] * len(instances))

@@ -107,6 +107,10 @@ def kernel_hadd(task: GroundTask, top: int, variable_costs: bool = False) -> boo
     return _compiled(task, top) is not None
 
 
+class CostsUnavailable(Exception):
+    """An action's cost could not be had for every action at once (the search asks costs lazily instead)."""
+
+
 class KernelHadd:
     """h_add of fact ids from one compiled exploration of every ground action (see the module docstring)."""
 
@@ -117,7 +121,10 @@ class KernelHadd:
             if cost is None:
                 raise ValueError("KernelHadd: this task's costs read the belief; pass cost")
             fixed = task.fixed_cost
-            costs = [cost(task.action(k)) if fixed[k] is None else float(fixed[k] or 0.0) for k in range(task.n)]
+            try:
+                costs = [cost(task.action(k)) if fixed[k] is None else float(fixed[k] or 0.0) for k in range(task.n)]
+            except Exception as e:  # (e.g. a PDDL cost the :init leaves undefined for an unreachable instance)
+                raise CostsUnavailable(str(e)) from e
         comp = _compiled(task, levels.top, costs)
         if comp is None:
             raise ValueError("KernelHadd needs the compiled kernel (see kernel_hadd)")

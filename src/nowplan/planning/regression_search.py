@@ -22,7 +22,7 @@ from nowplan.planning.context import PlanningContext
 from nowplan.planning.deferred import Expansion
 from nowplan.planning.ground_task import GroundTask
 from nowplan.planning.grounding import Grounder
-from nowplan.planning.hadd_kernel import KernelHadd, kernel_hadd
+from nowplan.planning.hadd_kernel import CostsUnavailable, KernelHadd, kernel_hadd
 from nowplan.planning.hadd_relevant import RelevantHadd
 from nowplan.planning.heuristics import ground_task, relax_unsupported, lazy_by_default
 from nowplan.planning import regression_native
@@ -170,8 +170,14 @@ class _Search:
         elif self._can_relax:
             if self._ground_hadd is None:
                 task = ground_task(self.grounder, self.drop)
+                hadd: KernelHadd | None = None
                 if kernel_hadd(task, self.levels.top, variable_costs=True):  # one compiled exploration of every action
-                    self._ground_hadd = KernelHadd(task, self.levels, self.true_ids(), self.cost)
+                    try:
+                        hadd = KernelHadd(task, self.levels, self.true_ids(), self.cost)
+                    except CostsUnavailable:  # a cost to be asked only where the search needs it
+                        hadd = None
+                if hadd is not None:
+                    self._ground_hadd = hadd
                 else:
                     self._ground_hadd = RelevantHadd(self.grounder, self.levels, self.drop, self.cost, self.true_ids())
                 self._task = task
