@@ -11,58 +11,40 @@ typedef struct {
     int local;           /* achievers asked per call (set_local_achievers), not the persistent ones */
 } Call;
 
+/* grow every array of a group (pointers and item sizes) from *cap to one capacity for n items */
+static int grow_group(void **const *ptrs, const size_t *sizes, size_t count, size_t *cap, size_t n) {
+    size_t c = *cap;
+    for (size_t i = 0; i < count; i++) {
+        c = *cap;  /* (each from the old capacity: they all end at the same one) */
+        if (grow(ptrs[i], &c, n, sizes[i]) < 0) return -1;
+    }
+    *cap = c;
+    return 0;
+}
+
 /* the scratch arrays sized for the facts, fluents, keys and actions known now */
 static int fit(Regressor *R) {
-    size_t c;
-    c = R->caph;
-    if (grow((void **)&R->holds, &c, (size_t)R->nf + 1, 1) < 0) return -1;
-    for (size_t i = R->caph; i < c; i++) R->holds[i] = -1;
-    c = R->caph;
-    if (grow((void **)&R->remmark, &c, (size_t)R->nf + 1, sizeof(uint32_t)) < 0) return -1;
-    c = R->caph;
-    if (grow((void **)&R->chmark, &c, (size_t)R->nf + 1, sizeof(uint32_t)) < 0) return -1;
-    c = R->caph;
-    if (grow((void **)&R->pos, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
-    for (size_t i = R->caph; i < c; i++) R->pos[i] = R->never;
-    c = R->caph;
-    if (grow((void **)&R->pcmark, &c, (size_t)R->nf + 1, sizeof(uint32_t)) < 0) return -1;
-    c = R->caph;
-    if (grow((void **)&R->pcstart, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
-    c = R->caph;
-    if (grow((void **)&R->pclen, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
-    c = R->caph;
-    if (grow((void **)&R->asked, &c, (size_t)R->nf + 1, 1) < 0) return -1;
-    c = R->caph;
-    if (grow((void **)&R->lstart, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
-    c = R->caph;
-    if (grow((void **)&R->llen, &c, (size_t)R->nf + 1, sizeof(int32_t)) < 0) return -1;
-    R->caph = c;
-    uint32_t **flm[] = {&R->flmark, &R->newmark, &R->guardmark};
-    int32_t **flf[] = {&R->flfact, &R->newfact, &R->guardfact};
-    for (int i = 0; i < 3; i++) {
-        c = R->capfl;
-        if (grow((void **)flm[i], &c, (size_t)R->nfl + 1, sizeof(uint32_t)) < 0) return -1;
-        c = R->capfl;
-        if (grow((void **)flf[i], &c, (size_t)R->nfl + 1, sizeof(int32_t)) < 0) return -1;
+    size_t old = R->caph;
+    void **const by_fact[] = {(void **)&R->holds, (void **)&R->remmark, (void **)&R->chmark, (void **)&R->pos,
+                              (void **)&R->pcmark, (void **)&R->pcstart, (void **)&R->pclen, (void **)&R->asked,
+                              (void **)&R->lstart, (void **)&R->llen};
+    const size_t W = sizeof(int32_t);  /* (uint32_t marks and int32_t ids alike) */
+    const size_t fact_sizes[] = {1, W, W, W, W, W, W, 1, W, W};
+    if (grow_group(by_fact, fact_sizes, 10, &R->caph, (size_t)R->nf + 1) < 0) return -1;
+    for (size_t i = old; i < R->caph; i++) {  /* the new entries: unknown truth, in no order */
+        R->holds[i] = -1;
+        R->pos[i] = R->never;
     }
-    R->capfl = c;
-    uint32_t **km[] = {&R->kmark, &R->lkmark};
-    int32_t **kf[] = {&R->kfact, &R->lkfact};
-    for (int i = 0; i < 2; i++) {
-        c = R->capk;
-        if (grow((void **)km[i], &c, (size_t)R->nkey + 1, sizeof(uint32_t)) < 0) return -1;
-        c = R->capk;
-        if (grow((void **)kf[i], &c, (size_t)R->nkey + 1, sizeof(int32_t)) < 0) return -1;
-    }
-    R->capk = c;
-    c = R->capt;
-    if (grow((void **)&R->tried, &c, (size_t)R->na + 1, sizeof(uint32_t)) < 0) return -1;
-    c = R->capt;
-    if (grow((void **)&R->ccost, &c, (size_t)R->na + 1, sizeof(double)) < 0) return -1;
-    c = R->capt;
-    if (grow((void **)&R->cknown, &c, (size_t)R->na + 1, 1) < 0) return -1;
-    R->capt = c;
-    return 0;
+    void **const by_fluent[] = {(void **)&R->flmark, (void **)&R->newmark, (void **)&R->guardmark,
+                                (void **)&R->flfact, (void **)&R->newfact, (void **)&R->guardfact};
+    const size_t fluent_sizes[] = {W, W, W, W, W, W};
+    if (grow_group(by_fluent, fluent_sizes, 6, &R->capfl, (size_t)R->nfl + 1) < 0) return -1;
+    void **const by_key[] = {(void **)&R->kmark, (void **)&R->lkmark, (void **)&R->kfact, (void **)&R->lkfact};
+    const size_t key_sizes[] = {W, W, W, W};
+    if (grow_group(by_key, key_sizes, 4, &R->capk, (size_t)R->nkey + 1) < 0) return -1;
+    void **const by_action[] = {(void **)&R->tried, (void **)&R->ccost, (void **)&R->cknown};
+    const size_t action_sizes[] = {W, sizeof(double), 1};
+    return grow_group(by_action, action_sizes, 3, &R->capt, (size_t)R->na + 1);
 }
 
 /* 1 if fact f holds, 0 if not, -1 with an error set */

@@ -67,35 +67,37 @@ class GeneratorFilter:
         self.objects = objects
         self.max_values = max_values
         self.misses = Misses()  # proposals skipped for disagreeing with a bound output (named on failure)
-        self._covers: dict[str, tuple[tuple[int, ...], list[tuple[int, ...]]]] = {}
+        self._covers: dict[str, list[tuple[tuple[int, ...], tuple[int, ...]]] | None] = {}
         self._allowed: dict[tuple[str, tuple[int, ...], tuple[Any, ...]], frozenset[tuple[Any, ...]]] = {}
 
-    def _split(self, op: Operator) -> tuple[tuple[int, ...], list[tuple[int, ...]]]:
-        """The positions of the outputs, and per distinct effect the positions of the outputs it names
-        (empty: none; every output: the generators never run for it)."""
-        c = self._covers.get(op.name)
-        if c is None:
+    def _split(self, op: Operator) -> list[tuple[tuple[int, ...], tuple[int, ...]]] | None:
+        """Per distinct effect, the positions of the outputs it leaves to the generators and of the
+        parameters bound before they run (``None``: an effect names every output, so every binding
+        is kept); effects that name more outputs first."""
+        if op.name not in self._covers:
             outs = {v for g in op.generators for v in g.outputs}
-            opos = tuple(i for i, p in enumerate(op.params) if p in outs)
-            covers: list[tuple[int, ...]] = []
-            for e in op.effects:
-                named = {t for t in e.args}
-                cov = tuple(i for i in opos if op.params[i] in named)
-                if cov not in covers:
-                    covers.append(cov)
-            covers.sort(key=len, reverse=True)
-            c = self._covers[op.name] = (opos, covers)
-        return c
+            opos = [i for i, p in enumerate(op.params) if p in outs]
+            splits: list[tuple[tuple[int, ...], tuple[int, ...]]] = []
+            every = False  # an effect, unified with a target, binds every output: no generator runs
+            for e in sorted(op.effects, key=lambda e: -len({t for t in e.args if t in outs})):
+                named = set(e.args)
+                rest = tuple(i for i in opos if op.params[i] not in named)
+                if not rest:
+                    every = True
+                    break
+                split = (rest, tuple(i for i in range(len(op.params)) if i not in rest))
+                if split not in splits:
+                    splits.append(split)
+            self._covers[op.name] = None if every else splits
+        return self._covers[op.name]
 
     def accepts(self, op: Operator, args: Sequence[Any]) -> bool:
         """Could the regression grounder make ``op`` with ``args`` (see the class docstring)?"""
-        outs, covers = self._split(op)
-        for cov in covers:
-            if len(cov) == len(outs):
-                return True  # an effect names every output: unified with a target, no generator runs
-            rest = tuple(i for i in outs if i not in cov)
-            bound = tuple(i for i in range(len(op.params)) if i not in rest)
-            key = (op.name, cov, tuple(args[i] for i in bound))
+        splits = self._split(op)
+        if splits is None:
+            return True
+        for rest, bound in splits:
+            key = (op.name, rest, tuple(args[i] for i in bound))
             allowed = self._allowed.get(key)
             if allowed is None:
                 b = {op.params[i]: args[i] for i in bound}

@@ -215,6 +215,11 @@ class Grounder:
             cached = self._shared_answers.get(target)
         return cached
 
+    @property
+    def shares_answers(self) -> bool:
+        """Are the generator-free achievers kept per problem (every call of it gets the same lists)?"""
+        return self._shared_answers is not None
+
     def shares_answer(self, target: Atom) -> bool:
         """Is ``target``'s answer the one every call of this problem gets (no generator achieves it)?"""
         return self._shared_answers is not None and self._no_generator(target)

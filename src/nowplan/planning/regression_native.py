@@ -172,7 +172,7 @@ def run(
     local = search._successors.overridden
     task = search._task
     root = T.ids_of(goal.atoms)
-    if not root or not search.grounder.shares_answer(T.atoms[next(iter(root))]) or not T.consistent(root):
+    if not root or not search.grounder.shares_answers or not T.consistent(root):
         return None
     order_ids = None if order is None else [T.id(a) for a in order]
     guard = list(T.ids_of(protect))
