@@ -57,17 +57,17 @@ def gather(
         return ops, goals, last
     group = Subgoal(tuple(ops[: last + 1]), goals[last + 1])
     # the cheap tests first, on the declared (0th-order) resources; ``arrange`` last
-    declared = {res.name for a in group.actions for res in a.resources()}
+    declared = {res.name for a in group.actions for res in r.model.uses(a)}
     for j in range(last + 1, len(ops)):
         step = ops[j]
-        if not r.combinable(step) or not declared & {res.name for res in step.resources()}:
+        if not r.combinable(step) or not declared & {res.name for res in r.model.uses(step)}:
             continue
         if r.failed_within([*group.actions, step]):
             continue
         pre = prerequisites(r, ops, last + 1, j)
         if not pre or depends(r.domain, group.actions, [ops[i] for i in pre], r.levels):
             continue  # movable now (SelectParallelOps refused it), or the group comes first
-        held = [{res.name for res in ops[i].resources()} for i in pre]
+        held = [{res.name for res in r.model.uses(ops[i])} for i in pre]
         if any(declared & h for h in held):
             continue  # the prerequisites would use the group's vehicle (resources) first
         held = [h for h in held if h]

@@ -30,6 +30,7 @@ from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action, Resource, ResourceUse
+from nowplan.errors import ContradictoryGoalError
 from nowplan.planning.regression import PlannerConfig, plan
 
 log = logging.getLogger(__name__)
@@ -81,17 +82,42 @@ class ResourceModel:
     arrange: Callable[..., int] | None = field(default=None, compare=False, hash=False)
     effort_bound: EffortBoundFn | None = field(default=None, compare=False, hash=False)
     small_plan: SmallPlanFn | None = field(default=None, compare=False, hash=False)
+    # per operator name the resource templates to use instead of the operators' own (derived for a
+    # domain that declares none: nowplan.acting.derived_resources); None: the operators' own
+    derived: Mapping[str, tuple[Resource, ...]] | None = field(default=None, compare=False, hash=False)
 
     def order(self, action: Action) -> int:
         return int(self.orders.get(action.name, 0))
+
+    def uses(self, action: Action) -> tuple[Resource, ...]:
+        """The resources ``action`` uses: its operator's declared ones, or the derived ones."""
+        if self.derived is None:
+            return action.resources()
+        b = action.bindings
+        return tuple(r.bind(b) for r in self.derived.get(action.name, ()))
 
 
 DEFAULT_MODEL = ResourceModel()
 
 
 def resource_model(domain: Domain) -> ResourceModel:
-    """The domain's own model (``Domain(resources=...)``), else the declared uses at order 0."""
-    return domain.resources or DEFAULT_MODEL
+    """The domain's own model (``Domain(resources=...)``); else, if some operator declares
+    resources, the declared uses at order 0; else the uses derived from the operators
+    (:mod:`nowplan.acting.derived_resources`, kept per domain)."""
+    if domain.resources is not None:
+        return domain.resources
+    if any(op.resources for op in domain.operators):
+        return DEFAULT_MODEL
+    kept = domain.facts.derived.get("derived resources")
+    if kept is not None and kept[0] is domain.operators:
+        return kept[1]  # type: ignore[no-any-return]
+    from nowplan.acting.derived_resources import derive_resources, derived_orders, stops_clash
+
+    model = ResourceModel(orders=derived_orders(domain), clash=stops_clash, derived=derive_resources(domain))
+    log.info("domain %s declares no resources: the peephole uses resources derived from its operators",
+             domain.name)
+    domain.facts.derived["derived resources"] = (domain.operators, model)
+    return model
 
 
 @dataclass(frozen=True)
@@ -160,7 +186,7 @@ class Estimator:
         if hit is not None:
             return hit
         uses: dict[ResourceName, ResourceUse] = {}
-        merge_uses(uses, action.resources())
+        merge_uses(uses, self.model.uses(action))
         effort = 0.0
         if k >= 1 and not action.is_primitive(lvl):
             classes = hidden_classes(action, lvl)
@@ -179,7 +205,7 @@ class Estimator:
                 if second is not None:
                     effort += sum(a.cost(self.belief) for a in second)
                     for a in second:
-                        merge_uses(uses, a.resources())
+                        merge_uses(uses, self.model.uses(a))
         est = Estimate(uses, effort)
         self._cache[key] = est
         return est
@@ -268,7 +294,13 @@ class Estimator:
 
     def small_plan(self, unmet: Sequence[Atom], levels: LevelMap) -> tuple[Action, ...] | None:
         """A fresh limited search from the belief for ``unmet`` (not cached): its actions, or None."""
-        goal = Goal.of(unmet, self.domain.rules)
+        try:
+            goal = Goal.of(unmet, self.domain.rules)
+        except ContradictoryGoalError as err:
+            # hidden preconditions that exclude each other (barman's abstract pour: a hand holding
+            # the shot and empty): no one small plan reaches them from here
+            log.debug("no small plan for %s: %s", list(unmet), err)
+            return None
         self.plan_calls += 1
         res = plan(self.domain, self.objects, self.belief, goal, levels, self.search)
         out = res.plan.actions if res.solved and res.plan is not None else None
