@@ -32,7 +32,6 @@ that wants none passes ``Domain(resources=ResourceModel())``.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from typing import Any
 
 from nowplan.core.atoms import Atom
@@ -40,7 +39,6 @@ from nowplan.core.domain import Domain
 from nowplan.core.operators import Operator, Resource, ResourceUse
 
 SH, CT, CN = ResourceUse.SHAREABLE, ResourceUse.CONTAINED, ResourceUse.CONTINUAL
-_STRENGTH = {SH: 0, CT: 1, CN: 2}
 # a movable fluent: (predicate, position of the place among its arguments), or (predicate, None)
 # for a valued fluent whose value is the place
 Movable = tuple[str, int | None]
@@ -102,12 +100,12 @@ def _places(a: Atom, movable: frozenset[Movable], boolean: bool) -> list[tuple[t
 def operator_resources(domain: Domain, op: Operator, movable: frozenset[Movable],
                        held: frozenset[str]) -> tuple[Resource, ...]:
     """``op``'s derived resource templates (see the module docstring)."""
+    from nowplan.acting.resources import merge_uses  # (resources.py imports this module lazily)
+
     uses: dict[tuple[Any, ...], ResourceUse] = {}
 
     def put(name: tuple[Any, ...], use: ResourceUse) -> None:
-        old = uses.get(name)
-        if old is None or _STRENGTH[use] > _STRENGTH[old]:
-            uses[name] = use
+        merge_uses(uses, {name: use})  # the stronger use wins
 
     dels = {e.key for e in op.effects if e.value is False}
     moved: set[tuple[Any, ...]] = set()
@@ -143,12 +141,3 @@ def stops_clash(r1: tuple[Any, ...], r2: tuple[Any, ...]) -> bool:
     """Two stops of one holder at different places (one truck at two places)."""
     return (len(r1) == len(r2) and len(r1) > 1 and r1[0] == "stop" and r2[0] == "stop"
             and r1[:-1] == r2[:-1] and r1[-1] != r2[-1])
-
-
-def declares_resources(domain: Domain) -> bool:
-    """Does the domain say anything of its resources (a model, or any operator's)?"""
-    return domain.resources is not None or any(op.resources for op in domain.operators)
-
-
-def derived_orders(domain: Domain) -> Mapping[str, int]:
-    return {op.name: 1 for op in domain.operators}

@@ -111,9 +111,10 @@ def resource_model(domain: Domain) -> ResourceModel:
     kept = domain.facts.derived.get("derived resources")
     if kept is not None and kept[0] is domain.operators:
         return kept[1]  # type: ignore[no-any-return]
-    from nowplan.acting.derived_resources import derive_resources, derived_orders, stops_clash
+    from nowplan.acting.derived_resources import derive_resources, stops_clash
 
-    model = ResourceModel(orders=derived_orders(domain), clash=stops_clash, derived=derive_resources(domain))
+    model = ResourceModel(orders={op.name: 1 for op in domain.operators}, clash=stops_clash,
+                          derived=derive_resources(domain))
     log.info("domain %s declares no resources: the peephole uses resources derived from its operators",
              domain.name)
     domain.facts.derived["derived resources"] = (domain.operators, model)
