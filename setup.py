@@ -20,7 +20,8 @@ setup(
             "nowplan.planning._kernel_regress",
             sources=["src/nowplan/planning/_kernel_regress.c"],
             depends=["src/nowplan/planning/_kernel_heap.h", "src/nowplan/planning/_kernel_regress_store.h",
-                     "src/nowplan/planning/_kernel_regress_nodes.h", "src/nowplan/planning/_kernel_regress_call.h"],
+                     "src/nowplan/planning/_kernel_regress_nodes.h", "src/nowplan/planning/_kernel_regress_call.h",
+                     "src/nowplan/planning/_kernel_regress_task.h"],
             optional=True,
         ),
     ]

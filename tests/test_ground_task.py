@@ -104,15 +104,26 @@ def test_achievers_read_off_the_task_equal_the_grounders(dom, prob):
     try:
         slow = Grounder(p.domain, p.objects, p.init)
         read = 0
+        wants = {}
         for a in sorted(atoms):
+            groups = fast._task_groups(a)
             for i, _op, effs in fast._by_pred.get(a.predicate, ()):
-                read += fast._task_achievers(i, effs, a) is not None
+                read += groups is not None and fast._task_achievers(i, effs, a, groups) is not None
             want = [x.key for x in slow.achievers(a, Goal(frozenset({a})))]
             got = [x.key for x in fast.achievers(a, Goal(frozenset({a})))]
             assert got == want, a
+            wants[a] = want
         assert read > len(atoms) // 4  # the task answered most questions
     finally:
         Grounder.memo = True
+    whole = 0
+    for a, want in wants.items():
+        if fast.task_answers(a, task):  # the compiled regression loop reads these off the task's adders
+            whole += 1
+            f = T.by_key[(a.predicate, a.args, a.value)]
+            assert [task.action(k).key for k in dict.fromkeys(task.adders().get(f, ()))] == want, a
+    assert whole > len(atoms) // 4
+    assert not Grounder(p.domain, p.objects, p.init).task_answers(a, task)  # one that answers from no task
 
 
 @pytest.mark.parametrize("dom,prob", CASES, ids=lambda p: p.parent.name + "/" + p.name)

@@ -237,3 +237,63 @@ def test_the_tidy_house_plans_alike(monkeypatch):
             py, c, ran = _both(mp, dom, p.objects, belief, p.goal, levels, cfg)
         assert ran >= 1, str(levels)
         _same(py, c, str(levels))
+
+
+class _Ranks:
+    """A stand-in for the loop that keeps what ``set_rank`` is given."""
+
+    def __init__(self) -> None:
+        self.rank: list[int] = []
+
+    def set_rank(self, rank: list[int], start: int = 0) -> None:
+        assert start + len(rank) >= len(self.rank) and start <= len(self.rank)
+        self.rank[start:] = rank
+
+
+@pytest.mark.parametrize("gap", [1, 3, 1 << 12])
+@given(batches=st.lists(st.lists(st.tuples(st.sampled_from("abc"), st.integers(0, 6), st.booleans()),
+                                 min_size=1, max_size=6), min_size=1, max_size=12))
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+def test_new_facts_are_ranked_as_the_table_sorts_them(monkeypatch, gap, batches):
+    """Facts arrive in batches (as a search meets them); after each, the ranks order every fact as
+    ``FactTable.sorted`` does, whether a new fact fits between its neighbours or all are ranked again."""
+    from nowplan.core.atoms import Rules
+    from nowplan.core.facts import FactTable
+
+    monkeypatch.setattr(regression_native, "_GAP", gap)
+    table = FactTable(Rules())
+    comp = regression_native.Compiled.__new__(regression_native.Compiled)
+    comp.table, comp.loop, comp._sorted, comp._ranks = table, _Ranks(), [], []
+    seen = 0
+    for batch in batches:
+        for p, x, v in batch:
+            table.id(Atom(p, (f"o{x}",), v))
+        n = len(table.atoms)
+        if n > seen:
+            comp._rank(seen, n)
+            seen = n
+        rank = comp.loop.rank
+        assert len(set(rank)) == n
+        assert sorted(range(n), key=rank.__getitem__) == table.sorted(range(n))
+
+
+def test_facts_the_task_answers_for_get_their_achievers_in_the_loop(monkeypatch):
+    """On a classical problem most facts' achievers are read off the ground task by the loop itself
+    (task_achievers), and the plan is still the Python loop's."""
+    from nowplan.planning.grounding import Grounder
+
+    seen = {True: 0, False: 0}
+    real = Grounder.task_answers
+
+    def counted(self, target, task):
+        out = real(self, target, task)
+        seen[out] += 1
+        return out
+
+    monkeypatch.setattr(Grounder, "task_answers", counted)
+    p = load_pddl(str(PDDL / "logistics" / "domain.pddl"), str(PDDL / "logistics" / "p02.pddl"))
+    py, c, ran = _both(monkeypatch, p.domain, p.objects, p.init, p.goal, flat_levels(),
+                       replace(CONFIG, max_nodes=3_000, serialization=False, monotonic=False))
+    _same(py, c)
+    assert ran >= 1 and c.status is PlanStatus.SOLVED
+    assert seen[True] > 2 * seen[False], seen

@@ -25,10 +25,11 @@
 
 #include "_kernel_heap.h"
 
-#define REGRESS_API 5
+#define REGRESS_API 6
 enum { RS_SOLVED, RS_EXHAUSTED, RS_NODE_LIMIT, RS_TIME_LIMIT, RS_UNSUPPORTED };
 
 #include "_kernel_regress_store.h"
+#include "_kernel_regress_task.h"
 #include "_kernel_regress_nodes.h"
 #include "_kernel_regress_call.h"
 
@@ -407,10 +408,16 @@ static PyObject *Regressor_get_actions(Regressor *R, void *closure) { return PyL
 
 static PyMethodDef Regressor_methods[] = {
     {"add_fact", (PyCFunction)Regressor_add_fact, METH_VARARGS, "add_fact(fluent, keys): the next fact id"},
-    {"set_rank", (PyCFunction)Regressor_set_rank, METH_O, "set_rank(rank): each fact's sort position"},
+    {"set_rank", (PyCFunction)Regressor_set_rank, METH_VARARGS, "set_rank(rank, start=0): the sort positions of facts start.."},
     {"add_action", (PyCFunction)Regressor_add_action, METH_VARARGS,
      "add_action(effects, effect_keys, self_clash, pre, cost) -> index"},
     {"set_achievers", (PyCFunction)Regressor_set_achievers, METH_VARARGS, "set_achievers(fact, actions)"},
+    {"use_task", (PyCFunction)Regressor_use_task, METH_VARARGS,
+     "use_task(effects, pre, cost): the ground task's actions (once)"},
+    {"add_task_action", (PyCFunction)Regressor_add_task_action, METH_O, "add_task_action(k) -> index"},
+    {"task_achievers", (PyCFunction)Regressor_task_achievers, METH_O,
+     "task_achievers(fact): its achievers are the task actions adding it"},
+    {"task_index", (PyCFunction)Regressor_task_index, METH_O, "task_index(action) -> task action or -1"},
     {"set_local_achievers", (PyCFunction)Regressor_set_local_achievers, METH_VARARGS,
      "set_local_achievers(fact, actions): for the running call only"},
     {"search", (PyCFunction)Regressor_search, METH_VARARGS,

@@ -47,6 +47,14 @@ typedef struct {
     uint8_t *clash;
     double *cost;
     Vec effs, ekeys, pres, alls;
+    int32_t *src;         /* by action: its index in the ground task (use_task), -1 for one added by add_action */
+    /* the ground task (_kernel_regress_task.h): per task action its effects and kept preconditions (start,
+     * length into teff/tpre), its cost and its action here (-1: not registered yet); per fact below ntf the
+     * task actions that add it (tadd_start, ntf + 1 entries, into tadd) */
+    int32_t ntask, ntf;
+    int32_t *tes, *tel, *tps, *tpl, *tact, *tadd_start;
+    double *tcost;
+    Vec teff, tpre, tadd;
     /* one call's scratch, by fact / fluent / key / action (stamps tell which entries are current) */
     size_t caph, capfl, capk, capt;
     int8_t *holds;        /* -1 unknown, 0, 1 */
@@ -75,7 +83,8 @@ static void Regressor_dealloc(Regressor *R) {
                   R->holds, R->flmark, R->newmark, R->kmark, R->lkmark, R->remmark, R->chmark, R->tried,
                   R->flfact, R->newfact, R->kfact, R->lkfact, R->as, R->al, R->alls.v, R->pos, R->guardmark,
                   R->guardfact, R->asked, R->lstart, R->llen, R->lach.v, R->pairs, R->ccost, R->cknown, R->pcmark,
-                  R->pcstart, R->pclen, R->pcl.v};
+                  R->pcstart, R->pclen, R->pcl.v, R->src, R->tes, R->tel, R->tps, R->tpl, R->tact, R->tadd_start,
+                  R->tcost, R->teff.v, R->tpre.v, R->tadd.v};
     for (size_t i = 0; i < sizeof(ps) / sizeof(ps[0]); i++) PyMem_Free(ps[i]);
     Py_TYPE(R)->tp_free((PyObject *)R);
 }
@@ -140,18 +149,27 @@ static PyObject *Regressor_add_fact(Regressor *R, PyObject *args) {
     Py_RETURN_NONE;
 }
 
-/* set_rank(rank): every fact's position in the order of its atom (FactTable.sorted) */
-static PyObject *Regressor_set_rank(Regressor *R, PyObject *rank) {
+/* set_rank(rank, start=0): the sort positions of facts start.. (as FactTable.sorted orders their atoms;
+ * only their order matters, so the caller may leave gaps and rank new facts without moving the others) */
+static PyObject *Regressor_set_rank(Regressor *R, PyObject *args) {
+    PyObject *rank;
+    int start = 0;
+    if (!PyArg_ParseTuple(args, "O|i", &rank, &start)) return NULL;
     PyObject *fast = PySequence_Fast(rank, "rank");
     if (fast == NULL) return NULL;
-    if (PySequence_Fast_GET_SIZE(fast) != R->nf) {
+    if (start < 0 || start + PySequence_Fast_GET_SIZE(fast) != R->nf) {
         Py_DECREF(fast);
-        PyErr_SetString(PyExc_ValueError, "rank: one entry per fact");
+        PyErr_SetString(PyExc_ValueError, "rank: one entry per fact from start");
         return NULL;
     }
-    for (int32_t f = 0; f < R->nf; f++) {
-        long v = PyLong_AsLong(PySequence_Fast_GET_ITEM(fast, f));
+    for (int32_t f = start; f < R->nf; f++) {
+        long v = PyLong_AsLong(PySequence_Fast_GET_ITEM(fast, f - start));
         if (v == -1 && PyErr_Occurred()) { Py_DECREF(fast); return NULL; }
+        if (v < INT32_MIN || v > INT32_MAX) {
+            Py_DECREF(fast);
+            PyErr_SetString(PyExc_ValueError, "rank: out of the int32 range");
+            return NULL;
+        }
         R->rank[f] = (int32_t)v;
     }
     Py_DECREF(fast);
@@ -164,6 +182,23 @@ static int check_facts(Regressor *R, Vec *v, size_t from, int step) {
     return 0;
 }
 
+/* room for one more action */
+static int reserve_action(Regressor *R) {
+    size_t n = (size_t)R->na + 1;
+    if (n <= R->capa) return 0;
+    int32_t **arr[] = {&R->es, &R->el, &R->ks, &R->kl, &R->ps, &R->pl, &R->as, &R->al, &R->src};
+    for (size_t i = 0; i < 9; i++) {
+        size_t c = R->capa;
+        if (grow((void **)arr[i], &c, n, sizeof(int32_t)) < 0) return -1;
+    }
+    size_t c = R->capa;
+    if (grow((void **)&R->clash, &c, n, sizeof(uint8_t)) < 0) return -1;
+    c = R->capa;
+    if (grow((void **)&R->cost, &c, n, sizeof(double)) < 0) return -1;
+    R->capa = c;
+    return 0;
+}
+
 /* add_action(effects, effect_keys, self_clash, pre, cost, all_effects) -> index; effects and effect_keys
  * flat pairs (fluent, fact) and (key, fact); all_effects every effect's fact (ActionFacts.all_effs) */
 static PyObject *Regressor_add_action(Regressor *R, PyObject *args) {
@@ -171,19 +206,7 @@ static PyObject *Regressor_add_action(Regressor *R, PyObject *args) {
     int clash;
     double cost;
     if (!PyArg_ParseTuple(args, "OOpOdO", &effs, &ekeys, &clash, &pre, &cost, &alls)) return NULL;
-    size_t n = (size_t)R->na + 1;
-    if (n > R->capa) {
-        int32_t **arr[] = {&R->es, &R->el, &R->ks, &R->kl, &R->ps, &R->pl, &R->as, &R->al};
-        for (size_t i = 0; i < 8; i++) {
-            size_t c = R->capa;
-            if (grow((void **)arr[i], &c, n, sizeof(int32_t)) < 0) return NULL;
-        }
-        size_t c = R->capa;
-        if (grow((void **)&R->clash, &c, n, sizeof(uint8_t)) < 0) return NULL;
-        c = R->capa;
-        if (grow((void **)&R->cost, &c, n, sizeof(double)) < 0) return NULL;
-        R->capa = c;
-    }
+    if (reserve_action(R) < 0) return NULL;
     int32_t a = R->na;
     size_t e0 = R->effs.n, k0 = R->ekeys.n, p0 = R->pres.n, x0 = R->alls.n;
     if (read_ints(effs, "effects", &R->effs) < 0 || read_ints(ekeys, "effect keys", &R->ekeys) < 0 ||
@@ -205,6 +228,7 @@ static PyObject *Regressor_add_action(Regressor *R, PyObject *args) {
     R->as[a] = (int32_t)x0; R->al[a] = (int32_t)(R->alls.n - x0);
     R->clash[a] = (uint8_t)clash;
     R->cost[a] = cost;
+    R->src[a] = -1;
     R->na++;
     return PyLong_FromLong(a);
 }

@@ -282,6 +282,14 @@ class GroundTask:
                     self._adders.setdefault(e, []).append(k)
         return self._adders
 
+    def pre_at(self, level: int) -> list[tuple[int, ...]]:
+        """Per action its preconditions' facts kept at ``level`` (criticality above it), in order."""
+        key = ("pre at", level)
+        hit = self.memo.get(key)
+        if not isinstance(hit, list):
+            hit = self.memo[key] = [tuple([f for f, c, _ in pre if c > level]) for pre in self.pre]
+        return hit
+
     def kept(self, level: int) -> tuple[list[tuple[tuple[int, int], ...]], dict[int, list[int]]]:
         """Per action the (fact, twin) preconditions kept at ``level``; per fact the actions waiting for it."""
         hit = self._kept.get(level)

@@ -74,7 +74,7 @@ def _compiled(task: GroundTask, top: int, costs: list[float] | None = None) -> _
     if isinstance(hit, _Compiled):
         return hit
     nf = len(task.table)
-    pre = [[f for f, c, _ in p if c > top] for p in task.pre]  # kept at the top level
+    pre = task.pre_at(top)  # kept at the top level
     rows: list[list[int]] = [[] for _ in range(nf)]
     for k, p in enumerate(pre):
         for f in p:
