@@ -23,12 +23,39 @@ def test_refine_flat_plans_concretely_when_the_root_step_refines_without_an_acti
     step is refined again and again without an action (``dig`` seed 0: "no progress").  With
     refine-flat the executive plans that goal concretely instead of giving up."""
     spec = example_spec(monkeypatch, "mine")
-    plain = run_episode(spec.scenario("dig")(0), parse_strategy("hpn", max_actions=150), seed=0)
+    plain = run_episode(spec.scenario("dig")(0), parse_strategy("hpn+nofallback", max_actions=150), seed=0)
     assert plain.outcome is Outcome.FAILED and "no progress" in plain.reason
-    assert "refine-flat" in plain.reason  # the reason names the switch that would have gone on
+    assert "refine-flat" in plain.reason and "nofallback" in plain.reason  # the switches that go on
     m = run_episode(spec.scenario("dig")(0), parse_strategy("hpn+refine-flat", max_actions=150), seed=0)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.goal_in_world is True
+    assert m.flat_fallbacks == 0  # refine-flat's own fallback, before the last resort
+
+
+def test_plain_hpn_plans_the_goal_concretely_as_a_last_resort(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without refine-flat, where HPN would end "no progress" the root goal is planned concretely
+    once (FlatSteps.last_resort), and the run says so."""
+    spec = example_spec(monkeypatch, "mine")
+    m = run_episode(spec.scenario("dig")(0), parse_strategy("hpn", max_actions=150), seed=0)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert m.goal_in_world is True
+    assert m.flat_fallbacks == 1
+    assert "last resort: 1 root goal" in m.summary()
+
+
+def test_a_livelock_of_the_abstract_plans_gets_the_last_resort(monkeypatch: pytest.MonkeyPatch) -> None:
+    """``noisy`` seed 2 under RCHPN: a 14-action round (tow home, charge, gate, three moves, twice)
+    the particle belief hides from the cycle count; the repeated-actions watch sees it after five
+    rounds and the root goal is planned concretely (before: the 1,000-action budget, cost 4,694)."""
+    spec = example_spec(monkeypatch, "mine")
+    m = run_episode(spec.scenario("noisy")(2), parse_strategy("hpn+peephole", max_actions=300), seed=2)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert m.goal_in_world is True
+    assert m.flat_fallbacks == 1
+    assert m.actions < 150
+    off = run_episode(spec.scenario("noisy")(2), parse_strategy("hpn+peephole+nofallback", max_actions=300),
+                      seed=2)
+    assert off.outcome is not Outcome.REACHED and off.flat_fallbacks == 0
 
 
 def test_refine_flat_plans_concretely_when_the_guard_sees_a_cycle_of_a_particle_belief(

@@ -186,16 +186,21 @@ def test_a_refinement_that_keeps_failing_is_given_up_with_a_reason():
         assert m.outcome is Outcome.FAILED, (strategy, m.reason)
         assert m.reason.startswith("no plan for the goal"), (strategy, m.reason)
         assert m.plans_made + m.plan_failures <= 4, strategy
-        # thirty unrefinable alternatives: the refinement bound ends the backtracking
-        m, tr = _stuck(strategy, STUCK_MANY)
+        # thirty unrefinable alternatives: the refinement bound ends the backtracking (nofallback), or
+        # the last resort plans the goal concretely and finds it unreachable
+        m, tr = _stuck(strategy + "+nofallback", STUCK_MANY)
         assert m.outcome is Outcome.FAILED, (strategy, m.reason)
         assert "without an action" in m.reason
+        assert m.plans_made + m.plan_failures <= 6 * 31, strategy
+        m, tr = _stuck(strategy, STUCK_MANY)
+        assert m.outcome is Outcome.FAILED, (strategy, m.reason)
+        assert m.reason.startswith("no plan for the goal") and m.flat_fallbacks == 1, m.reason
         # (a refinement may pick another top-level gety, so each root attempt plans down a chain of
         # them: bounded by the refinement bound times the alternatives, not the 2 000-call budget)
         assert m.plans_made + m.plan_failures <= 6 * 31, strategy
     # the bound is the strategy's: a larger one spends more planner calls before giving up
-    big, _ = _stuck("hpn", STUCK_MANY, max_refinements=20)
-    small, _ = _stuck("hpn", STUCK_MANY, max_refinements=2)
+    big, _ = _stuck("hpn+nofallback", STUCK_MANY, max_refinements=20)
+    small, _ = _stuck("hpn+nofallback", STUCK_MANY, max_refinements=2)
     assert big.plans_made + big.plan_failures > small.plans_made + small.plan_failures
 
 

@@ -106,6 +106,21 @@ def test_the_same_block_of_actions_four_times_is_a_loop() -> None:
     assert RepeatedActions().repeats == 8  # the default: 16 moves back and forth
 
 
+def test_a_long_block_needs_fewer_repeats_and_a_short_one_is_not_a_long_ones_loop() -> None:
+    from nowplan.acting.progress import RepeatedActions  # noqa: PLC0415
+
+    block = [f"a{i}" for i in range(14)]  # the mine's round: 14 actions
+    r = RepeatedActions()
+    assert r.needed(2) == 8 and r.needed(8) == 8 and r.needed(14) == 5 and r.needed(16) == 4
+    seen = [r.observe(a, succeeded=True, exogenous=False, achieved=0) for a in block * 5]
+    assert seen[:-1] == [None] * (14 * 5 - 1) and seen[-1] == (14, tuple(block))
+    r = RepeatedActions()
+    assert all(r.observe(a, succeeded=True, exogenous=False, achieved=0) is None for a in block * 4)
+    r = RepeatedActions()  # seventeen actions: past the longest block watched
+    long = [f"b{i}" for i in range(17)]
+    assert all(r.observe(a, succeeded=True, exogenous=False, achieved=0) is None for a in long * 9)
+
+
 def test_progress_a_failure_or_the_world_restart_the_watch() -> None:
     from nowplan.acting.progress import RepeatedActions  # noqa: PLC0415
 

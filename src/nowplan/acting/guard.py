@@ -102,6 +102,13 @@ class ProgressGuard:
         """A mechanism ends the run after this action with ``reason``."""
         self._give_up = (outcome, reason)
 
+    def forgive(self) -> None:
+        """Start the count of cycles and repeated actions again (the executive changed how it plans:
+        refine-flat's last resort, after a livelock the hierarchical plans made)."""
+        self.cycles.forget(cycles=True)
+        self.repeats.reset()
+        self.committed = False
+
     def situation(self, ex: GuardHost, belief: Any, goals: Iterable[Goal]) -> Hashable:
         """The belief's fingerprint and the plan stack's goals; a belief not held before ends a commitment."""
         fp = situation_of(belief)  # (a belief without a fingerprint: a situation never seen before)
@@ -136,7 +143,7 @@ class ProgressGuard:
             loop = self.repeats.observe(last.pddl(), succeeded=obs.success,
                                         exogenous=bool(obs.exogenous), achieved=achieved)
             if loop is not None:
-                return Outcome.LIVELOCK, repeated_actions_reason(loop[0], loop[1], self.repeats.repeats)
+                return Outcome.LIVELOCK, repeated_actions_reason(loop[0], loop[1], self.repeats.needed(loop[0]))
         if cyc is None:
             return None
         ex.metrics.cycles = self.cycles.seen

@@ -442,6 +442,8 @@ class Executive:
                         continue  # abstract plans that refine but never reach an action (not downward
                         # refinable: a held-out mine's battery and route in one class): plan concretely
                     if f.root:
+                        if self._flat_steps.last_resort(self, f"no progress: {why}"):
+                            continue
                         outcome, reason = Outcome.FAILED, f"no progress: {why}{flat_hint(self, key)}"
                         break
                     self.trace.emit("note", plan_id=f.plan_id, text=f"executive: gave up: {why}")
@@ -471,6 +473,9 @@ class Executive:
                         if not timed_out and look_again(self.belief, self.trace, looks, self._last_failure):
                             looks += 1
                             continue
+                        if not timed_out and not concrete(self.domain, levels) and self._flat_steps.last_resort(
+                                self, f"no abstract plan for the goal ({self._last_failure})"):
+                            continue
                         outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
                         reason = f"no plan for the goal ({self._last_failure}){self.model_hint}"
                         if not concrete(self.domain, levels):
@@ -484,6 +489,9 @@ class Executive:
                                       f"planning ({self.metrics.world_summary()})")
                         break
                     if consecutive_failures > 3 * self.strategy.max_depth:
+                        if self._flat_steps.last_resort(self, f"repeated planning failures ({self._last_failure})"):
+                            consecutive_failures = 0
+                            continue
                         outcome, reason = Outcome.FAILED, f"repeated planning failures ({self._last_failure})"
                         break
                     # the refined step cannot be achieved from here: learn it and re-refine one
@@ -499,6 +507,9 @@ class Executive:
                 if self.strategy.refine_flat:
                     self._flat_steps.check_cycle(self)
                 stop = self.guard.watch(self, self.last_observation)  # a livelock's or a stall's end
+                if stop is not None and stop[0] is Outcome.LIVELOCK and self._flat_steps.last_resort(self, stop[1]):
+                    self.guard.forgive()  # the concrete plans start the guard's count again
+                    continue
                 if stop is not None:
                     outcome, reason = stop
                     break

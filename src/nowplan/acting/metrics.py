@@ -40,6 +40,7 @@ class Metrics:
     cycles: int = 0  # cycles detected by the progress guard
     failed_actions: int = 0  # actions the world reported failed
     exogenous_changes: int = 0  # observations that reported a change the world made by itself
+    flat_fallbacks: int = 0  # root goals planned concretely as a last resort (acting/refine_flat.py)
 
     def world_summary(self) -> str:
         """What the world did meanwhile, for a reason that a budget ended a run."""
@@ -65,6 +66,7 @@ class Metrics:
             "cycles": self.cycles,
             "failed_actions": self.failed_actions,
             "exogenous_changes": self.exogenous_changes,
+            "flat_fallbacks": self.flat_fallbacks,
         }
 
     def summary(self) -> str:
@@ -81,4 +83,7 @@ class Metrics:
             "(planning, acting, the simulated world, and drawing frames if any)"
             + (f"\nbelief and world disagree on: {', '.join(self.disagreement)}" if self.disagreement else "")
             + (f"\ncycles detected: {self.cycles}" if self.cycles else "")
+            + (f"\nlast resort: {self.flat_fallbacks} root goal(s) planned concretely, the hierarchy's "
+               "abstract plans making no progress (the switch nofallback gives up instead)"
+               if self.flat_fallbacks else "")
         )

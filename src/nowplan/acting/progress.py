@@ -239,15 +239,29 @@ class RepeatedActions:
     ``repeats`` times in a row, every action a success with no exogenous change, while no more of
     the root goal's atoms held than before the block began.  At 4 repeats it ended two held-out
     ward runs (a shuttle through a door while the knowledge of another door decayed) that the
-    world broke a few rounds later and that reached the goal; at 8 they reach it.
+    world broke a few rounds later and that reached the goal; at 8 they reach it.  Blocks of up to
+    ``max_period`` = 16 actions: a held-out mine's RCHPN (a particle belief, so no cycle counted past
+    one) repeated a 14-action round of tow, gate, charge and moves until its 1,000-action budget.  A
+    block longer than 8 actions needs only the repeats that make ``8 * repeats`` actions (at least 4):
+    five rounds of 14 actions, not eight.
     """
 
-    def __init__(self, repeats: int = 8, max_period: int = 8) -> None:
+    def __init__(self, repeats: int = 8, max_period: int = 16) -> None:
         if repeats < 2 or max_period < 2:
             raise ValueError("repeats and max_period must be >= 2")
         self.repeats, self.max_period = repeats, max_period
         self._history: list[Hashable] = []
         self._best = -1
+
+    def needed(self, period: int) -> int:
+        """The repeats that make a loop of blocks of ``period`` actions."""
+        if period <= 8:
+            return self.repeats
+        return min(self.repeats, max(4, -(-8 * self.repeats // period)))
+
+    def reset(self) -> None:
+        """Forget the actions seen (a new way of planning begins)."""
+        self._history.clear()
 
     def observe(self, action: Hashable, *, succeeded: bool, exogenous: bool, achieved: int) -> tuple[int, tuple[Hashable, ...]] | None:
         """After one more action (``achieved``: how many root goal atoms hold now); the repeated
@@ -262,10 +276,11 @@ class RepeatedActions:
         if len(h) > self.repeats * self.max_period:
             del h[0]
         for p in range(2, self.max_period + 1):
-            if len(h) < self.repeats * p:
-                break
+            n = self.needed(p)
+            if len(h) < n * p:
+                continue
             block = h[-p:]
-            if len(set(block)) > 1 and all(h[-(k + 1) * p:len(h) - k * p] == block for k in range(1, self.repeats)):
+            if len(set(block)) > 1 and all(h[-(k + 1) * p:len(h) - k * p] == block for k in range(1, n)):
                 return p, tuple(block)
         return None
 

@@ -6,6 +6,16 @@ may undo each other so that the concrete state cycles.  The executive keeps a
 :class:`FlatSteps` record: the steps (by :func:`refinement_key`) whose goal is
 planned at the flat level from then on, and the symbolic states seen after
 actions since the last news (a failed action or an exogenous change).
+
+Two ways in.  The ``refine-flat`` switch is eager: the root's first failure to
+refine, its first clean cycle or a state reached :data:`CYCLE_VISITS` times plans
+the goal concretely.  Every hierarchical strategy also has the *last resort*
+(:meth:`FlatSteps.last_resort`, off with the ``nofallback`` switch): where the run
+would end because the root's abstract plans make no progress ("no progress", no
+abstract plan, repeated planning failures, a livelock), the root goal is planned
+concretely once instead, and the run says so (``Metrics.flat_fallbacks``).  A run
+that reaches its goal hierarchically never meets it, so the seeds' HPN is
+unchanged where its hierarchy is downward refinable.
 """
 
 from __future__ import annotations
@@ -44,7 +54,8 @@ def flat_hint(ex: Executive, key: Hashable) -> str:
     if ex.strategy.refine_flat or key in ex._flat_steps:
         return ""
     return ("; the criticalities may not be downward refinable (abstract plans that no refinement "
-            "reaches): the switch refine-flat (hpn+refine-flat) plans such a goal concretely")
+            "reaches): without the switch nofallback the executive plans such a goal concretely as a "
+            "last resort, and with refine-flat (hpn+refine-flat) as soon as its abstract plans fail")
 
 
 def call_config(cfg: PlannerConfig, root: bool) -> PlannerConfig:
@@ -114,7 +125,7 @@ class FlatSteps:
         state = ex.belief.state
         self.visits[state] += 1
         if self.visits[state] >= CYCLE_VISITS:
-            self._flatten_root(ex, f"state reached {CYCLE_VISITS} times")
+            self._flatten_root(ex, f"state reached {CYCLE_VISITS} times: the hierarchical plans cycle")
 
     def on_cycle(self, ex: Executive, cyc: Cycle) -> None:
         """The progress guard saw the belief and the plan stack's goals repeat with no failure and no
@@ -122,17 +133,31 @@ class FlatSteps:
         :meth:`check_cycle` sees symbolic states only): the hierarchical plans undo each other, so plan
         the root goal concretely (once; later cycles go on to the guard's livelock bound)."""
         if cyc.clean and ex.stack and ex.stack[0].root:
-            self._flatten_root(ex, f"the guard's cycle ({cyc.describe()})")
+            self._flatten_root(ex, f"the guard's cycle ({cyc.describe()}): the hierarchical plans cycle")
 
-    def _flatten_root(self, ex: Executive, why: str) -> None:
+    def last_resort(self, ex: Executive, why: str) -> bool:
+        """The run would end for ``why`` (the root's abstract plans make no progress): plan the current
+        root step's goal concretely instead, once per root step; ``False`` where the strategy has no
+        last resort (``nofallback``), plans at one level only, or that step is planned concretely
+        already (then the run ends as it would have)."""
+        if not ex.strategy.last_resort or ex.single_level or not ex.stack or not ex.stack[0].root:
+            return False
+        if not self._flatten_root(ex, f"last resort: {why}", "give up"):
+            return False
+        ex._refinements[refinement_key(ex.stack[0])] = 0  # the concrete plans' own allowance
+        ex.metrics.flat_fallbacks += 1
+        return True
+
+    def _flatten_root(self, ex: Executive, why: str, popped: str = "cycle") -> bool:
+        """Plan the root step's goal concretely from now on (``False``: it is already)."""
         root = ex.stack[0]
         key = refinement_key(root)
         if key in self.steps:
-            return
+            return False
         self.steps.add(key)
         ex.trace.emit("note", plan_id=root.plan_id,
-                      text=f"executive: refine-flat: {why}: the hierarchical plans cycle; "
-                           "planning the goal concretely")
+                      text=f"executive: refine-flat: {why}; planning the goal concretely")
         while len(ex.stack) > 1:
-            ex.pop("cycle")
+            ex.pop(popped)
         self.visits.clear()
+        return True

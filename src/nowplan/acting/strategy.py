@@ -58,6 +58,9 @@ class Strategy:
     max_stalls: int = 25  # progress guard: failures in a row that leave the situation unchanged
     max_retries: int = 2  # flexible: setbacks a plan may retry before it is replanned (Fig. 4)
     refine_flat: bool = False  # a plan whose step cannot be refined is replaced by a concrete plan
+    # where the run would end because the root's abstract plans make no progress, plan the root goal
+    # concretely once instead (acting/refine_flat.py, FlatSteps.last_resort; off: the nofallback switch)
+    last_resort: bool = True
     domain_planner: bool = False  # plan with the domain's own planner (Domain.planner) when it has one
     direct_refinements: bool = True  # short refinements made without a planner call (acting/refine.py)
     time_limit: float = 600.0
@@ -106,6 +109,7 @@ class Strategy:
             "max_actions": self.max_actions,
             "domain_planner": self.domain_planner,
             "refine_flat": self.refine_flat,
+            "last_resort": self.last_resort,
             "direct_refinements": self.direct_refinements,
         }
 
@@ -125,6 +129,11 @@ register_switch(
     Switch("refine-flat", "when a step of an abstract plan cannot be refined, plan that plan's goal "
            "concretely (for hierarchies without the downward refinement property, e.g. --criticality auto)",
            {"refine_flat": True})
+)
+register_switch(
+    Switch("nofallback", "no last resort: where the root's abstract plans make no progress (a hierarchy "
+           "that is not downward refinable), give up as the seed's HPN does instead of planning the "
+           "root goal concretely", {"last_resort": False})
 )
 register_switch(
     Switch("nodirect", "refine every abstract step with a planner call (no direct refinements of at "
