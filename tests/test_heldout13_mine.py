@@ -70,3 +70,22 @@ def test_refine_flat_plans_concretely_when_the_guard_sees_a_cycle_of_a_particle_
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.goal_in_world is True
     assert m.cycles >= 1  # the fallback came from a cycle, not from the other two triggers
+
+
+def test_a_step_backtracked_again_and_again_gets_the_last_resort(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Exogenous changes (the battery drains, the draught opens the gate) end every cycle and every
+    repeated block the guard counts, so under RCHPN the abstract plans proposed the same unrefinable
+    ``charge`` round after round until the 300-action budget (x0.2-m0.2-fp0.1, seed 3).  The same step
+    backtracked 8 times with no goal atom gained is the last resort's cue."""
+    from nowplan.trace import Trace  # noqa: PLC0415
+
+    example_spec(monkeypatch, "mine")
+    from mine_domain.scenarios import episode  # noqa: PLC0415  (the benchmark's fault levels)
+
+    tr = Trace()
+    m = run_episode(episode(seed=3, exogenous_prob=0.2, miss=0.2, fp=0.1),
+                    parse_strategy("hpn+peephole", max_actions=300), seed=3, trace=tr)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert m.goal_in_world is True and m.flat_fallbacks == 1
+    notes = [e["text"] for e in tr.events if e["event"] == "note" and "last resort" in e["text"]]
+    assert len(notes) == 1 and "could not be refined 8 times" in notes[0], notes

@@ -338,6 +338,8 @@ class Executive:
             self.nogoods.learn(f.plan.goal, f.plan.levels, action.key)
             self.trace.emit("note", plan_id=f.plan_id,
                             text=f"backtrack: {action.pddl()} cannot be refined here; replanning the level above")
+            if self._flat_steps.after_backtrack(self, (f.plan.goal, f.plan.levels, action.key), action.pddl()):
+                return  # refined in vain again and again: the root goal is planned concretely
         self.pop("failed")
         parent = self.stack[-1] if self.stack else None
         if parent is not None and not parent.root and parent.i > 0:
@@ -473,8 +475,13 @@ class Executive:
                         if not timed_out and look_again(self.belief, self.trace, looks, self._last_failure):
                             looks += 1
                             continue
-                        if not timed_out and not concrete(self.domain, levels) and self._flat_steps.last_resort(
-                                self, f"no abstract plan for the goal ({self._last_failure})"):
+                        # (an abstract level drops preconditions: with no first step learnt unrefinable,
+                        # an abstract "unsolvable" is the concrete one's too, and a flat search would
+                        # only prove it again at length)
+                        if (not timed_out and len(self.nogoods) > 0 and not concrete(self.domain, levels)
+                                and self._flat_steps.last_resort(
+                                    self, f"no abstract plan for the goal once its first steps were found "
+                                          f"unrefinable ({self._last_failure})")):
                             continue
                         outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
                         reason = f"no plan for the goal ({self._last_failure}){self.model_hint}"

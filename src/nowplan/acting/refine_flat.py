@@ -35,6 +35,9 @@ if TYPE_CHECKING:
     from nowplan.acting.progress import Cycle
 
 CYCLE_VISITS = 3  # visits of one symbolic state that count as a cycle
+# backtracks from one abstract step (its action, the plan's goal and levels) over the run with no more
+# root goal atoms holding than before, that count as abstract plans making no progress (the last resort)
+REPEATED_BACKTRACKS = 8
 # the part of the run's remaining time the root's abstract plan may take under refine-flat: the rest
 # is left to the concrete plan made when no abstract one is found (with `nowplan plan`'s node budget a
 # hard top level, IPC floor-tile's is nearly the whole problem, can search until the run's time is out)
@@ -89,6 +92,8 @@ class FlatSteps:
     def __init__(self) -> None:
         self.steps: set[Hashable] = set()
         self.visits: Counter[Hashable] = Counter()
+        self.backtracks: Counter[Hashable] = Counter()  # since the root goal last came closer
+        self._best = -1  # the most root goal atoms seen holding
 
     def __contains__(self, key: Hashable) -> bool:
         return key in self.steps
@@ -147,6 +152,25 @@ class FlatSteps:
         ex._refinements[refinement_key(ex.stack[0])] = 0  # the concrete plans' own allowance
         ex.metrics.flat_fallbacks += 1
         return True
+
+    def after_backtrack(self, ex: Executive, key: Hashable, step: str) -> bool:
+        """A step (``key``: its action, its plan's goal and levels; ``step`` its text) could not be
+        refined.  The same step backtracked :data:`REPEATED_BACKTRACKS` times with no root goal atom
+        gained meanwhile means the abstract plans keep proposing what no refinement reaches, in rounds
+        of actions that the guard may not see as cycles (each failure or change of the world's ends
+        one): the last resort.  ``True`` where it was taken (the stack is back at the root)."""
+        if not ex.strategy.last_resort or ex.single_level:
+            return False
+        achieved = ex.domain.count_holding(ex.truth, ex.problem.goal.atoms)
+        if achieved > self._best:
+            self._best = achieved
+            self.backtracks.clear()
+        self.backtracks[key] += 1
+        n = self.backtracks[key]
+        if n < REPEATED_BACKTRACKS:
+            return False
+        return self.last_resort(ex, f"{step} could not be refined {n} times with no goal atom gained "
+                                    "(the abstract plans keep proposing it)")
 
     def _flatten_root(self, ex: Executive, why: str, popped: str = "cycle") -> bool:
         """Plan the root step's goal concretely from now on (``False``: it is already)."""
