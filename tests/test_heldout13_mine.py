@@ -89,3 +89,14 @@ def test_a_step_backtracked_again_and_again_gets_the_last_resort(monkeypatch: py
     assert m.goal_in_world is True and m.flat_fallbacks == 1
     notes = [e["text"] for e in tr.events if e["event"] == "note" and "last resort" in e["text"]]
     assert len(notes) == 1 and "could not be refined 8 times" in notes[0], notes
+
+
+def test_the_last_resort_starts_the_guards_count_again(monkeypatch: pytest.MonkeyPatch) -> None:
+    """``dig`` seed 0 under RCHPN: the gate toggled by plans whose ``charge`` never refines; the backtrack
+    count takes the last resort one action before the repeated-actions watch would have ended the run.
+    The concrete plans' first action must not complete the abstract plans' loop (before: a livelock
+    after 18 actions with the last resort taken)."""
+    spec = example_spec(monkeypatch, "mine")
+    m = run_episode(spec.scenario("dig")(0), parse_strategy("hpn+peephole", max_actions=150), seed=0)
+    assert m.outcome is Outcome.REACHED, m.reason
+    assert m.goal_in_world is True and m.flat_fallbacks == 1

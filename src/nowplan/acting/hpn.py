@@ -515,8 +515,7 @@ class Executive:
                     self._flat_steps.check_cycle(self)
                 stop = self.guard.watch(self, self.last_observation)  # a livelock's or a stall's end
                 if stop is not None and stop[0] is Outcome.LIVELOCK and self._flat_steps.last_resort(self, stop[1]):
-                    self.guard.forgive()  # the concrete plans start the guard's count again
-                    continue
+                    continue  # the abstract plans livelocked: the concrete ones start the guard's count again
                 if stop is not None:
                     outcome, reason = stop
                     break

@@ -150,6 +150,7 @@ class FlatSteps:
         if not self._flatten_root(ex, f"last resort: {why}", "give up"):
             return False
         ex._refinements[refinement_key(ex.stack[0])] = 0  # the concrete plans' own allowance
+        ex.guard.forgive()  # and the guard's count of cycles and repeated actions starts again
         ex.metrics.flat_fallbacks += 1
         return True
 
