@@ -9,14 +9,21 @@ an unsolvable goal: each unmet atom is planned for alone, concretely, within a s
 from __future__ import annotations
 
 import time
-from typing import Any
+from collections.abc import Hashable
+from typing import TYPE_CHECKING, Any
 
+from nowplan.acting.metrics import Outcome
+from nowplan.acting.refine_flat import flat_hint
 from nowplan.core.atoms import Goal
 from nowplan.core.levels import flat_levels
 from nowplan.errors import NowplanError
 from nowplan.planning.config import PlannerConfig
 from nowplan.planning.plan import PlanStatus
-from nowplan.planning.regression import plan
+from nowplan.planning.regression import concrete, plan
+
+if TYPE_CHECKING:
+    from nowplan.acting.hpn import Executive
+    from nowplan.core.levels import LevelMap
 
 MAX_ATOMS = 8  # unmet goal atoms tried, at most
 TIME_EACH = 0.5  # planner seconds per atom
@@ -42,3 +49,20 @@ def unreachable_alone(problem: Any, belief: Any) -> str:
     if not dead or len(dead) == len(unmet) > 1:
         return ""  # nothing singled out (or every atom: the search says no more than that)
     return f"; no plan even for {' & '.join(dead)} alone"
+
+
+def root_failure(ex: Executive, levels: LevelMap, key: Hashable, timed_out: bool) -> tuple[Outcome, str]:
+    """How a run ends when the root has no plan at ``levels`` (the last resort declined): the planner's
+    reason, what to try for a hierarchy (``flat_hint``), the goal atoms unreachable even alone."""
+    outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
+    reason = f"no plan for the goal ({ex._last_failure}){ex.model_hint}"
+    if not concrete(ex.domain, levels):
+        reason += flat_hint(ex, key)
+    if ex._last_status is PlanStatus.UNSOLVABLE:
+        reason += unreachable_alone(ex.problem, ex.belief)
+    if timed_out and ex.remaining_time() <= 0.05:
+        # the planner's limit was what remained of the run's: say so, not the clamped figure (a
+        # held-out drone run said "time limit of 0.19 s" in a 20 s run)
+        reason = (f"time limit of {ex.strategy.time_limit:g} s for the run reached while planning "
+                  f"({ex.metrics.world_summary()})")
+    return outcome, reason

@@ -26,7 +26,7 @@ from nowplan.acting.judge import judge
 from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.guard import ProgressGuard
-from nowplan.acting.dead_end import unreachable_alone
+from nowplan.acting.dead_end import root_failure
 from nowplan.acting.progress import Cycle, start_warnings
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
@@ -483,17 +483,7 @@ class Executive:
                                     self, f"no abstract plan for the goal once its first steps were found "
                                           f"unrefinable ({self._last_failure})")):
                             continue
-                        outcome = Outcome.LIMIT if timed_out else Outcome.FAILED
-                        reason = f"no plan for the goal ({self._last_failure}){self.model_hint}"
-                        if not concrete(self.domain, levels):
-                            reason += flat_hint(self, key)
-                        if self._last_status is PlanStatus.UNSOLVABLE:
-                            reason += unreachable_alone(self.problem, self.belief)
-                        if timed_out and self.remaining_time() <= 0.05:
-                            # the planner's limit was what remained of the run's: say so, not the
-                            # clamped figure (a held-out drone run said "time limit of 0.19 s" in a 20 s run)
-                            reason = (f"time limit of {self.strategy.time_limit:g} s for the run reached while "
-                                      f"planning ({self.metrics.world_summary()})")
+                        outcome, reason = root_failure(self, levels, key, timed_out)
                         break
                     if consecutive_failures > 3 * self.strategy.max_depth:
                         if self._flat_steps.last_resort(self, f"repeated planning failures ({self._last_failure})"):
