@@ -6,6 +6,8 @@ setting: runs reached of seeds 0-4, mean actions and cost of the reached runs, p
 and what the others ended with (a refusal: the forward engine does not apply to that belief or domain).
 
     PYTHONPATH=src .venv/bin/python benchmarks/abstract_costs_ab.py > benchmarks/results/abstract_costs_ab/runs.jsonl
+
+``--forward-alone``: the forward engine without hidden costs only (which of the two made a difference).
 """
 
 from __future__ import annotations
@@ -27,6 +29,8 @@ DOMAINS: dict[str, dict[str, Any]] = {
     "lab": {}, "search": {}, "ward": {}, "house": {}, "drone": {},
 }
 SETTINGS: dict[str, dict[str, Any]] = {"default": {}, "forward+hidden": {"engine": "forward", "hidden_costs": True}}
+if "--forward-alone" in sys.argv:  # the forward engine without hidden costs (which of the two did it)
+    SETTINGS = {"forward": {"engine": "forward"}}
 HANG_S = 40
 
 
