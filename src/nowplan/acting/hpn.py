@@ -31,7 +31,7 @@ from nowplan.acting.progress import Cycle, start_warnings
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
 from nowplan.acting.refine_flat import FlatSteps, call_config, flat_hint, refinement_key, root_time_share
-from nowplan.acting.static_watch import StaticWatch, describe, stale_frame
+from nowplan.acting.static_watch import StaticWatch
 from nowplan.acting.strategy import Strategy, check_supported
 from nowplan.acting.whole import plan_whole_problem
 from nowplan.belief.protocols import HasHeuristic, check_belief
@@ -327,18 +327,7 @@ class Executive:
         self.last_action = action
         if not obs.success:
             self.last_failed = (action, obs)
-        changed = self._static.changed(self.belief, bool(obs.exogenous))
-        k = stale_frame(self.stack, self.domain, self.truth, changed) if changed else None
-        if k is not None:  # a step to come rests on a static fact the world changed: refine again below it
-            why = (f"the world changed static fact(s) {describe(changed)}, which no operator changes and so "
-                   f"no pre-image names; a step of plan {self.stack[k].plan_id} needs them")
-            self.trace.emit("note", plan_id=self.stack[k].plan_id, text=f"executive: {why}; it is made again")
-            while len(self.stack) > k:
-                self.pop("static facts changed")
-            parent = self.stack[-1]
-            if not parent.root and parent.i > 0:
-                parent.i -= 1  # its step is refined again (as after a backtrack)
-            self.request_replan("static", why)
+        self._static.after_observation(self, bool(obs.exogenous))  # a static fact the world changed
 
     def backtrack(self, f: Frame, action: Action | None) -> None:
         """No plan refines ``f``'s current step: learn it as a nogood and re-refine one level up.

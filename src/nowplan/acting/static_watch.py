@@ -17,10 +17,13 @@ drops nothing: the reconsidering mechanisms judge it as before.
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nowplan.core.domain import Domain
 from nowplan.planning.preimage import static_drop
+
+if TYPE_CHECKING:
+    from nowplan.acting.hpn import Executive
 
 MAX_NAMED = 3  # changed facts named in the trace note
 
@@ -51,6 +54,25 @@ class StaticWatch:
                 out.append((p, args))
         self._seen = now
         return out
+
+
+    def after_observation(self, ex: Executive, exogenous: bool) -> None:
+        """After an action's observation: where a step still to come of a plan on ``ex``'s stack needs a
+        static fact the world changed, drop the plan nearest the root with such a step and those above
+        it, and have the plan below refine its step again (as after a backtrack)."""
+        changed = self.changed(ex.belief, exogenous)
+        k = stale_frame(ex.stack, ex.domain, ex.truth, changed) if changed else None
+        if k is None:
+            return
+        why = (f"the world changed static fact(s) {describe(changed)}, which no operator changes and so no "
+               f"pre-image names; a step of plan {ex.stack[k].plan_id} needs them")
+        ex.trace.emit("note", plan_id=ex.stack[k].plan_id, text=f"executive: {why}; it is made again")
+        while len(ex.stack) > k:
+            ex.pop("static facts changed")
+        parent = ex.stack[-1]
+        if not parent.root and parent.i > 0:
+            parent.i -= 1
+        ex.request_replan("static", why)
 
 
 def stale_frame(stack: Sequence[Any], domain: Domain, truth: Any, changed: Iterable[tuple[str, tuple[Any, ...]]]) -> int | None:
