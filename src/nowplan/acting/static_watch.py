@@ -55,7 +55,6 @@ class StaticWatch:
         self._seen = now
         return out
 
-
     def after_observation(self, ex: Executive, exogenous: bool) -> None:
         """After an action's observation: where a step still to come of a plan on ``ex``'s stack needs a
         static fact the world changed, drop the plan nearest the root with such a step and those above
