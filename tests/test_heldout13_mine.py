@@ -100,3 +100,21 @@ def test_the_last_resort_starts_the_guards_count_again(monkeypatch: pytest.Monke
     m = run_episode(spec.scenario("dig")(0), parse_strategy("hpn+peephole", max_actions=150), seed=0)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.goal_in_world is True and m.flat_fallbacks == 1
+
+
+def test_no_last_resort_where_the_domain_cannot_be_planned_flat() -> None:
+    """Marsupial refuses the flat strategy (its loader is planned in the now): the last resort, which
+    plans the root goal at the flat level, is not taken there, and the run ends as the seed's would."""
+    from types import SimpleNamespace  # noqa: PLC0415
+
+    from nowplan.acting.refine_flat import FlatSteps  # noqa: PLC0415
+    from nowplan.domains.marsupial.model import UNSUPPORTED  # noqa: PLC0415
+
+    assert "flat" in UNSUPPORTED
+    root = SimpleNamespace(root=True)
+    ex = SimpleNamespace(strategy=parse_strategy("hpn"), single_level=False, stack=[root],
+                         domain=SimpleNamespace(unsupported=UNSUPPORTED))
+    steps = FlatSteps()
+    assert steps.last_resort(ex, "no progress") is False  # type: ignore[arg-type]
+    assert steps.after_backtrack(ex, "k", "(travel)") is False  # type: ignore[arg-type]
+    assert not steps.steps

@@ -143,9 +143,11 @@ class FlatSteps:
     def last_resort(self, ex: Executive, why: str) -> bool:
         """The run would end for ``why`` (the root's abstract plans make no progress): plan the current
         root step's goal concretely instead, once per root step; ``False`` where the strategy has no
-        last resort (``nofallback``), plans at one level only, or that step is planned concretely
-        already (then the run ends as it would have)."""
-        if not ex.strategy.last_resort or ex.single_level or not ex.stack or not ex.stack[0].root:
+        last resort (``nofallback``), plans at one level only, the domain says it cannot be planned
+        flat (``Domain.unsupported["flat"]``: marsupial's loader is planned in the now), or that step
+        is planned concretely already (then the run ends as it would have)."""
+        if (not ex.strategy.last_resort or ex.single_level or "flat" in ex.domain.unsupported
+                or not ex.stack or not ex.stack[0].root):
             return False
         if not self._flatten_root(ex, f"last resort: {why}", "give up"):
             return False
@@ -160,7 +162,7 @@ class FlatSteps:
         gained meanwhile means the abstract plans keep proposing what no refinement reaches, in rounds
         of actions that the guard may not see as cycles (each failure or change of the world's ends
         one): the last resort.  ``True`` where it was taken (the stack is back at the root)."""
-        if not ex.strategy.last_resort or ex.single_level:
+        if not ex.strategy.last_resort or ex.single_level or "flat" in ex.domain.unsupported:
             return False
         achieved = ex.domain.count_holding(ex.truth, ex.problem.goal.atoms)
         if achieved > self._best:
