@@ -25,6 +25,8 @@ LEVELS: dict[str, tuple[str, dict[str, Any]]] = {
     "clean": ("mine", {}),
     "f0.2-m0.1-fp0.1": ("mine", {"failure_prob": 0.2, "miss": 0.1, "fp": 0.1}),
     "x0.2-m0.2-fp0.1": ("mine", {"exogenous_prob": 0.2, "miss": 0.2, "fp": 0.1}),
+    # beyond the benchmark's levels (a stress run, named apart): every fault at once, harder
+    "stress-f0.3-x0.3-m0.3-fp0.2": ("mine", {"failure_prob": 0.3, "exogenous_prob": 0.3, "miss": 0.3, "fp": 0.2}),
 }
 
 

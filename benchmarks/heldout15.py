@@ -25,6 +25,8 @@ LEVELS: dict[str, tuple[str, dict[str, Any]]] = {
     "clean": ("ferry", {}),
     "f0.2-b0.2": ("ferry", {"failure_prob": 0.2, "balk": 0.2}),
     "x0.2-b0.1": ("ferry", {"exogenous_prob": 0.2, "balk": 0.1}),
+    # beyond the benchmark's levels (a stress run, named apart): all three faults at once, harder
+    "stress-f0.2-x0.4-b0.3": ("ferry", {"failure_prob": 0.2, "exogenous_prob": 0.4, "balk": 0.3}),
 }
 
 
