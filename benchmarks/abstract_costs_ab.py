@@ -29,8 +29,7 @@ DOMAINS: dict[str, dict[str, Any]] = {
     "lab": {}, "search": {}, "ward": {}, "house": {}, "drone": {},
 }
 SETTINGS: dict[str, dict[str, Any]] = {"default": {}, "forward+hidden": {"engine": "forward", "hidden_costs": True}}
-if "--forward-alone" in sys.argv:  # the forward engine without hidden costs (which of the two did it)
-    SETTINGS = {"forward": {"engine": "forward"}}
+FORWARD_ALONE: dict[str, dict[str, Any]] = {"forward": {"engine": "forward"}}  # which of the two did it
 HANG_S = 40
 
 
@@ -40,11 +39,12 @@ def _alarm(*_: Any) -> None:
 
 def main() -> int:
     signal.signal(signal.SIGALRM, _alarm)
+    settings = FORWARD_ALONE if "--forward-alone" in sys.argv[1:] else SETTINGS
     for dom, kw in DOMAINS.items():
         sys.path.insert(0, str(EXAMPLES / dom))  # the example package, as a user's plugin is found
         episode = importlib.import_module(f"{dom}_domain.scenarios").episode
         for strat in ("hpn", "hpn+peephole"):
-            for name, over in SETTINGS.items():
+            for name, over in settings.items():
                 res: list[tuple[str, int, float, float]] = []
                 for seed in range(5):
                     s = parse_strategy(strat, max_actions=300, time_limit=20.0)

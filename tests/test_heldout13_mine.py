@@ -118,3 +118,8 @@ def test_no_last_resort_where_the_domain_cannot_be_planned_flat() -> None:
     assert steps.last_resort(ex, "no progress") is False  # type: ignore[arg-type]
     assert steps.after_backtrack(ex, "k", "(travel)") is False  # type: ignore[arg-type]
     assert not steps.steps
+    from nowplan.acting.refine_flat import flat_hint  # noqa: PLC0415
+
+    ex.strategy, ex._flat_steps = parse_strategy("hpn+nofallback"), steps
+    hint = flat_hint(ex, ("root", 1))  # type: ignore[arg-type]
+    assert "downward refinable" in hint and "switch" not in hint  # no switch plans marsupial flat

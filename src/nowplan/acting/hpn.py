@@ -343,7 +343,13 @@ class Executive:
                             text=f"backtrack: {action.pddl()} cannot be refined here; replanning the level above")
             if self._flat_steps.after_backtrack(self, (f.plan.goal, f.plan.levels, action.key), action.pddl()):
                 return  # refined in vain again and again: the root goal is planned concretely
-        self.pop("failed")
+        self.unwind(len(self.stack) - 1, "failed")
+
+    def unwind(self, depth: int, reason: str) -> None:
+        """Pop the plans from ``depth`` up (``reason``) and set the plan below back to the step they
+        refined, so that step is planned again (a backtrack; a static fact the world changed)."""
+        while len(self.stack) > depth:
+            self.pop(reason)
         parent = self.stack[-1] if self.stack else None
         if parent is not None and not parent.root and parent.i > 0:
             parent.i -= 1

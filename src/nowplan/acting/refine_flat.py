@@ -56,9 +56,19 @@ def flat_hint(ex: Executive, key: Hashable) -> str:
     where the goal was planned concretely already (then the hierarchy is not the cause)."""
     if ex.strategy.refine_flat or key in ex._flat_steps:
         return ""
-    return ("; the criticalities may not be downward refinable (abstract plans that no refinement "
-            "reaches): without the switch nofallback the executive plans such a goal concretely as a "
-            "last resort, and with refine-flat (hpn+refine-flat) as soon as its abstract plans fail")
+    hint = "; the criticalities may not be downward refinable (abstract plans that no refinement reaches)"
+    if "flat" in ex.domain.unsupported:
+        return hint  # (no switch plans such a domain's goal concretely)
+    if not ex.strategy.last_resort:
+        return (hint + ": without the switch nofallback the executive plans such a goal concretely as a "
+                "last resort, and with refine-flat (hpn+refine-flat) as soon as its abstract plans fail")
+    return hint + ": the switch refine-flat (hpn+refine-flat) plans such a goal concretely"
+
+
+def may_fall_back(ex: Executive) -> bool:
+    """The strategy has the last resort, plans at several levels, and the domain can be planned flat
+    (``Domain.unsupported["flat"]``: marsupial's loader is planned in the now)."""
+    return ex.strategy.last_resort and not ex.single_level and "flat" not in ex.domain.unsupported
 
 
 def call_config(cfg: PlannerConfig, root: bool) -> PlannerConfig:
@@ -143,11 +153,9 @@ class FlatSteps:
     def last_resort(self, ex: Executive, why: str) -> bool:
         """The run would end for ``why`` (the root's abstract plans make no progress): plan the current
         root step's goal concretely instead, once per root step; ``False`` where the strategy has no
-        last resort (``nofallback``), plans at one level only, the domain says it cannot be planned
-        flat (``Domain.unsupported["flat"]``: marsupial's loader is planned in the now), or that step
-        is planned concretely already (then the run ends as it would have)."""
-        if (not ex.strategy.last_resort or ex.single_level or "flat" in ex.domain.unsupported
-                or not ex.stack or not ex.stack[0].root):
+        last resort, plans at one level only or cannot be planned flat (:func:`may_fall_back`), or that
+        step is planned concretely already (then the run ends as it would have)."""
+        if not may_fall_back(ex) or not ex.stack or not ex.stack[0].root:
             return False
         if not self._flatten_root(ex, f"last resort: {why}", "give up"):
             return False
@@ -162,7 +170,7 @@ class FlatSteps:
         gained meanwhile means the abstract plans keep proposing what no refinement reaches, in rounds
         of actions that the guard may not see as cycles (each failure or change of the world's ends
         one): the last resort.  ``True`` where it was taken (the stack is back at the root)."""
-        if not ex.strategy.last_resort or ex.single_level or "flat" in ex.domain.unsupported:
+        if not may_fall_back(ex):
             return False
         achieved = ex.domain.count_holding(ex.truth, ex.problem.goal.atoms)
         if achieved > self._best:

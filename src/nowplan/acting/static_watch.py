@@ -66,11 +66,7 @@ class StaticWatch:
         why = (f"the world changed static fact(s) {describe(changed)}, which no operator changes and so no "
                f"pre-image names; a step of plan {ex.stack[k].plan_id} needs them")
         ex.trace.emit("note", plan_id=ex.stack[k].plan_id, text=f"executive: {why}; it is made again")
-        while len(ex.stack) > k:
-            ex.pop("static facts changed")
-        parent = ex.stack[-1]
-        if not parent.root and parent.i > 0:
-            parent.i -= 1
+        ex.unwind(k, "static facts changed")
         ex.request_replan("static", why)
 
 
