@@ -258,12 +258,13 @@ def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action, may_sw
             v = seen[a] = domain.holds(a, belief)
         return v
 
-    if refined.key in forbidden or all(holds(a) for a in goal.atoms):
+    truth = ex.truth  # (one dictionary lookup per atom where the truth is plain: Domain.satisfies)
+    if refined.key in forbidden or domain.satisfies(truth, goal):
         return None  # the goal holds: the planner's empty plan, not a step
     g1 = preimage(goal, refined, levels.level(refined), domain, drop)
     if g1 is None:
         return None
-    unmet = [a for a in g1.atoms if not holds(a)]
+    unmet = domain.unmet(truth, g1.atoms)
     chain: list[Action] = [refined]
     if unmet:
         if domain.axioms or forward_unsupported(domain, belief) is not None:
@@ -295,7 +296,7 @@ def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action, may_sw
             return None
         goals.append(g)
     goals.reverse()
-    if not all(holds(a) for a in goals[0].atoms):
+    if not domain.satisfies(truth, goals[0]):
         return None
     return Plan((PlanStep(None, goals[0]), *(PlanStep(a, g) for a, g in zip(chain, goals[1:], strict=True))), levels)
 

@@ -391,8 +391,9 @@ def conjoin(goal: Goal, extra: Iterable[Atom], rules: Rules = DEFAULT_RULES) -> 
     return Goal(frozenset(atoms))
 
 
-def _keyed(rules: Rules) -> tuple[list[Any], list[ConflictRule]]:
-    """Split conflict rules into keyed ones (with ``group_keys``) and plain pairwise ones.
+def _keyed(rules: Rules) -> tuple[list[Any], list[ConflictRule], dict[Atom, tuple[Any, ...]]]:
+    """Split conflict rules into keyed ones (with ``group_keys``) and plain pairwise ones, with a memo
+    of each atom's keys under all the keyed ones (a key is a function of the atom alone).
 
     Kept per conflicts tuple (by identity): ``isinstance`` against the runtime-checkable
     protocol inspects attributes, and the pre-image computation asks at every regression step.
@@ -400,16 +401,19 @@ def _keyed(rules: Rules) -> tuple[list[Any], list[ConflictRule]]:
     conflicts = rules.conflicts
     hit = _KEYED.get(id(conflicts))
     if hit is not None and hit[0] is conflicts:
-        return hit[1], hit[2]
+        return hit[1], hit[2], hit[3]
     keyed = [c for c in conflicts if isinstance(c, KeyedRule)]
     plain = [c for c in conflicts if not isinstance(c, KeyedRule)]
     if len(_KEYED) >= 64:
         _KEYED.clear()
-    _KEYED[id(conflicts)] = (conflicts, keyed, plain)  # the tuple is kept, so its id is not reused
-    return keyed, plain
+    memo: dict[Atom, tuple[Any, ...]] = {}
+    _KEYED[id(conflicts)] = (conflicts, keyed, plain, memo)  # the tuple is kept, so its id is not reused
+    return keyed, plain, memo
 
 
-_KEYED: dict[int, tuple[tuple[ConflictRule, ...], list[Any], list[ConflictRule]]] = {}
+_KEYED: dict[int, tuple[tuple[ConflictRule, ...], list[Any], list[ConflictRule], dict[Atom, tuple[Any, ...]]]] = {}
+# atoms whose keys one memo keeps before it is emptied (a bound on its memory)
+_MAX_KEYS_MEMO = 200_000
 
 
 def _same_fluent_clash(atoms: list[Atom], rules: Rules) -> tuple[Atom, Atom] | None:
@@ -433,16 +437,20 @@ def contradiction(
     expose ``group_keys(atom)`` (at most one true atom per key) are checked
     over all atoms in linear time.
     """
-    keyed, plain = _keyed(rules)
+    keyed, plain, memo = _keyed(rules)
     if keyed:
         seen: dict[Any, Atom] = {}
         for a in atoms:
-            for rule in keyed:
-                for k in rule.group_keys(a):
-                    other = seen.get(k)
-                    if other is not None and other != a:
-                        return (other, a)
-                    seen[k] = a
+            keys = memo.get(a)
+            if keys is None:
+                if len(memo) >= _MAX_KEYS_MEMO:
+                    memo.clear()
+                keys = memo[a] = tuple((i, k) for i, rule in enumerate(keyed) for k in rule.group_keys(a))
+            for k in keys:
+                other = seen.get(k)
+                if other is not None and other != a:
+                    return (other, a)
+                seen[k] = a
     if not plain:
         return _same_fluent_clash(atoms, rules) if new is None else None
     candidates = list(new) if new is not None else atoms

@@ -212,6 +212,12 @@ class Domain:
             return belief.count_holding(atoms)
         return sum(self.holds(a, belief) for a in atoms)
 
+    def unmet(self, belief: Any, atoms: Iterable[Atom]) -> list[Atom]:
+        """The atoms that do not hold in the state or belief, in their order."""
+        if self.plain_truth and isinstance(belief, State):  # one dictionary lookup per atom
+            return belief.unmet(atoms)
+        return [a for a in atoms if not self.holds(a, belief)]
+
     def satisfies(self, belief: Any, goal: Goal | Iterable[Atom]) -> bool:
         atoms = goal.atoms if isinstance(goal, Goal) else goal
         if self.plain_truth and isinstance(belief, State):  # one dictionary lookup per atom

@@ -56,6 +56,19 @@ class State:
                 n += not (have is None or have is False or not have == a.value)
         return n
 
+    def unmet(self, atoms: Iterable[Atom]) -> list[Atom]:
+        """The atoms that do not hold here under plain truth (as :meth:`all_hold`, atom by atom)."""
+        get = self._map.get
+        out = []
+        for a in atoms:
+            have = get((a.predicate, a.args), False)
+            if a.value is False:
+                if have is not False and have is not None:
+                    out.append(a)
+            elif have is None or have is False or not have == a.value:
+                out.append(a)
+        return out
+
     def all_hold(self, atoms: Iterable[Atom]) -> bool:
         """Every atom holds here under plain truth (no tests, equality rules): what ``Domain.holds``
         answers atom by atom, with one dictionary lookup each (``Domain.satisfies`` asks it)."""

@@ -329,6 +329,7 @@ def reasonable_orders(task: Task, sets: Sequence[frozenset[int]], before: Mappin
     singles = [a for a in range(n) if len(sets[a]) == 1]
     singles_not_now = [a for a in singles if not sets[a] & init]
     deleted_by_all: dict[int, list[int]] | None = None  # fact -> the singles all of whose achievers delete it
+    touching: _Touching | None = None  # the singles that may interfere with a fact, by fact and by mutex key
     for b in range(n):
         if len(sets[b]) != 1:
             continue
@@ -348,7 +349,13 @@ def reasonable_orders(task: Task, sets: Sequence[frozenset[int]], before: Mappin
             candidates: Iterable[int] = [a for a in deleted_by_all.get(fb, ()) if a != b
                                          and not (b_now and sets[a] & init)]
         elif fb in goal:  # every fact landmark (none true now when fb is: both true now is no ordering)
-            candidates = [a for a in (singles_not_now if b_now else singles) if a != b]
+            if isinstance(mutex, FactMutex):
+                if touching is None:
+                    touching = _touching(task, sets, singles, parents, achievers_of, mutex)
+                near = _near(fb, touching, mutex)
+                candidates = sorted(a for a in near if a != b and not (b_now and sets[a] & init))
+            else:
+                candidates = [a for a in (singles_not_now if b_now else singles) if a != b]
         else:
             candidates = sorted({a for c in before.get(b, ()) for a in parents.get(c, ()) if a != b})
         before_b = before.get(b, ())
@@ -360,3 +367,54 @@ def reasonable_orders(task: Task, sets: Sequence[frozenset[int]], before: Mappin
             if interferes(a, b):
                 out.setdefault(b, []).append(a)
     return out
+
+
+# (singles by the facts their first achievers delete, singles by the mutex keys that an interference
+# needs one of, the singles some parent of which has no facts: such a parent is mutex with every fact)
+_Touching = tuple[dict[int, list[int]], dict[object, list[int]], list[int]]
+
+
+def _touching(task: Task, sets: Sequence[frozenset[int]], singles: list[int], parents: Mapping[int, set[int]],
+              achievers_of: Callable[[int], list[int]], mutex: FactMutex) -> _Touching:
+    """An index of the fact landmarks ``a`` by what ``interferes(a, b)`` needs ``b``'s fact to meet.
+
+    ``A`` interferes with ``B = {f}`` only if ``f`` is mutex with ``A``'s fact, or the first achiever
+    of ``A`` (every one of them, so the first) deletes ``f`` or adds a fact mutex with ``f``, or a
+    parent of ``A`` is mutex with ``f`` (so is its first fact): each of those shares a mutex key with
+    ``f`` or names ``f``.  Testing only the landmarks found under ``f``'s keys and ``f`` itself gives
+    the same orders as testing every pair (a goal of n facts, each a landmark in a mutex group, made
+    n^2 tests: 124,750 on gripper with 250 balls).
+    """
+    by_fact: dict[int, list[int]] = {}
+    by_key: dict[object, list[int]] = {}
+    always: list[int] = []
+    for a in singles:
+        keys: set[object] = set()
+        for f in sets[a]:
+            keys |= mutex.keys(f)
+        acts = achievers_of(a)
+        if acts:
+            x = acts[0]
+            for f in task.dele[x]:
+                by_fact.setdefault(f, []).append(a)
+            for e in task.add[x]:
+                keys |= mutex.keys(e)
+        for p in parents.get(a, ()):
+            if not sets[p]:
+                always.append(a)
+            else:
+                keys |= mutex.keys(min(sets[p]))
+        for k in keys:
+            by_key.setdefault(k, []).append(a)
+    return by_fact, by_key, always
+
+
+def _near(f: int, touching: _Touching, mutex: FactMutex) -> set[int]:
+    """The fact landmarks indexed under ``f`` or one of its mutex keys (see :func:`_touching`)."""
+    by_fact, by_key, always = touching
+    out = set(by_fact.get(f, ()))
+    out.update(always)
+    for k in mutex.keys(f):
+        out.update(by_key.get(k, ()))
+    return out
+
