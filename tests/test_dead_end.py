@@ -42,6 +42,22 @@ def test_a_dead_end_answers_unsolvable_without_a_search_and_draws_as_the_search(
     assert r1.random() == r2.random()  # the serialization's shuffle was drawn in both
 
 
+def test_the_forward_engine_asks_the_dead_end_test_too() -> None:
+    """A flat call searches forward (engine auto at a concrete level, or forward): the domain's proof
+    answers it as it answers the regression (before: the forward search proved it again by exhausting
+    its space, or ran out of nodes first; the held-out mill shop)."""
+    proved = Domain("t", PREDS, OPS, dead_end=lambda goal, belief, levels, objects: "c(m) is out of reach")
+    objs = {"k": None, "m": None}
+    for engine in ("forward", "auto"):
+        res = plan(proved, objs, State(), GOAL, LevelMap(0), replace(CFG, engine=engine))
+        assert res.status is PlanStatus.UNSOLVABLE and res.reason == "c(m) is out of reach"
+        assert res.method == "dead_end" and res.expanded == 0
+    quiet = replace(proved, dead_end=lambda goal, belief, levels, objects: None)
+    res = plan(quiet, {"k": None}, State([atom("a", "k")]), Goal.of([atom("c", "k")]), LevelMap(0),
+               replace(CFG, engine="forward"))
+    assert res.status is PlanStatus.SOLVED and res.method != "dead_end"
+
+
 def test_no_proof_leaves_the_search_as_it_was() -> None:
     proved = Domain("t", PREDS, OPS, dead_end=lambda goal, belief, levels, objects: None)
     res = plan(proved, {"k": None}, State([atom("a", "k")]), Goal.of([atom("c", "k")]), LevelMap(0), CFG)

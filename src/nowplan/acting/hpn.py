@@ -30,6 +30,7 @@ from nowplan.acting.dead_end import root_failure
 from nowplan.acting.progress import Cycle, start_warnings
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
+from nowplan.acting.postpone import postpone
 from nowplan.acting.refine_flat import FlatSteps, call_config, flat_hint, refinement_key, root_time_share
 from nowplan.acting.static_watch import StaticWatch
 from nowplan.acting.strategy import Strategy, check_supported
@@ -169,6 +170,8 @@ class Executive:
         return f.plan.steps[f.i]
 
     def push(self, plan: Plan, parent: Frame | None, root: bool = False) -> Frame:
+        if not root and self.strategy.postpone and self.strategy.hierarchical:
+            plan = self._postponed(plan)
         fr = Frame(
             plan,
             self._next_id,
@@ -192,6 +195,15 @@ class Executive:
         for m in self.mechanisms:
             m.after_push(self, fr)
         return fr
+
+    def _postponed(self, plan: Plan) -> Plan:
+        """``plan`` with the goal atoms its steps leave alone owed only at its end (acting/postpone.py)."""
+        out, later = postpone(plan, self.domain, self.truth)
+        if out is not plan:
+            meta = self._made.pop(id(plan), None)
+            if meta is not None:
+                self._made[id(out)] = {**meta, "postponed": goal_text(Goal(later), self._atom_text)}
+        return out
 
     def pop(self, reason: str) -> Frame:
         f = self.stack.pop()

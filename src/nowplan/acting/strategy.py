@@ -61,6 +61,9 @@ class Strategy:
     # where the run would end because the root's abstract plans make no progress, plan the root goal
     # concretely once instead (acting/refine_flat.py, FlatSteps.last_resort; off: the nofallback switch)
     last_resort: bool = True
+    # goal atoms an abstract plan leaves alone are owed only at its end (acting/postpone.py; off: the
+    # maintain switch, the seed's exactly regressed pre-images)
+    postpone: bool = True
     domain_planner: bool = False  # plan with the domain's own planner (Domain.planner) when it has one
     direct_refinements: bool = True  # short refinements made without a planner call (acting/refine.py)
     time_limit: float = 600.0
@@ -110,6 +113,7 @@ class Strategy:
             "domain_planner": self.domain_planner,
             "refine_flat": self.refine_flat,
             "last_resort": self.last_resort,
+            "postpone": self.postpone,
             "direct_refinements": self.direct_refinements,
         }
 
@@ -134,6 +138,11 @@ register_switch(
     Switch("nofallback", "no last resort: where the root's abstract plans make no progress (a hierarchy "
            "that is not downward refinable), give up as the seed's HPN does instead of planning the "
            "root goal concretely", {"last_resort": False})
+)
+register_switch(
+    Switch("maintain", "keep every goal atom in every pre-image of an abstract plan, as the seed's HPN does "
+           "(no postponing of the atoms its steps leave alone to its last step, acting/postpone.py)",
+           {"postpone": False})
 )
 register_switch(
     Switch("nodirect", "refine every abstract step with a planner call (no direct refinements of at "

@@ -151,6 +151,12 @@ def _plan(
     if config.engine == "forward" or (
         config.engine == "auto" and context_allows_forward(context) and concrete(domain, levels)
     ):
+        # the domain's proof of no plan, as the regression path asks it: a forward search would only
+        # prove it again by exhausting the space (or run out of nodes first)
+        dead = domain.dead_end(goal, belief, levels, objects) if domain.dead_end is not None else None
+        if dead is not None:
+            return PlanResult(PlanStatus.UNSOLVABLE, None, dead, method="dead_end",
+                              cpu_time_s=time.process_time() - t_cpu, attempts=("dead_end:unsolvable",))
         forward = plan_forward(domain, objects, belief, goal, levels, config)
         if forward is not None:
             return forward
