@@ -64,23 +64,19 @@ def test_refine_flat_plans_concretely_when_the_guard_sees_a_cycle_of_a_particle_
     opens it again, fails deeper and pops back, so the gate toggles.  The belief is a particle belief,
     which refine-flat's own symbolic-state count cannot see; the progress guard's cycle (its
     fingerprint and the stack's goals) now makes refine-flat plan the goal concretely (before: a
-    livelock after 11 actions).  With the pre-images exactly regressed (``maintain``): postponing the
-    shut gate to the last step's refinement (acting/postpone.py) removes the toggling itself."""
+    livelock after 11 actions)."""
     spec = example_spec(monkeypatch, "mine")
-    m = run_episode(spec.scenario("dig")(1), parse_strategy("hpn+refine-flat+maintain", max_actions=150), seed=1)
+    m = run_episode(spec.scenario("dig")(1), parse_strategy("hpn+refine-flat", max_actions=150), seed=1)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.goal_in_world is True
     assert m.cycles >= 1  # the fallback came from a cycle, not from the other two triggers
-    later = run_episode(spec.scenario("dig")(1), parse_strategy("hpn+refine-flat", max_actions=150), seed=1)
-    assert later.outcome is Outcome.REACHED and later.cycles == 0 and later.flat_fallbacks == 0
 
 
 def test_a_step_backtracked_again_and_again_gets_the_last_resort(monkeypatch: pytest.MonkeyPatch) -> None:
     """Exogenous changes (the battery drains, the draught opens the gate) end every cycle and every
     repeated block the guard counts, so under RCHPN the abstract plans proposed the same unrefinable
     ``charge`` round after round until the 300-action budget (x0.2-m0.2-fp0.1, seed 3).  The same step
-    backtracked 8 times with no goal atom gained is the last resort's cue (the pre-images exactly
-    regressed, ``maintain``: with the shut gate postponed, "no progress" comes first)."""
+    backtracked 8 times with no goal atom gained is the last resort's cue."""
     from nowplan.trace import Trace  # noqa: PLC0415
 
     example_spec(monkeypatch, "mine")
@@ -88,7 +84,7 @@ def test_a_step_backtracked_again_and_again_gets_the_last_resort(monkeypatch: py
 
     tr = Trace()
     m = run_episode(episode(seed=3, exogenous_prob=0.2, miss=0.2, fp=0.1),
-                    parse_strategy("hpn+peephole+maintain", max_actions=300), seed=3, trace=tr)
+                    parse_strategy("hpn+peephole", max_actions=300), seed=3, trace=tr)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.goal_in_world is True and m.flat_fallbacks == 1
     notes = [e["text"] for e in tr.events if e["event"] == "note" and "last resort" in e["text"]]

@@ -198,7 +198,7 @@ class Executive:
 
     def _postponed(self, plan: Plan) -> Plan:
         """``plan`` with the goal atoms its steps leave alone owed only at its end (acting/postpone.py)."""
-        out, later = postpone(plan, self.domain, self.truth)
+        out, later = postpone(plan, self.domain, self.truth, self.problem.goal)
         if out is not plan:
             meta = self._made.pop(id(plan), None)
             if meta is not None:

@@ -1,6 +1,6 @@
 """Goal atoms an abstract plan leaves alone are owed only at its end (tidy-up goals).
 
-A goal often has atoms that hold now and that the plan's steps, at the plan's abstraction level,
+A problem's goal often has atoms that hold now and that the plan's steps, at the plan's abstraction level,
 neither need nor change: a robot parked at home, the machines switched off, a door closed.  Regressed
 through such steps they stay in every pre-image, ``g0 … gn``, so HPN's refinement of each step must
 bring them about again before the next one: the robot drives home after every delivery and the
@@ -10,7 +10,8 @@ does.
 
 :func:`postpone` takes those atoms out of ``g0 … g(n-1)`` and leaves ``gn`` as it was, so the
 refinement of the last step plans them (once), as a flat plan would at its end.  An atom is
-postponed only if it holds now; no step of the plan adds, deletes, needs (a precondition kept at
+postponed only if it is an atom of the problem's goal (not a subgoal an abstract plan set, such as
+a package to stay in a plane), it holds now; no step of the plan adds, deletes, needs (a precondition kept at
 the step's level) or conflicts with it under the domain's rules; and the hierarchy's top level does
 not plan with its predicate (no operator keeps a precondition on it there).  So the atoms the
 abstract plans work with stay maintained, as the seed's HPN maintains them: a piece already on its
@@ -28,8 +29,9 @@ from nowplan.core.domain import Domain
 from nowplan.planning.plan import Plan, PlanStep
 
 
-def postponable(plan: Plan, domain: Domain, truth: object) -> frozenset[Atom]:
-    """The atoms of ``plan``'s goal that hold in ``truth`` and that no step works with (see above)."""
+def postponable(plan: Plan, domain: Domain, truth: object, owed: Goal) -> frozenset[Atom]:
+    """The atoms of ``plan``'s goal, of the problem's goal ``owed``, that hold in ``truth`` and that no
+    step works with (see above)."""
     steps = plan.steps
     n = len(steps) - 1
     if n < 2 or all(plan.is_primitive(i) for i in range(1, n + 1)):
@@ -45,7 +47,7 @@ def postponable(plan: Plan, domain: Domain, truth: object) -> frozenset[Atom]:
     seen = _top_sees(domain)
     out = []
     for x in plan.goal.atoms:
-        if x.predicate in seen:
+        if x.predicate in seen or x not in owed.atoms:
             continue  # the hierarchy's top level plans with it: it stays maintained
         if x.key in keys or not domain.satisfies(truth, (x,)):
             continue
@@ -72,9 +74,9 @@ def _top_sees(domain: Domain) -> frozenset[str]:
 _SEEN: dict[int, tuple[Domain, frozenset[str]]] = {}
 
 
-def postpone(plan: Plan, domain: Domain, truth: object) -> tuple[Plan, frozenset[Atom]]:
+def postpone(plan: Plan, domain: Domain, truth: object, owed: Goal) -> tuple[Plan, frozenset[Atom]]:
     """``plan`` with :func:`postponable` atoms taken out of ``g0 … g(n-1)``, and those atoms."""
-    later = postponable(plan, domain, truth)
+    later = postponable(plan, domain, truth, owed)
     if not later:
         return plan, later
     n = len(plan.steps) - 1
