@@ -52,3 +52,42 @@ def test_a_flat_call_hears_the_domains_dead_end(monkeypatch: pytest.MonkeyPatch)
                PlannerConfig(engine="forward", max_nodes=50_000))
     assert res.status is PlanStatus.UNSOLVABLE and res.method == "dead_end"
     assert "shaft" in res.reason
+
+
+def test_a_ground_skeleton_is_followed_step_by_step(monkeypatch: pytest.MonkeyPatch) -> None:
+    """online+reuse on the shop: a flat plan of ~100 ground steps (no free variables) is replanned under
+    its skeleton after each action; each step is the one instance its constants name (before: every
+    achiever of every goal atom was grounded per step, and the pairwise ``excludes`` rule compared every
+    two pre-image atoms, so the run used its 10 s on ~30 actions)."""
+    scenarios = _shop(monkeypatch)
+    from nowplan.acting.reuse import constrained_plan, skeleton  # noqa: PLC0415
+    from nowplan.api import SymbolicBelief  # noqa: PLC0415
+
+    prob = scenarios.problem(0)
+    from nowplan.api import flat_levels  # noqa: PLC0415
+
+    first = plan(prob.domain, prob.objects, SymbolicBelief(prob.init), prob.goal, flat_levels(),
+                 PlannerConfig(engine="forward"))
+    assert first.plan is not None and len(first.plan.actions) > 50
+    tail = skeleton(first.plan.actions)
+    res = constrained_plan(prob.domain, prob.objects, SymbolicBelief(prob.init), prob.goal, tail, time_budget=30.0)
+    assert res.solved and res.plan is not None
+    assert res.plan.actions == first.plan.actions
+    m = run_episode(scenarios.episode(0), parse_strategy("online+reuse", max_actions=300), seed=0)
+    assert m.outcome is Outcome.REACHED and m.goal_in_world is True
+
+
+def test_an_effect_a_pairwise_rule_excludes_ends_the_regression(monkeypatch: pytest.MonkeyPatch) -> None:
+    """``excludes(raw(b), turned(b))`` is a plain pairwise rule: a step whose effect makes ``raw(b)``
+    true cannot precede a goal atom ``turned(b)`` it does not change (the pairs checked are the effects')."""
+    scenarios = _shop(monkeypatch)
+    from nowplan.api import Goal  # noqa: PLC0415
+    from nowplan.planning.preimage import preimage  # noqa: PLC0415
+
+    prob = scenarios.problem(0)
+    dom = prob.domain
+    turn = next(op for op in dom.operators if op.name == "turn")
+    act = turn.instantiate(dict(zip(turn.params, ("gear1", "lathe"), strict=True)))
+    assert preimage(Goal.of([atom("raw", "gear1")], dom.rules), act, None, dom) is None  # turn unsets raw
+    kept = preimage(Goal.of([atom("turned", "gear1"), atom("turned", "gear2")], dom.rules), act, None, dom)
+    assert kept is not None and atom("turned", "gear2") in kept.atoms and atom("raw", "gear1") in kept.atoms
