@@ -27,10 +27,10 @@ from nowplan.acting.backtrack import Nogoods
 from nowplan.acting.metrics import Metrics, Outcome
 from nowplan.acting.guard import ProgressGuard
 from nowplan.acting.dead_end import root_failure
+from nowplan.acting.postpone import postpone
 from nowplan.acting.progress import Cycle, start_warnings
 from nowplan.acting.reobserve import look_again
 from nowplan.acting.refine import Achievers, direct_refinement, refine_without_swaps
-from nowplan.acting.postpone import postpone
 from nowplan.acting.refine_flat import FlatSteps, call_config, flat_hint, refinement_key, root_time_share
 from nowplan.acting.static_watch import StaticWatch
 from nowplan.acting.strategy import Strategy, check_supported
