@@ -12,7 +12,10 @@ constant fixed, each free variable bound once and then reused
 (``Bound``/``Assigned``).  It regresses the goal backwards through the
 skeleton, grounding each step through the domain's generators, with
 backtracking, until the current belief satisfies the pre-image — or the
-time budget runs out.
+time budget runs out.  A step whose arguments are all constants (and whose
+operator binds nothing by generators) is the one instance it names, so a
+ground skeleton (a flat plan of symbolic steps) is regressed step by step
+without grounding achievers.
 """
 
 from __future__ import annotations
