@@ -36,6 +36,11 @@ def postponable(plan: Plan, domain: Domain, truth: object, owed: Goal) -> frozen
     n = len(steps) - 1
     if n < 2 or all(plan.is_primitive(i) for i in range(1, n + 1)):
         return frozenset()
+    seen = _top_sees(domain)
+    candidates = [x for x in plan.goal.atoms
+                  if x.predicate not in seen and x in owed.atoms and domain.satisfies(truth, (x,))]
+    if not candidates:  # (most plans: every goal atom is one the top level plans with)
+        return frozenset()
     worked: list[Atom] = []
     for s in steps[1:]:
         a = s.action
@@ -44,12 +49,9 @@ def postponable(plan: Plan, domain: Domain, truth: object, owed: Goal) -> frozen
             worked.extend(a.preconditions(plan.levels.level(a)))
     keys = {w.key for w in worked}
     rules = domain.rules
-    seen = _top_sees(domain)
     out = []
-    for x in plan.goal.atoms:
-        if x.predicate in seen or x not in owed.atoms:
-            continue  # the hierarchy's top level plans with it: it stays maintained
-        if x.key in keys or not domain.satisfies(truth, (x,)):
+    for x in candidates:
+        if x.key in keys:
             continue
         if rules.conflicts and any(rules.atoms_conflict(x, w) for w in worked):
             continue
