@@ -50,7 +50,7 @@ from collections.abc import Hashable, Iterable
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
-from nowplan.belief.protocols import HasState
+from nowplan.belief.protocols import HasState, offers
 from nowplan.core.operators import Action
 from nowplan.core.state import State
 from nowplan.worlds.base import Observation
@@ -105,11 +105,11 @@ def start_warnings(problem: Any, belief: Any) -> str:
 
 def belief_fingerprint(belief: Any) -> Hashable | None:
     """The belief's fingerprint: its own, or its point state's facts; None when it has neither."""
-    if isinstance(belief, Fingerprinted):
-        return belief.fingerprint()
+    if offers(belief, Fingerprinted):
+        return belief.fingerprint()  # type: ignore[no-any-return]
     if isinstance(belief, State):
         return belief
-    if isinstance(belief, HasState) and isinstance(belief.state, State):
+    if offers(belief, HasState) and isinstance(belief.state, State):
         return belief.state  # a symbolic belief keeps its facts as a State
     return None
 

@@ -19,7 +19,7 @@ from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping, Seq
 from typing import TYPE_CHECKING, Any
 
 from nowplan.core.atoms import Atom, Goal, Var
-from nowplan.belief.protocols import ListsFacts
+from nowplan.belief.protocols import ListsFacts, offers
 from nowplan.core.domain import Domain
 from nowplan.core.operators import Action, Operator, ReadsFn, reads_nothing
 from nowplan.planning.context import PlanningContext
@@ -71,7 +71,7 @@ class Grounder(TaskAnswers):
         self._static_cache: dict[Atom, bool] = {}
         self._by_type: dict[str | None, list[str]] = {}
         # does the belief list its facts (``lists_facts``: the caller has asked already)?
-        self._facts_ok = isinstance(belief, ListsFacts) if lists_facts is None else lists_facts
+        self._facts_ok = offers(belief, ListsFacts) if lists_facts is None else lists_facts
         self._fill_plans: dict[int, _FillPlan] = {}
         self._fact_index: dict[tuple[str, int, tuple[int, ...]], dict[tuple[Any, ...], list[Any]]] = {}
         self._task: GroundTask | None = None

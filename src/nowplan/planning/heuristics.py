@@ -25,7 +25,7 @@ from collections.abc import Callable
 from typing import Any
 
 from nowplan.core.atoms import Atom
-from nowplan.belief.protocols import ListsFacts
+from nowplan.belief.protocols import ListsFacts, offers
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action, reads_nothing
 from nowplan.planning.ground_task import GroundAction, GroundTask, instances
@@ -35,7 +35,7 @@ from nowplan.planning.grounding import Grounder
 def relax_unsupported(grounder: Grounder, belief: Any) -> str | None:
     """Why the ground relaxed exploration (h_add, h_max, h_FF) cannot run here, or ``None`` if it can."""
     dom = grounder.domain
-    if not (grounder.lists_facts if grounder.belief is belief else isinstance(belief, ListsFacts)):
+    if not (grounder.lists_facts if grounder.belief is belief else offers(belief, ListsFacts)):
         return f"the belief {type(belief).__name__} does not list its facts (no facts()/atoms())"
     hit = dom.facts.derived.get("relax unsupported")
     if hit is not None and hit[0] is dom.operators and hit[1] is dom.predicates:

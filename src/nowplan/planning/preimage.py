@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from nowplan.belief.protocols import ListsFacts
+from nowplan.belief.protocols import ListsFacts, offers
 from nowplan.core.atoms import Atom, Goal, conjoin, contradiction
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
@@ -53,7 +53,7 @@ def preimage(
 
 def static_drop(domain: Domain, belief: Any, lists_facts: bool | None = None) -> frozenset[str]:
     """Static predicates checked at grounding and kept out of pre-images (when the belief lists facts)."""
-    if not (isinstance(belief, ListsFacts) if lists_facts is None else lists_facts):
+    if not (offers(belief, ListsFacts) if lists_facts is None else lists_facts):
         return frozenset()
     return frozenset(n for n in domain.static_predicates if domain.predicates[n].test is None)
 

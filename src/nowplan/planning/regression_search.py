@@ -12,7 +12,7 @@ import logging
 from collections.abc import Callable, Hashable, Mapping, Sequence
 from typing import Any
 
-from nowplan.belief.protocols import GivesUp, HasUnknowns, ListsFacts
+from nowplan.belief.protocols import GivesUp, HasUnknowns, ListsFacts, offers
 from nowplan.core.atoms import Atom, Goal
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
@@ -90,7 +90,7 @@ class _Search:
         self.now = _clock(config)
         self.deadline = self.now() + config.time_limit
         self.table = domain.facts
-        lists = isinstance(belief, ListsFacts)
+        lists = offers(belief, ListsFacts)
         self.grounder = Grounder(domain, objects, belief, context, config.max_generator_values, lists)
         self.drop = static_drop(domain, belief, lists)
         self._holds: dict[Atom, bool] = {}
@@ -118,12 +118,12 @@ class _Search:
             context.extras.get("forbidden_first", ()) if context is not None else ())
         # the domain's generators may give up on this call (GivesUp): the search ends, with their reason
         self.gave_up: Callable[[], str | None] | None = (
-            (lambda: belief.planning_gave_up(context)) if isinstance(belief, GivesUp) else None)
+            (lambda: belief.planning_gave_up(context)) if offers(belief, GivesUp) else None)
         self._no_relax = relax_unsupported(self.grounder, belief)
         self._can_relax = self._no_relax is None
         # with a belief that lists its facts and boolean predicates without tests, truth is membership
         self._true_ids: frozenset[int] | None = None
-        self._unknowns: frozenset[Any] = belief.unknowns() if isinstance(belief, HasUnknowns) else frozenset()
+        self._unknowns: frozenset[Any] = belief.unknowns() if offers(belief, HasUnknowns) else frozenset()
         if self._can_relax:
             self.true_ids()
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut

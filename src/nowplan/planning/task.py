@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from nowplan.core.atoms import Atom, Goal, KeyedRule
-from nowplan.belief.protocols import HasUnknowns, ListsFacts
+from nowplan.belief.protocols import HasUnknowns, ListsFacts, offers
 from nowplan.core.domain import Domain
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
@@ -49,9 +49,9 @@ __all__ = [
 
 def forward_unsupported(domain: Domain, belief: Any) -> str | None:
     """Why forward search cannot run on this domain and belief, or ``None`` if it can."""
-    if not isinstance(belief, ListsFacts):
+    if not offers(belief, ListsFacts):
         return "the belief does not list its facts"
-    if isinstance(belief, HasUnknowns) and belief.unknowns():
+    if offers(belief, HasUnknowns) and belief.unknowns():
         return "the belief is unsure of some fluents either way (a forward state is a closed world)"
     why = generators_unsupported(domain)  # generators that read nothing of the goal are grounded
     if why is not None:
