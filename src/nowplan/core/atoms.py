@@ -374,21 +374,9 @@ TRUE = Goal()
 
 
 def conjoin(goal: Goal, extra: Iterable[Atom], rules: Rules = DEFAULT_RULES) -> Goal | None:
-    """``goal ∧ extra`` simplified per fluent, or ``None`` if contradictory."""
-    table = goal.by_key()
-    for a in extra:
-        old = table.get(a.key)
-        if old is None:
-            table[a.key] = a
-            continue
-        rule = rules.rule(a.predicate)
-        if not rule.compatible(old.value, a.value):
-            return None
-        table[a.key] = Atom(a.predicate, a.args, rule.meet(old.value, a.value))
-    atoms = list(table.values())
-    if rules.conflicts and contradiction(atoms, rules, new=[table[a.key] for a in extra]) is not None:
-        return None
-    return Goal(frozenset(atoms))
+    """``goal ∧ extra`` simplified per fluent, or ``None`` if contradictory: only the pairs that involve
+    an atom of ``extra`` are checked, against the goal's indexes (:mod:`nowplan.core.goal_index`)."""
+    return _goal_index.conjoin(goal, extra, rules)
 
 
 def _keyed(rules: Rules) -> tuple[list[Any], list[ConflictRule], dict[Atom, tuple[Any, ...]]]:
@@ -475,3 +463,6 @@ def entails(strong: Goal, weak: Goal, rules: Rules = DEFAULT_RULES) -> bool:
         if s is None or not rules.rule(w.predicate).entails(s.value, w.value):
             return False
     return True
+
+
+from nowplan.core import goal_index as _goal_index  # noqa: E402  (it builds on the names above)

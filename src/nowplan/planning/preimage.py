@@ -15,6 +15,7 @@ from typing import Any
 from nowplan.belief.protocols import ListsFacts, offers
 from nowplan.core.atoms import Atom, Goal, conjoin, contradiction
 from nowplan.core.domain import Domain
+from nowplan.core.goal_index import regress_step, table_of
 from nowplan.core.levels import LevelMap
 from nowplan.core.operators import Action
 
@@ -32,6 +33,11 @@ def preimage(
     """
     rules = domain.rules
     effects = {e.key: e for e in action.effects()}
+    pre = [p for p in action.preconditions(level) if p.predicate not in drop]
+    if len(table_of(goal)) == len(goal.atoms):
+        # the goal's indexes: what the step touches is checked (core/goal_index.py)
+        return regress_step(goal, effects, pre, rules)
+    # a goal with two atoms of one fluent (made directly from atoms): every atom is read
     remaining: list[Atom] = []
     for a in goal.atoms:
         e = effects.get(a.key)
@@ -40,14 +46,9 @@ def preimage(
         elif not rules.rule(a.predicate).entails(e.value, a.value):
             return None
     if rules.conflicts and remaining:
-        # after ω its effects hold: a remaining atom they exclude can never come true (the pairs an
-        # effect is in; the remaining atoms among themselves are the goal's, checked when it was made:
-        # with new=remaining a pairwise rule compared every two of them, O(n^2) per step, which on a
-        # 100-step skeleton of the held-out mill shop was most of a constrained replan)
         effs = list(effects.values())
         if contradiction(effs + remaining, rules, new=effs) is not None:
             return None
-    pre = [p for p in action.preconditions(level) if p.predicate not in drop]
     return conjoin(Goal(frozenset(remaining)), pre, rules)
 
 
