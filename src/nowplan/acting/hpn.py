@@ -46,7 +46,7 @@ from nowplan.planning.context import PlanningContext
 from nowplan.planning.plan import Plan, PlanResult, PlanStatus, PlanStep, goal_text
 from nowplan.planning.regression import concrete
 from nowplan.planning.regression import plan as regression_plan
-from nowplan.trace import Trace
+from nowplan.trace import Lazy, Trace
 from nowplan.worlds.base import Observation, World
 
 log = logging.getLogger(__name__)
@@ -185,10 +185,11 @@ class Executive:
         self._next_id += 1
         meta = self._made.pop(id(plan), None)
         if meta is not None:
+            made = self._atom_text  # (the records are made when the trace is read or written)
             self.trace.emit(
                 "plan", plan_id=fr.plan_id, parent=fr.parent, parent_step=fr.parent_step,
-                goal=goal_text(plan.goal, self._atom_text), levels=plan.levels.top,
-                cost=sum(fr.info["step_costs"]), steps=plan.to_json(self._atom_text), **meta,
+                goal=Lazy(lambda: goal_text(plan.goal, made)), levels=plan.levels.top,
+                cost=sum(fr.info["step_costs"]), steps=Lazy(lambda: plan.to_json(made)), **meta,
             )
         self.stack.append(fr)
         self.trace.emit("push", plan_id=fr.plan_id, depth=len(self.stack))
