@@ -107,7 +107,7 @@ def test_every_buried_package_proof_is_a_subgoal_the_search_cannot_solve(
     checked: list[str] = []
     make_plan = hpn_mod.Executive.make_plan
 
-    def wrapped(self: Any, goal: Any, levels: Any, parent: Any, max_nodes: Any = None) -> Any:
+    def wrapped(self: Any, goal: Any, levels: Any, parent: Any, *args: Any, **kwargs: Any) -> Any:
         real = self._planner
         if not getattr(real, "_checks_dead_ends", False):
             def planner(domain: Any, objects: Any, belief: Any, goal: Any, levels: Any, cfg: Any,
@@ -124,7 +124,7 @@ def test_every_buried_package_proof_is_a_subgoal_the_search_cannot_solve(
                 return res
             planner._checks_dead_ends = True  # type: ignore[attr-defined]
             self._planner = planner
-        return make_plan(self, goal, levels, parent, max_nodes)
+        return make_plan(self, goal, levels, parent, *args, **kwargs)
 
     monkeypatch.setattr(hpn_mod.Executive, "make_plan", wrapped)
     m, _, ok = timed_run(episode(regime, n, trial), "hpn+peephole", trial, 600.0)
