@@ -259,7 +259,7 @@ def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action, may_sw
         return v
 
     truth = ex.truth  # (one dictionary lookup per atom where the truth is plain: Domain.satisfies)
-    if refined.key in forbidden or domain.satisfies(truth, goal):
+    if refined.key in forbidden or ex.holds_goal(goal):  # (the loop's memo: it tested the step's goal)
         return None  # the goal holds: the planner's empty plan, not a step
     g1 = preimage(goal, refined, levels.level(refined), domain, drop)
     if g1 is None:
@@ -296,7 +296,7 @@ def _direct(ex: Executive, goal: Goal, levels: LevelMap, refined: Action, may_sw
             return None
         goals.append(g)
     goals.reverse()
-    if not domain.satisfies(truth, goals[0]):
+    if not ex.holds_goal(goals[0]):  # (remembered: the loop tests the new plan's g0 next)
         return None
     return Plan((PlanStep(None, goals[0]), *(PlanStep(a, g) for a, g in zip(chain, goals[1:], strict=True))), levels)
 
