@@ -182,8 +182,8 @@ def offers(obj: object, proto: Any) -> bool:
     ``isinstance`` against such a protocol looks up each of its members on the object (10-20 µs),
     and the planner asks at every call (which searches a belief allows) and the progress guard after
     every action: 3-5 % of an HPN marsupial run's CPU (cProfile, single-20, two trials: 8,698 checks).
-    A belief's capabilities are its class's (its methods, or the fields its constructor sets); a
-    class whose instances differ in them is asked with ``isinstance`` itself.
+    A belief's capabilities are taken to be its class's (its methods, or the fields its constructor
+    sets); for a class whose instances differ in them, call ``isinstance`` instead.
     """
     key = (type(obj), proto)
     hit = _OFFERS.get(key)

@@ -404,6 +404,16 @@ _KEYED: dict[int, tuple[tuple[ConflictRule, ...], list[Any], list[ConflictRule],
 _MAX_KEYS_MEMO = 200_000
 
 
+def group_keys_of(a: Atom, keyed: list[Any], memo: dict[Atom, tuple[Any, ...]]) -> tuple[Any, ...]:
+    """``a``'s group keys under the keyed rules of :func:`_keyed`, tagged by rule index (memoised)."""
+    keys = memo.get(a)
+    if keys is None:
+        if len(memo) >= _MAX_KEYS_MEMO:
+            memo.clear()
+        keys = memo[a] = tuple((i, k) for i, rule in enumerate(keyed) for k in rule.group_keys(a))
+    return keys
+
+
 def _same_fluent_clash(atoms: list[Atom], rules: Rules) -> tuple[Atom, Atom] | None:
     table: dict[tuple[str, tuple[Term, ...]], Atom] = {}
     for a in atoms:
@@ -429,11 +439,7 @@ def contradiction(
     if keyed:
         seen: dict[Any, Atom] = {}
         for a in atoms:
-            keys = memo.get(a)
-            if keys is None:
-                if len(memo) >= _MAX_KEYS_MEMO:
-                    memo.clear()
-                keys = memo[a] = tuple((i, k) for i, rule in enumerate(keyed) for k in rule.group_keys(a))
+            keys = group_keys_of(a, keyed, memo)
             for k in keys:
                 other = seen.get(k)
                 if other is not None and other != a:

@@ -20,7 +20,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import Any
 
-from nowplan.core.atoms import Atom, ConflictRule, Goal, Rules, Term, _keyed, contradiction
+from nowplan.core.atoms import Atom, ConflictRule, Goal, Rules, Term, _keyed, contradiction, group_keys_of
 
 Table = dict[tuple[str, tuple[Term, ...]], Atom]
 Groups = dict[Any, Atom]
@@ -35,15 +35,6 @@ def table_of(goal: Goal) -> Table:
     return table
 
 
-def _keys(a: Atom, keyed: list[Any], memo: dict[Atom, tuple[Any, ...]]) -> tuple[Any, ...]:
-    keys = memo.get(a)
-    if keys is None:
-        if len(memo) >= 200_000:
-            memo.clear()
-        keys = memo[a] = tuple((i, k) for i, rule in enumerate(keyed) for k in rule.group_keys(a))
-    return keys
-
-
 def groups_of(goal: Goal, rules: Rules) -> Groups | None:
     """Group key -> the goal's atom in that group, under ``rules``' keyed conflict rules; ``None`` when
     the goal itself has two atoms in one group (then the callers check in full).  Shared: not to be
@@ -55,7 +46,7 @@ def groups_of(goal: Goal, rules: Rules) -> Groups | None:
     groups: Groups = {}
     clash = False
     for a in goal.atoms:
-        for k in _keys(a, keyed, memo):
+        for k in group_keys_of(a, keyed, memo):
             other = groups.get(k)
             if other is not None and other != a:
                 clash = True
@@ -127,11 +118,11 @@ def _conjoin(table: Table, groups: Groups | None, extra: list[Atom], rules: Rule
     elif groups is not None:
         for old in base_of.values():  # an atom of the goal that a merge replaced leaves its groups
             if old is not None and table[old.key] != old:
-                for k in _keys(old, keyed, memo):
+                for k in group_keys_of(old, keyed, memo):
                     if groups.get(k) == old:
                         del groups[k]
         for x in new:
-            for k in _keys(x, keyed, memo):
+            for k in group_keys_of(x, keyed, memo):
                 other = groups.get(k)
                 if other is not None and other != x and table.get(other.key) == other:
                     return None
@@ -168,7 +159,7 @@ def regress_step(goal: Goal, effects: dict[tuple[str, tuple[Term, ...]], Atom], 
             else:
                 seen: Groups = {}
                 for e in effs:
-                    for k in _keys(e, keyed, memo):
+                    for k in group_keys_of(e, keyed, memo):
                         other = seen.get(k)
                         if other is None:
                             other = parent.get(k)
@@ -186,7 +177,7 @@ def regress_step(goal: Goal, effects: dict[tuple[str, tuple[Term, ...]], Atom], 
     if parent is not None:
         rest_groups = dict(parent)
         for a in removed:
-            for k in _keys(a, keyed, memo):
+            for k in group_keys_of(a, keyed, memo):
                 if rest_groups.get(k) == a:
                     del rest_groups[k]
     return _conjoin(rest_table, rest_groups, pre, rules, bool(keyed) and parent is None)

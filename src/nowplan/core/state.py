@@ -178,4 +178,3 @@ class State:
 
     def __repr__(self) -> str:
         return "State({" + ", ".join(str(a) for a in self.atoms()) + "})"
-
