@@ -7,7 +7,8 @@ benchmark domains (benchmarks/classical: the checked-in p01-p05 and, with
 whole run takes at least 1 s), under three settings:
 
 * ``flat``: strategy ``flat`` (one concrete plan, then execution);
-* ``auto``: strategy ``hpn+refine-flat`` with ``--criticality auto``;
+* ``auto``: strategy ``hpn+refine-flat`` (``--auto-strategy``) with ``--criticality auto`` and the settings
+  ``nowplan run`` adds with it (``commands.run.auto_hierarchy_strategy``: hidden costs, regrouping);
   every planner call uses ``--engine`` (default ``forward``: the executive's
   default regresses at abstract levels, which on barman and depots spends the
   whole budget on the top-level plan before refine-flat plans concretely);
@@ -51,7 +52,7 @@ for _p in (ROOT, ROOT / "src"):  # this checkout's nowplan and benchmarks packag
 from benchmarks.classical.generate import DOMAINS, domain_file, generate, instance_files  # noqa: E402
 from nowplan.acting.run import run_episode  # noqa: E402
 from nowplan.acting.strategy import parse_strategy  # noqa: E402
-from nowplan.commands.run import pddl_action_budget  # noqa: E402
+from nowplan.commands.run import auto_hierarchy_strategy, pddl_action_budget  # noqa: E402
 from nowplan.belief.symbolic import SymbolicBelief  # noqa: E402
 from nowplan.domains.registry import Episode  # noqa: E402
 from nowplan.io.pddl_read import load_pddl  # noqa: E402
@@ -105,6 +106,8 @@ def run_one(domain: Path, problem: Path, criticality: str | None, strategy: str,
         prob = prepare_problem(prob)  # what `nowplan run --criticality auto` does
     prep = time.process_time() - t_prep  # the hierarchy, reachability statics and dead-end test
     strat = parse_strategy(strategy)
+    if criticality == "auto":
+        strat = auto_hierarchy_strategy(strat)  # what `nowplan run --criticality auto` adds
     strat = replace(strat, time_limit=limit, planner=replace(strat.planner, engine=engine),  # type: ignore[arg-type]
                     max_actions=pddl_action_budget(prob.objects, strat.max_actions))  # as `nowplan run` does
     episode = Episode(prob, SymbolicWorld(prob.domain, prob.init, seed=0), SymbolicBelief(prob.init), str(problem))
@@ -279,6 +282,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--engine", choices=("auto", "forward", "regression"), default="forward",
                     help="the planner's engine at every level (default forward; 'auto' is the executive's "
                          "default: forward for concrete calls, regression for abstract ones)")
+    ap.add_argument("--auto-strategy", default="hpn+refine-flat",
+                    help="the strategy of the auto setting, before the settings `nowplan run --criticality auto` "
+                         "adds (e.g. hpn+refine-flat+noregroup for the planner's order of abstract plans)")
     ap.add_argument("--out", type=Path, default=OUT)
     ap.add_argument("--tables-from", type=Path, nargs="+", default=[], metavar="CSV",
                     help="run nothing: write the tables of these CSVs (parts of one measurement, e.g. split "
@@ -300,7 +306,7 @@ def main(argv: list[str] | None = None) -> int:
             if only and tier(inst) not in only:
                 continue
             settings: list[tuple[str, str | None, str]] = [("flat", None, "flat"),
-                                                           ("auto", "auto", "hpn+refine-flat")]
+                                                           ("auto", "auto", args.auto_strategy)]
             if crit is not None:
                 settings.append(("hand", str(crit), "hpn"))
             for name, c, strat in settings:

@@ -101,11 +101,13 @@ def _run(capsys: pytest.CaptureFixture[str], dom: str, prob: str, strategy: str)
 
 
 def test_rchpn_on_pddl_gripper_carries_two_balls_a_trip(capsys: pytest.CaptureFixture[str]) -> None:
-    """Auto-HPN's top level moves one ball at a time (p03, 6 balls: 21 actions, a round trip per
-    ball); with the derived resources the peephole combines drops that share the robot's stop,
-    and the run takes both grippers each trip: 17 actions, the flat plan's length."""
-    hpn = _run(capsys, "gripper", "p03.pddl", "hpn")
-    rchpn = _run(capsys, "gripper", "p03.pddl", "hpn+peephole")
+    """Auto-HPN's top level in the planner's order moves one ball at a time (p03, 6 balls: 21
+    actions, a round trip per ball); with the derived resources the peephole combines drops that
+    share the robot's stop, and the run takes both grippers each trip: 17 actions, the flat plan's
+    length.  (Regrouping the top-level plan, on by default, does the same: ``noregroup`` shows the
+    peephole's own doing; test_regroup.py.)"""
+    hpn = _run(capsys, "gripper", "p03.pddl", "hpn+noregroup")
+    rchpn = _run(capsys, "gripper", "p03.pddl", "hpn+peephole+noregroup")
     assert hpn["goal_in_world"] and rchpn["goal_in_world"]
     assert isinstance(hpn["execution_cost"], float) and isinstance(rchpn["execution_cost"], float)
     assert rchpn["execution_cost"] < hpn["execution_cost"]

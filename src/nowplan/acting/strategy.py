@@ -135,6 +135,15 @@ register_switch(
            {"refine_flat": True})
 )
 register_switch(
+    Switch("regroup", "reorder each abstract plan so that consecutive steps need the same values of the "
+           "preconditions their level hides (planning/regroup.py; on with --criticality auto)",
+           planner={"regroup": True})
+)
+register_switch(
+    Switch("noregroup", "keep each abstract plan in the planner's order (--criticality auto regroups otherwise)",
+           planner={"regroup": False})
+)
+register_switch(
     Switch("nofallback", "no last resort: where the root's abstract plans make no progress (a hierarchy "
            "that is not downward refinable), give up as the seed's HPN does instead of planning the "
            "root goal concretely", {"last_resort": False})

@@ -125,20 +125,8 @@ def main(args: argparse.Namespace) -> int:
     strategy = parse_strategy(args.strategy, base_planner=base, **overrides)
     if args.max_nodes is not None:
         strategy = replace(strategy, planner=replace(strategy.planner, max_nodes=args.max_nodes))
-    if args.criticality == "auto" and strategy.hierarchical and not strategy.refine_flat:
-        # an automatic hierarchy is ordered-monotonic, not downward refinable: fall back on failure
-        strategy = replace(strategy, refine_flat=True, switches=(*strategy.switches, "refine-flat"),
-                           name=f"{strategy.name}+refine-flat")
-    if args.criticality == "auto" and args.pddl and strategy.planner.engine == "auto":
-        # forward search at every level, as the automatic hierarchy was measured with
-        # (benchmarks/criticality_auto.py): the default regression at abstract levels spent whole
-        # budgets on real IPC files' top-level plans (elevators p01: 60 s, forward 0.03 s)
-        strategy = replace(strategy, planner=replace(strategy.planner, engine="forward"))
-    if args.criticality == "auto" and args.pddl:
-        # abstract actions cost an estimate of their hidden preconditions (planning/hidden_costs.py):
-        # with their own costs only, IPC transport's top level handed packages to trucks wherever they
-        # were and refinements swapped in sibling drops, 115 actions and cost 6,822 on p01 (flat: 1,146)
-        strategy = replace(strategy, planner=replace(strategy.planner, hidden_costs=True))
+    if args.criticality == "auto":
+        strategy = auto_hierarchy_strategy(strategy, pddl=bool(args.pddl))
     if args.pddl and args.max_nodes is None and strategy.planner.forward_max_nodes is None:
         # the root's forward searches get `nowplan plan`'s node budget, so the time limit ends them as
         # it ends flat planning's (IPC floor-tile, parking, tidybot need more than the regression
@@ -191,3 +179,29 @@ def main(args: argparse.Namespace) -> int:
         if args.trace:
             print(f"trace: {args.trace}")
     return 0 if metrics.outcome.value == "reached" else 1
+
+
+def auto_hierarchy_strategy(strategy: Strategy, pddl: bool = True) -> Strategy:
+    """The settings ``nowplan run --criticality auto`` adds to ``strategy`` (``benchmarks/criticality_auto.py``
+    runs with the same): refine-flat, forward search at every level, hidden costs and regrouping."""
+    if strategy.hierarchical and not strategy.refine_flat:
+        # an automatic hierarchy is ordered-monotonic, not downward refinable: fall back on failure
+        strategy = replace(strategy, refine_flat=True, switches=(*strategy.switches, "refine-flat"),
+                           name=f"{strategy.name}+refine-flat")
+    if pddl and strategy.planner.engine == "auto":
+        # forward search at every level, as the automatic hierarchy was measured with
+        # (benchmarks/criticality_auto.py): the default regression at abstract levels spent whole
+        # budgets on real IPC files' top-level plans (elevators p01: 60 s, forward 0.03 s)
+        strategy = replace(strategy, planner=replace(strategy.planner, engine="forward"))
+    if pddl:
+        # abstract actions cost an estimate of their hidden preconditions (planning/hidden_costs.py):
+        # with their own costs only, IPC transport's top level handed packages to trucks wherever they
+        # were and refinements swapped in sibling drops, 115 actions and cost 6,822 on p01 (flat: 1,146)
+        strategy = replace(strategy, planner=replace(strategy.planner, hidden_costs=True))
+    if strategy.hierarchical and not strategy.planner.regroup and "noregroup" not in strategy.switches:
+        # every order of an abstract plan's independent steps costs the same at its level, not below it:
+        # the steps are regrouped by what their level hides (planning/regroup.py; gripper-250: 997
+        # actions, one ball a trip, before)
+        strategy = replace(strategy, planner=replace(strategy.planner, regroup=True),
+                           switches=(*strategy.switches, "regroup"), name=f"{strategy.name}+regroup")
+    return strategy

@@ -76,6 +76,10 @@ class PlannerConfig:
     # h_max of the hidden ones from the call's state (planning/hidden_costs.py); `nowplan run
     # --criticality auto` sets it, hand-written hierarchies keep their actions' own costs
     hidden_costs: bool = False
+    # reorder a solved plan at an abstract level so that consecutive steps ask the same of the
+    # preconditions the level hides (planning/regroup.py: deorder, then relinearize); the `regroup`
+    # switch and `nowplan run --criticality auto` set it
+    regroup: bool = False
 
 
 

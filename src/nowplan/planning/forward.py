@@ -67,6 +67,7 @@ class ForwardResult:
     expanded: int = 0
     generated: int = 0
     evaluated: int = 0
+    regrouped: bool = False  # the plan's order is regroup's (planning/regroup.py), not the search's
 
 
 class _Successors:
@@ -366,12 +367,15 @@ def forward_plan(
     relevant_to: Goal | None = None,
     hidden_costs: bool = False,
     generator_values: int = 8,
+    regroup: bool = False,
 ) -> tuple[ForwardResult, list[tuple[Action | None, Goal]] | None]:
     """Ground, search and regress: the result and the plan's steps (``None`` unless solved).
 
     ``cache_costs``: ``cost_of`` is ``Action.cost`` in ``belief``; ``relevant_to``: a goal whose
     relevant operators are grounded too (see :func:`build_task`); ``hidden_costs``: abstract actions
-    cost an estimate of their hidden preconditions too (:mod:`nowplan.planning.hidden_costs`).
+    cost an estimate of their hidden preconditions too (:mod:`nowplan.planning.hidden_costs`);
+    ``regroup``: the plan is reordered by what its steps hide before it is regressed
+    (:mod:`nowplan.planning.regroup`; the search's order where the new one does not regress).
     """
     task = build_task(domain, objects, belief, goal, levels, cost_of, cache_costs=cache_costs,
                       relevant_to=relevant_to, hidden_costs=hidden_costs, generator_values=generator_values)
@@ -392,7 +396,20 @@ def forward_plan(
         found = eliminate_actions(task, improve_plan(task, found, budget, cost_type, out_of_time,
                                                      branching=branching))
     res.actions = [task.actions[i] for i in found]
-    steps = regress_actions(domain, belief, goal, res.actions, levels)
+    steps = None
+    if regroup:
+        from nowplan.planning.regroup import regrouped_order
+
+        new = regrouped_order(domain, belief, goal, res.actions, levels)
+        if new is not None:
+            steps = regress_actions(domain, belief, goal, new, levels)
+            if steps is not None:
+                res.actions, res.regrouped = new, True
+            else:
+                log.info("regrouped plan of %d steps does not regress from the belief: the search's order "
+                         "stands", len(new))
+    if steps is None:
+        steps = regress_actions(domain, belief, goal, res.actions, levels)
     if steps is None:
         log.warning("the forward plan for %s does not regress into pre-images at its levels", goal)
     return res, steps
@@ -447,6 +464,7 @@ def plan_forward(
             out_of_time=lambda: now() > deadline,
             improve=config.improve, cache_costs=True, relevant_to=config.relevant_to,
             hidden_costs=config.hidden_costs, generator_values=config.max_generator_values,
+            regroup=config.regroup,
         )
     except NotEnumerable as e:  # a generator's values are not objects: the regression search grounds them
         if config.engine == "forward":
@@ -454,7 +472,7 @@ def plan_forward(
         domain.facts.derived["forward not enumerable"] = str(e)  # the later calls do not try again
         log.info("forward search does not apply (%s): the regression search plans instead", e)
         return None
-    method = f"forward:{config.search}"
+    method = f"forward:{config.search}" + ("+regroup" if res.regrouped else "")
     common: dict[str, Any] = dict(expanded=res.expanded, generated=res.generated, method=method,
                                   attempts=(f"{method}:{res.status.value}",))
     if res.status is PlanStatus.SOLVED:

@@ -128,10 +128,29 @@ def plan(
     if paused:
         gc.disable()
     try:
-        return _plan(domain, objects, belief, goal, levels, config, context, rng)
+        result = _plan(domain, objects, belief, goal, levels, config, context, rng)
+        if (config is not None and config.regroup and result.plan is not None and result.solved
+                and not result.method.startswith("forward:")):  # (the forward engine regroups its own)
+            result = _regrouped(domain, belief, result)
+        return result
     finally:
         if paused:
             gc.enable()
+
+
+def _regrouped(domain: Domain, belief: Any, result: PlanResult) -> PlanResult:
+    """``result`` with its plan reordered by what its steps hide (:mod:`nowplan.planning.regroup`)."""
+    from nowplan.planning.regroup import regroup
+
+    assert result.plan is not None
+    t = time.process_time()
+    p = result.plan
+    steps = regroup(domain, belief, p.goal, p.actions, p.levels)
+    if steps is None:
+        return result
+    plan = Plan(tuple(PlanStep(a, g) for a, g in steps), p.levels)
+    return replace(result, plan=plan, method=f"{result.method}+regroup",
+                   cpu_time_s=result.cpu_time_s + time.process_time() - t)
 
 
 def _plan(
