@@ -13,7 +13,7 @@ itself; every precondition gets a random criticality in {1, 2, 3}.  Five familie
 
 Each case is planned with ``plan(...)`` at flat level, at the top level, at a middle level
 when there is one and with random per-action levels ("mixed"), with HPN's shortcuts on or
-off.  Checked: the planner never answers UNSOLVABLE, and gives up only after spending its
+off, regrouped or not (planning/regroup.py).  Checked: the planner never answers UNSOLVABLE, and gives up only after spending its
 node budget; a plan's last goal is the goal and the start satisfies g0; every step is an
 instance over the objects whose static preconditions hold; each g(i-1) equals the regression
 of g(i) through ω_i at ω_i's level, computed independently (tests/strips_model.py, not
@@ -497,7 +497,9 @@ ROOMY = PlannerConfig(max_nodes=20_000, shortcut_nodes=2_000, time_limit=600.0, 
 def run_case(data: st.DataObject, case: Case, base: PlannerConfig) -> None:
     witness_reaches_goal(case)
     shortcuts = data.draw(st.booleans(), label="shortcuts")
-    config = replace(base, serialization=shortcuts, monotonic=shortcuts, seed=data.draw(st.integers(0, 3)))
+    # regrouped abstract plans (planning/regroup.py) must meet the same contract
+    config = replace(base, serialization=shortcuts, monotonic=shortcuts, seed=data.draw(st.integers(0, 3)),
+                     regroup=data.draw(st.booleans(), label="regroup"))
     objects = {o: None for o in case.objects}
     event(f"family {case.family}")
     for name, levels in data.draw(level_maps(case), label="levels"):
@@ -511,6 +513,8 @@ def run_case(data: st.DataObject, case: Case, base: PlannerConfig) -> None:
             continue
         assert res.status is not PlanStatus.TIME_LIMIT, "no search here comes near its CPU time limit"
         p = check_contract(case, levels, res, concrete=name == "flat")
+        if res.method.endswith("+regroup"):
+            event(f"{name}: regrouped")
         if name == "flat":
             assert all(p.is_primitive(i) for i in range(1, len(p) + 1))
             event(f"flat plan length {_bucket(len(p))}")

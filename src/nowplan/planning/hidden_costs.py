@@ -19,6 +19,14 @@ one-level call is unchanged, and so is the cost the executive reports (it sums e
 actions).  The estimate is optimistic for one action alone (it is admissible for the hidden
 conjunction) but is made from the call's initial state: a later step of the same abstract plan
 is costed from where things are at the start, not after the earlier steps' refinements.
+
+Only where the actions' own costs differ (``build_task``): its gains were all in domains with
+action costs (IPC transport's road lengths, elevators' trips; ``benchmarks/results/auto_ipc/
+hidden_costs/``), while with uniform costs the stale estimate made top-level searches harder and
+plans dearer: the 15-crate depots instance's top level failed after 12 s where it plans in 0.3 s
+without it (the run then planned flat), driverlog-30 cost 249 against 228
+(``benchmarks/results/regroup_c7cf5b6/``).  Order among abstract steps is
+:mod:`nowplan.planning.regroup`'s job.
 """
 
 from __future__ import annotations

@@ -189,7 +189,8 @@ def build_task(
     (an abstract level's goal hides most of some domains: where the lift is in miconic).
 
     ``hidden_costs``: an action that hides preconditions at its level costs its own cost plus
-    ``h_max`` of the hidden ones from this state (:mod:`nowplan.planning.hidden_costs`).
+    ``h_max`` of the hidden ones from this state (:mod:`nowplan.planning.hidden_costs`), where the
+    actions' own costs differ (with uniform costs the task's costs stand).
     ``generator_values``: at most this many values per generator call, for operators with generators
     that read nothing of the goal (:mod:`nowplan.planning.forward_generators`).
     """
@@ -249,7 +250,8 @@ def build_task(
         task.memo["mutex"] = st.mutex
     task.memo["position"] = st.position
     task.memo["adders"] = _adders(st, add, moved)
-    if hidden_costs and st.axioms is None and levels.top >= domain.min_criticality:  # (not a concrete call)
+    # (not a concrete call; not where every action costs the same: see hidden_costs' module text)
+    if hidden_costs and st.axioms is None and levels.top >= domain.min_criticality and cost and min(cost) != max(cost):
         from nowplan.planning.hidden_costs import add_hidden_costs
 
         costed = add_hidden_costs(len(st.facts), task.init, pre, _full_pre(st), add, cost)
