@@ -289,6 +289,8 @@ class Executive:
         forbidden = self.nogoods.forbidden(goal, levels)
         if forbidden:
             context = replace(context, extras={**context.extras, "forbidden_first": forbidden})
+            if cfg.regroup:  # a refinement of this goal's plan failed in this belief: the planner's own order
+                cfg = replace(cfg, regroup=False)
         if context.whole_problem:  # no level above: the generators' restricted pass comes second
             res = plan_whole_problem(
                 self._planner, self.domain, self.problem.objects, self.belief, goal, levels, cfg, context, self.rng,
