@@ -64,9 +64,10 @@ def test_refine_flat_plans_concretely_when_the_guard_sees_a_cycle_of_a_particle_
     opens it again, fails deeper and pops back, so the gate toggles.  The belief is a particle belief,
     which refine-flat's own symbolic-state count cannot see; the progress guard's cycle (its
     fingerprint and the stack's goals) now makes refine-flat plan the goal concretely (before: a
-    livelock after 11 actions)."""
+    livelock after 11 actions).  With the regression plans pruned (planning/prune.py) the plans no longer
+    toggle the gate there (14 actions, no cycle): ``noprune`` keeps the scenario of this guard."""
     spec = example_spec(monkeypatch, "mine")
-    m = run_episode(spec.scenario("dig")(1), parse_strategy("hpn+refine-flat", max_actions=150), seed=1)
+    m = run_episode(spec.scenario("dig")(1), parse_strategy("hpn+refine-flat+noprune", max_actions=150), seed=1)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.goal_in_world is True
     assert m.cycles >= 1  # the fallback came from a cycle, not from the other two triggers
@@ -76,7 +77,8 @@ def test_a_step_backtracked_again_and_again_gets_the_last_resort(monkeypatch: py
     """Exogenous changes (the battery drains, the draught opens the gate) end every cycle and every
     repeated block the guard counts, so under RCHPN the abstract plans proposed the same unrefinable
     ``charge`` round after round until the 300-action budget (x0.2-m0.2-fp0.1, seed 3).  The same step
-    backtracked 8 times with no goal atom gained is the last resort's cue."""
+    backtracked 8 times with no goal atom gained is the last resort's cue.  (Pruned plans, planning/prune.py,
+    reach the last resort there through the no-progress count instead: ``noprune`` keeps the scenario.)"""
     from nowplan.trace import Trace  # noqa: PLC0415
 
     example_spec(monkeypatch, "mine")
@@ -84,7 +86,7 @@ def test_a_step_backtracked_again_and_again_gets_the_last_resort(monkeypatch: py
 
     tr = Trace()
     m = run_episode(episode(seed=3, exogenous_prob=0.2, miss=0.2, fp=0.1),
-                    parse_strategy("hpn+peephole", max_actions=300), seed=3, trace=tr)
+                    parse_strategy("hpn+peephole+noprune", max_actions=300), seed=3, trace=tr)
     assert m.outcome is Outcome.REACHED, m.reason
     assert m.goal_in_world is True and m.flat_fallbacks == 1
     notes = [e["text"] for e in tr.events if e["event"] == "note" and "last resort" in e["text"]]

@@ -144,6 +144,10 @@ register_switch(
            planner={"regroup": False})
 )
 register_switch(
+    Switch("noprune", "keep the regression engine's plans as found (no elimination of the steps the rest does "
+           "not need, planning/prune.py): the ablation", planner={"prune": False})
+)
+register_switch(
     Switch("nofallback", "no last resort: where the root's abstract plans make no progress (a hierarchy "
            "that is not downward refinable), give up as the seed's HPN does instead of planning the "
            "root goal concretely", {"last_resort": False})

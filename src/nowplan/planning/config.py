@@ -80,6 +80,9 @@ class PlannerConfig:
     # preconditions the level hides (planning/regroup.py: deorder, then relinearize); the `regroup`
     # switch and `nowplan run --criticality auto` set it
     regroup: bool = False
+    # the regression engine's plans are trimmed of steps the rest does not need (planning/prune.py:
+    # greedy elimination checked by regression); the forward engine trims its own by replay
+    prune: bool = True
 
 
 

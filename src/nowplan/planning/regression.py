@@ -129,6 +129,9 @@ def plan(
         gc.disable()
     try:
         result = _plan(domain, objects, belief, goal, levels, config, context, rng)
+        if ((config is None or config.prune) and result.plan is not None and result.solved
+                and len(result.plan) >= 2 and not result.method.startswith(("forward:", "dead_end"))):
+            result = _pruned(domain, belief, result)
         if (config is not None and config.regroup and result.plan is not None and result.solved
                 and not result.method.startswith("forward:")):  # (the forward engine regroups its own)
             result = _regrouped(domain, belief, result)
@@ -136,6 +139,21 @@ def plan(
     finally:
         if paused:
             gc.enable()
+
+
+def _pruned(domain: Domain, belief: Any, result: PlanResult) -> PlanResult:
+    """``result`` with the steps its plan does not need removed (:mod:`nowplan.planning.prune`)."""
+    from nowplan.planning.prune import prune
+
+    assert result.plan is not None
+    t = time.process_time()
+    p = result.plan
+    steps = prune(domain, belief, p.goal, p.actions, p.levels, lambda a: a.cost(belief))
+    if steps is None:
+        return replace(result, cpu_time_s=result.cpu_time_s + time.process_time() - t)
+    plan = Plan(tuple(PlanStep(a, g) for a, g in steps), p.levels)
+    return replace(result, plan=plan, method=f"{result.method}+pruned",
+                   cpu_time_s=result.cpu_time_s + time.process_time() - t)
 
 
 def _regrouped(domain: Domain, belief: Any, result: PlanResult) -> PlanResult:
