@@ -123,6 +123,11 @@ def plan(
     small acyclic objects (fact-id sets, tuples), and the collector's passes over
     the process's heap that they trigger took ~17 % of HPN's planning time on
     logistics-20; cycles made during the call are collected after it.
+
+    A regression-engine plan is trimmed of steps the rest does not need (``config.prune``,
+    :mod:`nowplan.planning.prune`) and, with ``config.regroup``, reordered by what its steps hide
+    (:mod:`nowplan.planning.regroup`; the forward engine does both itself); the method then ends in
+    ``+pruned`` / ``+regroup``.
     """
     paused = gc.isenabled()
     if paused:
@@ -165,7 +170,7 @@ def _regrouped(domain: Domain, belief: Any, result: PlanResult) -> PlanResult:
     p = result.plan
     steps = regroup(domain, belief, p.goal, p.actions, p.levels)
     if steps is None:
-        return result
+        return replace(result, cpu_time_s=result.cpu_time_s + time.process_time() - t)
     plan = Plan(tuple(PlanStep(a, g) for a, g in steps), p.levels)
     return replace(result, plan=plan, method=f"{result.method}+regroup",
                    cpu_time_s=result.cpu_time_s + time.process_time() - t)
