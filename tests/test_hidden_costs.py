@@ -91,3 +91,18 @@ def test_auto_hpn_hands_each_package_to_the_truck_near_it(tmp_path: Path,
     assert isinstance(flat["cost"], float) and isinstance(run["execution_cost"], float)
     assert run["execution_cost"] <= flat["cost"]
     assert run["actions"] == len(flat["plan"])  # type: ignore[arg-type]
+
+
+def test_hidden_costs_are_asked_of_the_domains_costs(tmp_path: Path) -> None:
+    """Only a domain whose operators do not all cost the same gets the estimate (planning/task.py
+    ``varied_costs``): transport's road lengths (a cost read from the arguments) do, gripper's unit
+    costs do not."""
+    from nowplan.io.pddl_read import load_pddl
+    from nowplan.planning.task import varied_costs
+
+    d, p = tmp_path / "domain.pddl", tmp_path / "p.pddl"
+    d.write_text(TRANSPORT)
+    p.write_text(LINE)
+    assert varied_costs(load_pddl(d, p).domain)
+    grip = Path(__file__).resolve().parents[1] / "benchmarks" / "classical" / "gripper"
+    assert not varied_costs(load_pddl(grip / "domain.pddl", grip / "p01.pddl").domain)

@@ -20,7 +20,8 @@ actions).  The estimate is optimistic for one action alone (it is admissible for
 conjunction) but is made from the call's initial state: a later step of the same abstract plan
 is costed from where things are at the start, not after the earlier steps' refinements.
 
-Only where the actions' own costs differ (``build_task``): its gains were all in domains with
+Only in a domain whose operators do not all cost the same (``task.varied_costs``, asked of the domain:
+one call's relevant actions may cost alike where the domain's do not, the held-out ferry's): its gains were all in domains with
 action costs (IPC transport's road lengths, elevators' trips; ``benchmarks/results/auto_ipc/
 hidden_costs/``), while with uniform costs the stale estimate made top-level searches harder and
 plans dearer: on the 15-crate depots instance the top level failed and the run planned flat (12.4 s
