@@ -98,7 +98,7 @@ def test_hidden_costs_are_asked_of_the_domains_costs(tmp_path: Path) -> None:
     ``varied_costs``): transport's road lengths (a cost read from the arguments) do, gripper's unit
     costs do not."""
     from nowplan.io.pddl_read import load_pddl
-    from nowplan.planning.task import varied_costs
+    from nowplan.planning.hidden_costs import varied_costs
 
     d, p = tmp_path / "domain.pddl", tmp_path / "p.pddl"
     d.write_text(TRANSPORT)

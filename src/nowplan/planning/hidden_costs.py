@@ -20,7 +20,7 @@ actions).  The estimate is optimistic for one action alone (it is admissible for
 conjunction) but is made from the call's initial state: a later step of the same abstract plan
 is costed from where things are at the start, not after the earlier steps' refinements.
 
-Only in a domain whose operators do not all cost the same (``task.varied_costs``, asked of the domain:
+Only in a domain whose operators do not all cost the same (``varied_costs``, asked of the domain:
 one call's relevant actions may cost alike where the domain's do not, the held-out ferry's): its gains were all in domains with
 action costs (IPC transport's road lengths, elevators' trips; ``benchmarks/results/auto_ipc/
 hidden_costs/``), while with uniform costs the stale estimate made top-level searches harder and
@@ -34,6 +34,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from nowplan.core.domain import Domain
 
 
 def hmax_costs(n_facts: int, init: frozenset[int], pre: Sequence[Sequence[int]],
@@ -77,3 +81,15 @@ def add_hidden_costs(n_facts: int, init: frozenset[int], pre: Sequence[Sequence[
                 est = h[f]
         out[k] += est
     return out
+
+
+def varied_costs(domain: Domain) -> bool:
+    """Do the domain's operators not all cost the same constant (a cost read from the state or
+    arguments, e.g. PDDL's ``(road-length ?l1 ?l2)``, or two different constants)?  Asked of the
+    domain, not of one call's task, whose relevant actions may happen to cost alike."""
+    consts: set[float] = set()
+    for op in domain.operators:
+        if callable(op.cost):
+            return True
+        consts.add(float(op.cost))
+    return len(consts) > 1

@@ -190,7 +190,7 @@ def build_task(
 
     ``hidden_costs``: an action that hides preconditions at its level costs its own cost plus
     ``h_max`` of the hidden ones from this state (:mod:`nowplan.planning.hidden_costs`), where the
-    domain's operators do not all cost the same (:func:`varied_costs`; else the task's costs stand).
+    domain's operators do not all cost the same (:func:`~nowplan.planning.hidden_costs.varied_costs`; else the task's costs stand).
     ``generator_values``: at most this many values per generator call, for operators with generators
     that read nothing of the goal (:mod:`nowplan.planning.forward_generators`).
     """
@@ -251,25 +251,14 @@ def build_task(
     task.memo["position"] = st.position
     task.memo["adders"] = _adders(st, add, moved)
     # (not a concrete call; not in a domain whose operators all cost the same: see hidden_costs' module text)
-    if hidden_costs and st.axioms is None and levels.top >= domain.min_criticality and varied_costs(domain):
-        from nowplan.planning.hidden_costs import add_hidden_costs
+    if hidden_costs and st.axioms is None and levels.top >= domain.min_criticality:
+        from nowplan.planning.hidden_costs import add_hidden_costs, varied_costs
 
-        costed = add_hidden_costs(len(st.facts), task.init, pre, _full_pre(st), add, cost)
+        costed = None if not varied_costs(domain) else \
+            add_hidden_costs(len(st.facts), task.init, pre, _full_pre(st), add, cost)
         if costed is not None:
             task.cost = costed
     return task
-
-
-def varied_costs(domain: Domain) -> bool:
-    """Do the domain's operators not all cost the same constant (a cost read from the state or
-    arguments, e.g. PDDL's ``(road-length ?l1 ?l2)``, or two different constants)?  Asked of the
-    domain, not of one call's task, whose relevant actions may happen to cost alike."""
-    consts = set()
-    for op in domain.operators:
-        if callable(op.cost):
-            return True
-        consts.add(float(op.cost))
-    return len(consts) > 1
 
 
 def _full_pre(st: _Structure) -> list[tuple[int, ...]]:
