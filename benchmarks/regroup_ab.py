@@ -9,6 +9,11 @@ a domain's author wrote the hierarchy.
     .venv/bin/python benchmarks/regroup_ab.py --seeds 0-4 --out benchmarks/results/regroup_HASH/registered.jsonl
     .venv/bin/python benchmarks/regroup_ab.py --summarize benchmarks/results/regroup_HASH/registered.jsonl
 
+The other held-out examples (``--cases``, ``--strategies``):
+
+    PYTHONPATH=examples/drone:examples/greenhouse:... NOWPLAN_DOMAINS=drone_domain,greenhouse_domain,... \
+        .venv/bin/python benchmarks/regroup_ab.py --cases drone:deliver,greenhouse:tend --strategies hpn,hpn+noprune,hpn+regroup
+
 ``--compare-csv BEFORE AFTER`` compares two ``benchmarks/criticality_auto.py`` runs (e.g. ``--auto-strategy
 hpn+refine-flat+noregroup`` against the default): per domain, the auto runs whose cost fell, rose or stayed,
 the cost sums beside flat planning's, and any change of outcome.
@@ -98,6 +103,9 @@ def compare_csv(before: Path, after: Path) -> None:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--seeds", default="0-4")
+    ap.add_argument("--cases", default="", help="domain:scenario,... instead of the built-in list (an example "
+                    "under examples/ is found as a user's plugin: PYTHONPATH and NOWPLAN_DOMAINS)")
+    ap.add_argument("--strategies", default=",".join(STRATEGIES))
     ap.add_argument("--out", type=Path, default=None)
     ap.add_argument("--summarize", type=Path, default=None, help="print the table of a stored run and stop")
     ap.add_argument("--compare-csv", type=Path, nargs=2, default=None, metavar=("BEFORE", "AFTER"),
@@ -110,9 +118,10 @@ def main() -> int:
         summarize([json.loads(x) for x in args.summarize.read_text().splitlines() if x.strip()])
         return 0
     rows = []
-    for domain, scenario in CASES:
+    cases = [tuple(c.split(":", 1)) for c in args.cases.split(",") if c] or CASES
+    for domain, scenario in cases:
         for seed in span(args.seeds):
-            for strategy in STRATEGIES:
+            for strategy in args.strategies.split(","):
                 row = run(domain, scenario, strategy, seed)
                 rows.append(row)
                 print(json.dumps(row), flush=True)

@@ -1,6 +1,6 @@
-"""The held-out feeder restoration (examples/gridfix) through the public API: every kind of planning
-reaches the goal on a clean storm, and HPN's abstract plans cost more than flat planning's
-(benchmarks/results/heldout17/README.md, finding 1: battery levels bound blindly at abstract levels)."""
+"""The held-out feeder restoration (examples/gridfix) through the public API: flat, HPN and flexible HPN
+reach the goal on a clean storm, and a noisy run is the same for the same seed
+(benchmarks/results/heldout17/README.md has the whole matrix and what it found)."""
 
 from __future__ import annotations
 

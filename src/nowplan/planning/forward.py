@@ -398,16 +398,11 @@ def forward_plan(
     res.actions = [task.actions[i] for i in found]
     steps = None
     if regroup:
-        from nowplan.planning.regroup import regrouped_order
+        from nowplan.planning.regroup import regroup as regrouped
 
-        new = regrouped_order(domain, belief, goal, res.actions, levels)
-        if new is not None:
-            steps = regress_actions(domain, belief, goal, new, levels)
-            if steps is not None:
-                res.actions, res.regrouped = new, True
-            else:
-                log.info("regrouped plan of %d steps does not regress from the belief: the search's order "
-                         "stands", len(new))
+        steps = regrouped(domain, belief, goal, res.actions, levels)  # (regressed: instead of the search's order)
+        if steps is not None:
+            res.actions, res.regrouped = [a for a, _ in steps[1:] if a is not None], True
     if steps is None:
         steps = regress_actions(domain, belief, goal, res.actions, levels)
     if steps is None:

@@ -134,46 +134,35 @@ def plan(
         gc.disable()
     try:
         result = _plan(domain, objects, belief, goal, levels, config, context, rng)
-        if ((config is None or config.prune) and result.plan is not None and result.solved
-                and len(result.plan) >= 2 and not result.method.startswith(("forward:", "dead_end"))):
-            result = _pruned(domain, belief, result)
-        if (config is not None and config.regroup and result.plan is not None and result.solved
-                and not result.method.startswith("forward:")):  # (the forward engine regroups its own)
-            result = _regrouped(domain, belief, result)
+        if result.plan is not None and not result.method.startswith("forward:"):  # (forward: its own)
+            if config is None or config.prune:
+                result = _rewritten(domain, belief, result, "pruned")
+            if config is not None and config.regroup:
+                result = _rewritten(domain, belief, result, "regroup")
         return result
     finally:
         if paused:
             gc.enable()
 
 
-def _pruned(domain: Domain, belief: Any, result: PlanResult) -> PlanResult:
-    """``result`` with the steps its plan does not need removed (:mod:`nowplan.planning.prune`)."""
+def _rewritten(domain: Domain, belief: Any, result: PlanResult, suffix: str) -> PlanResult:
+    """``result`` with its plan pruned (``suffix`` "pruned", :mod:`nowplan.planning.prune`) or
+    regrouped ("regroup", :mod:`nowplan.planning.regroup`) where that changes it."""
     from nowplan.planning.prune import prune
-
-    assert result.plan is not None
-    t = time.process_time()
-    p = result.plan
-    steps = prune(domain, belief, p.goal, p.actions, p.levels, lambda a: a.cost(belief))
-    if steps is None:
-        return replace(result, cpu_time_s=result.cpu_time_s + time.process_time() - t)
-    plan = Plan(tuple(PlanStep(a, g) for a, g in steps), p.levels)
-    return replace(result, plan=plan, method=f"{result.method}+pruned",
-                   cpu_time_s=result.cpu_time_s + time.process_time() - t)
-
-
-def _regrouped(domain: Domain, belief: Any, result: PlanResult) -> PlanResult:
-    """``result`` with its plan reordered by what its steps hide (:mod:`nowplan.planning.regroup`)."""
     from nowplan.planning.regroup import regroup
 
     assert result.plan is not None
     t = time.process_time()
     p = result.plan
-    steps = regroup(domain, belief, p.goal, p.actions, p.levels)
+    if suffix == "pruned":
+        steps = prune(domain, belief, p.goal, p.actions, p.levels, lambda a: a.cost(belief))
+    else:
+        steps = regroup(domain, belief, p.goal, p.actions, p.levels)
+    cpu = result.cpu_time_s + time.process_time() - t
     if steps is None:
-        return replace(result, cpu_time_s=result.cpu_time_s + time.process_time() - t)
+        return replace(result, cpu_time_s=cpu)
     plan = Plan(tuple(PlanStep(a, g) for a, g in steps), p.levels)
-    return replace(result, plan=plan, method=f"{result.method}+regroup",
-                   cpu_time_s=result.cpu_time_s + time.process_time() - t)
+    return replace(result, plan=plan, method=f"{result.method}+{suffix}", cpu_time_s=cpu)
 
 
 def _plan(

@@ -148,13 +148,12 @@ def hidden_preconditions(a: Action, levels: LevelMap, statics: frozenset[str] | 
 
 
 def relinearize(
-    domain: Domain, actions: Sequence[Action], levels: LevelMap, succ: list[set[int]],
+    domain: Domain, actions: Sequence[Action], hidden: Sequence[tuple[Atom, ...]], succ: list[set[int]],
     holds: Callable[[Atom], bool],
 ) -> list[int]:
-    """A linearization of the partial order ``succ`` placing steps that agree with the context first."""
+    """A linearization of the partial order ``succ`` placing steps that agree with the context first
+    (``hidden``: each step's :func:`hidden_preconditions`)."""
     n = len(actions)
-    statics = domain.static_predicates
-    hidden = [hidden_preconditions(a, levels, statics) for a in actions]
     indeg = [0] * n
     for s in succ:
         for k in s:
@@ -185,41 +184,26 @@ def relinearize(
     return order
 
 
-def regrouped_order(
-    domain: Domain, belief: Any, goal: Goal, actions: Sequence[Action], levels: LevelMap,
-    holds: Callable[[Atom], bool] | None = None,
-) -> list[Action] | None:
-    """``actions`` regrouped, or ``None`` where nothing is hidden, nothing moves or the deordering
-    does not apply (the new order still has to be regressed: :func:`regroup`)."""
-    n = len(actions)
-    if n < 3 or n > MAX_STEPS or domain.axioms or domain.derived:
-        return None
-    statics = domain.static_predicates
-    if not any(hidden_preconditions(a, levels, statics) for a in actions):
-        return None
-    succ = deorder(domain, actions, levels, goal)
-    if succ is None:
-        return None
-    test = holds if holds is not None else (lambda a: domain.holds(a, belief))
-    order = relinearize(domain, actions, levels, succ, test)
-    if order == list(range(n)) or len(order) != n:
-        return None
-    return [actions[i] for i in order]
-
-
 def regroup(
     domain: Domain, belief: Any, goal: Goal, actions: Sequence[Action], levels: LevelMap,
-    holds: Callable[[Atom], bool] | None = None,
 ) -> list[tuple[Action | None, Goal]] | None:
     """The plan's steps ``[(None, g0), (a1, g1), …]`` in a regrouped order, or ``None`` (keep the plan:
     nothing is hidden, nothing moves, the deordering does not apply, or the result does not regress)."""
     from nowplan.planning.forward import regress_actions
 
-    new = regrouped_order(domain, belief, goal, actions, levels, holds)
-    if new is None:
+    n = len(actions)
+    if n < 3 or n > MAX_STEPS or domain.axioms or domain.derived:
         return None
-    n = len(new)
-    steps = regress_actions(domain, belief, goal, new, levels)
+    hidden = [hidden_preconditions(a, levels, domain.static_predicates) for a in actions]
+    if not any(hidden):
+        return None
+    succ = deorder(domain, actions, levels, goal)
+    if succ is None:
+        return None
+    order = relinearize(domain, actions, hidden, succ, lambda a: domain.holds(a, belief))
+    if order == list(range(n)) or len(order) != n:
+        return None
+    steps = regress_actions(domain, belief, goal, [actions[i] for i in order], levels)
     if steps is None:
         log.info("regrouped plan of %d steps does not regress from the belief: the planner's order stands", n)
         return None

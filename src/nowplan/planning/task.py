@@ -254,8 +254,8 @@ def build_task(
     if hidden_costs and st.axioms is None and levels.top >= domain.min_criticality:
         from nowplan.planning.hidden_costs import add_hidden_costs, varied_costs
 
-        costed = None if not varied_costs(domain) else \
-            add_hidden_costs(len(st.facts), task.init, pre, _full_pre(st), add, cost)
+        costed = add_hidden_costs(len(st.facts), task.init, pre, _full_pre(st), add, cost) \
+            if varied_costs(domain) else None
         if costed is not None:
             task.cost = costed
     return task
