@@ -13,7 +13,7 @@ itself; every precondition gets a random criticality in {1, 2, 3}.  Five familie
 
 Each case is planned with ``plan(...)`` at flat level, at the top level, at a middle level
 when there is one and with random per-action levels ("mixed"), with HPN's shortcuts on or
-off, regrouped or not (planning/regroup.py).  Checked: the planner never answers UNSOLVABLE, and gives up only after spending its
+off, regrouped or not (planning/regroup.py), with h² pruning or without (planning/h2.py).  Checked: the planner never answers UNSOLVABLE, and gives up only after spending its
 node budget; a plan's last goal is the goal and the start satisfies g0; every step is an
 instance over the objects whose static preconditions hold; each g(i-1) equals the regression
 of g(i) through ω_i at ω_i's level, computed independently (tests/strips_model.py, not
@@ -499,7 +499,7 @@ def run_case(data: st.DataObject, case: Case, base: PlannerConfig) -> None:
     shortcuts = data.draw(st.booleans(), label="shortcuts")
     # regrouped abstract plans (planning/regroup.py) must meet the same contract
     config = replace(base, serialization=shortcuts, monotonic=shortcuts, seed=data.draw(st.integers(0, 3)),
-                     regroup=data.draw(st.booleans(), label="regroup"))
+                     regroup=data.draw(st.booleans(), label="regroup"), h2=data.draw(st.booleans(), label="h2"))
     objects = {o: None for o in case.objects}
     event(f"family {case.family}")
     for name, levels in data.draw(level_maps(case), label="levels"):

@@ -148,6 +148,10 @@ register_switch(
            "not need, planning/prune.py): the ablation", planner={"prune": False})
 )
 register_switch(
+    Switch("h2", "regression drops subgoals holding two facts no reachable state holds together "
+           "(planning/h2.py: h² mutexes of the concrete problem, sound at every level)", planner={"h2": True})
+)
+register_switch(
     Switch("nofallback", "no last resort: where the root's abstract plans make no progress (a hierarchy "
            "that is not downward refinable), give up as the seed's HPN does instead of planning the "
            "root goal concretely", {"last_resort": False})

@@ -93,7 +93,8 @@ def register(subparsers: Any) -> None:
     p.add_argument("--shortcuts", action="store_true",
                    help="try HPN's serialization and monotonic shortcuts before full search")
     p.add_argument("--no-mutexes", action="store_true",
-                   help="do not infer mutex invariants (slower regression; for comparisons)")
+                   help="do not infer mutex invariants nor h2 mutex pairs (planning/h2.py): slower "
+                        "regression; for comparisons")
     p.set_defaults(func=run)
 
 
@@ -139,6 +140,7 @@ def run(args: argparse.Namespace) -> int:
             serialization=args.shortcuts,
             monotonic=args.shortcuts,
             seed=args.seed,
+            h2=not args.no_mutexes,  # (the regression engine's: subgoals no reachable state holds dropped)
         )
         levels = flat_levels() if level is None else LevelMap(level)
         result = plan(domain, problem.objects, problem.init, problem.goal, levels, config)

@@ -34,13 +34,22 @@ enum { RS_SOLVED, RS_EXHAUSTED, RS_NODE_LIMIT, RS_TIME_LIMIT, RS_UNSUPPORTED };
 #include "_kernel_regress_call.h"
 
 static PyObject *Regressor_search(Regressor *R, PyObject *args) {
-    PyObject *root, *hvals, *holds_fn, *need_fn, *stop, *order, *protect, *conflict_fn, *cost_fn;
+    PyObject *root, *hvals, *holds_fn, *need_fn, *stop, *order, *protect, *conflict_fn, *cost_fn, *h2 = Py_None;
     double weight;
     long long max_nodes;
     int no_rewrites, local;
-    if (!PyArg_ParseTuple(args, "OOOOOdLpOOpOO", &root, &hvals, &holds_fn, &need_fn, &stop, &weight, &max_nodes,
-                          &no_rewrites, &order, &protect, &local, &conflict_fn, &cost_fn))
+    if (!PyArg_ParseTuple(args, "OOOOOdLpOOpOO|O", &root, &hvals, &holds_fn, &need_fn, &stop, &weight, &max_nodes,
+                          &no_rewrites, &order, &protect, &local, &conflict_fn, &cost_fn, &h2))
         return NULL;
+    const char *h2b = NULL, *h2r = NULL, *h2f = NULL;
+    Py_ssize_t h2bl = 0, h2rl = 0, h2fl = 0, h2w = 0;
+    if (h2 != Py_None) {  /* (bits: int32 per fact, reach: h2w words per bit, facts: h2w words, h2w) */
+        if (!PyArg_ParseTuple(h2, "y#y#y#n", &h2b, &h2bl, &h2r, &h2rl, &h2f, &h2fl, &h2w)) return NULL;
+        if (h2w < 1 || h2fl != h2w * 8 || h2rl % (h2w * 8) != 0 || h2bl % 4 != 0) {
+            PyErr_SetString(PyExc_ValueError, "h2: bits, reach rows and facts of inconsistent sizes");
+            return NULL;
+        }
+    }
     if (R->has_plain && conflict_fn == Py_None) {
         PyErr_SetString(PyExc_ValueError, "plain conflict rules need conflict(x, y)");
         return NULL;
@@ -49,7 +58,8 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
     int has_order = order != Py_None;
     int32_t focus0 = 0;
     Vec ov = {0};
-    Call C = {R, holds_fn, need_fn, conflict_fn, cost_fn, NULL, 0, 0, 0, local};
+    Call C = {R, holds_fn, need_fn, conflict_fn, cost_fn, NULL, 0, 0, 0, local,
+              (const int32_t *)h2b, (const uint64_t *)h2r, (const uint64_t *)h2f, h2bl / 4, h2w};
     Nodes S = {0};
     RQueue Q = {0};
     Vec cur = {0}, allowed = {0}, child = {0}, newl = {0};
@@ -287,6 +297,7 @@ static PyObject *Regressor_search(Regressor *R, PyObject *args) {
                         if (vpush(&child, newl.v[q++]) < 0) goto done;
                 }
                 int32_t cn = (int32_t)child.n;
+                if (C.h2bit != NULL && h2_excluded(&C, newl.v, newl.n, child.v, cn)) continue;  /* planning/h2.py */
                 double cost;
                 if (action_cost(&C, a, &cost) < 0) goto done;
                 /* a pure rewrite (rewrites.pure_rewrite): held facts traded for new held facts at no cost */

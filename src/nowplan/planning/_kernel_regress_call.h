@@ -9,7 +9,32 @@ typedef struct {
     Py_ssize_t nv;
     uint32_t epoch, mk;  /* the expansion's and the successor's stamps */
     int local;           /* achievers asked per call (set_local_achievers), not the persistent ones */
+    /* h2 pairs (planning/h2.py), NULL where off: per fact id below h2n its bit or -1; per bit a row of h2w
+     * words (the bits reachable with it); the reachable bits */
+    const int32_t *h2bit;
+    const uint64_t *h2reach, *h2facts;
+    Py_ssize_t h2n, h2w;
 } Call;
+
+/* does the child (cn facts) hold, with one of the new facts, a pair no reachable state holds (or a new fact
+ * no state reaches)?  PairReach.excluded's check, over the facts that are new to the child */
+static int h2_excluded(const Call *C, const int32_t *newf, size_t nn, const int32_t *child, int32_t cn) {
+    for (size_t i = 0; i < nn; i++) {
+        int32_t nf = newf[i];
+        if (nf >= C->h2n) continue;
+        int32_t bn = C->h2bit[nf];
+        if (bn < 0) continue;
+        if (!((C->h2facts[bn >> 6] >> (bn & 63)) & 1)) return 1;
+        const uint64_t *row = C->h2reach + (size_t)bn * (size_t)C->h2w;
+        for (int32_t j = 0; j < cn; j++) {
+            int32_t x = child[j];
+            if (x >= C->h2n) continue;
+            int32_t bx = C->h2bit[x];
+            if (bx >= 0 && !((row[bx >> 6] >> (bx & 63)) & 1)) return 1;
+        }
+    }
+    return 0;
+}
 
 /* grow every array of a group (pointers and item sizes) from *cap to one capacity for n items */
 static int grow_group(void **const *ptrs, const size_t *sizes, size_t count, size_t *cap, size_t n) {

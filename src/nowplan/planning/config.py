@@ -83,6 +83,9 @@ class PlannerConfig:
     # the regression engine's plans are trimmed of steps the rest does not need (planning/prune.py:
     # greedy elimination checked by regression); the forward engine trims its own by replay
     prune: bool = True
+    # regression drops a subgoal holding two facts no state reachable from the call's start holds
+    # together (planning/h2.py: h² over the concrete ground task); the `h2` switch
+    h2: bool = False
 
 
 

@@ -83,6 +83,9 @@ def astar(
     held = search._held  # (facts fholds found true)
     no_rewrites = not search.config.held_rewrites
     inherit_h = not callable(search.domain_h)  # (a domain's own estimate may read more than the unmet facts)
+    pairs = search.pairs()
+    if pairs is not None and pairs.excluded(root):
+        return PlanStatus.UNSOLVABLE, None, "the goal holds facts no reachable state holds together (h2)"
 
     def make(node: Node, focus: int, gcost: float, index: NodeIndex, goal_of: Callable[[], Goal], legacy: bool,
              act: Action, info: ActionFacts, cost: float, st: Stamp) -> None:
@@ -96,6 +99,8 @@ def astar(
             pre = None if g is None else T.ids_of(g.atoms)
         if pre is None:
             return
+        if pairs is not None and pairs.excluded(pre, pre.difference(node[0])):
+            return  # two facts no reachable state holds together (planning/h2.py)
         rewrite = cost == 0.0 and pure_rewrite(node[0], pre, fholds)
         if rewrite and no_rewrites:
             return  # a zero-cost rewrite of held facts into held facts (PlannerConfig.held_rewrites)

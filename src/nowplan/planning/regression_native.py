@@ -268,6 +268,12 @@ def run(
     root = T.ids_of(goal.atoms)
     if not root or not search.grounder.shares_answers or not T.consistent(root):
         return None
+    pairs = search.pairs()
+    packed = None
+    if pairs is not None:
+        packed = pairs.packed()
+        if packed is None or pairs.excluded(root):
+            return None  # (the Python loop: big-endian rows, or a goal it answers at once)
     order_ids = None if order is None else [T.id(a) for a in order]
     guard = list(T.ids_of(protect))
     comp = _compiled(search, mod)
@@ -280,7 +286,7 @@ def run(
         list(root), hadd.values, search.fholds, lambda f: comp.need(search, goal, f, local),
         lambda: stop() > deadline, float(search.config.weight), int(max_nodes), not search.config.held_rewrites,
         order_ids, guard, local, T.plain_conflict if T.plain else None,
-        None if task is None or task.all_fixed else (lambda a: search.cost(comp.action(a))))
+        None if task is None or task.all_fixed else (lambda a: search.cost(comp.action(a))), packed)
     if status == mod.UNSUPPORTED:
         return None
     search.expanded += expanded

@@ -21,6 +21,7 @@ from nowplan.planning.config import PlannerConfig, _clock
 from nowplan.planning.context import PlanningContext
 from nowplan.planning.deferred import Expansion
 from nowplan.planning.ground_task import GroundTask
+from nowplan.planning.h2 import PairReach, pair_reach, start_facts
 from nowplan.planning.grounding import Grounder
 from nowplan.planning.hadd_kernel import CostsUnavailable, KernelHadd, kernel_hadd
 from nowplan.planning.hadd_relevant import RelevantHadd
@@ -129,6 +130,7 @@ class _Search:
         self._relaxers: dict[bool, LazyRelaxed] = {}  # by additive propagation: add/ff, max/lmcut
         self._ground_hadd: RelevantHadd | KernelHadd | None = None
         self._task: GroundTask | None = None
+        self._pairs: tuple[PairReach | None] | None = None  # (the h2 table, grown to this call's start)
         self._ctx: tuple[frozenset[int], Goal] | None = None
         self._goals: dict[frozenset[int], Goal] = {}
         self._successors = Successors(self.table, self.grounder, levels, self.drop, self.cost)
@@ -186,6 +188,18 @@ class _Search:
             self.hadd = self._ground_hadd
         else:
             _log_fallback(self.grounder.domain.name, name, str(self._no_relax))
+
+    def pairs(self) -> PairReach | None:
+        """The h² table grown to this call's start (``PlannerConfig.h2``), or ``None`` where it is
+        off, a generator binds arguments the ground task cannot list, or the belief lists no facts."""
+        if self._pairs is None:
+            pr: PairReach | None = None
+            if self.config.h2 and self.grounder.lists_facts and not any(op.generators for op in self.domain.operators):
+                pr = pair_reach(ground_task(self.grounder, self.drop), self.domain)
+                if pr is not None:
+                    pr.start_from(start_facts(self.table, self.belief, self.true_ids()))
+            self._pairs = (pr,)
+        return self._pairs[0]
 
     def _goal_of(self, context: frozenset[int]) -> Goal:
         if self._ctx is None or self._ctx[0] is not context:

@@ -1,0 +1,135 @@
+"""h² reachable pairs (planning/h2.py) against the reachable states enumerated by breadth-first search.
+
+Sound: every pair of facts true together in a reachable state is an h²-reachable pair, and every
+fact true in one is reachable.  Informed: on the held-out gridfix the pair "full battery away from
+every dock" is found unreachable (what regression's abstract subgoals ran into), and blocksworld's
+"holding a block that is on another" too.  Growth: a start with a pair the table lacks is added.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from nowplan.core.atoms import Atom
+from nowplan.core.levels import flat_levels
+from nowplan.core.state import State
+from nowplan.io.pddl_read import load_pddl
+from nowplan.planning.h2 import PairReach, pair_reach
+from nowplan.planning.heuristics import ground_task
+from nowplan.planning.regression import PlannerConfig, plan
+from nowplan.planning.regression_search import _Search
+from strips_model import applicable, ground_actions, step
+from test_planner_property import FAMILIES, Case
+
+DATA = Path(__file__).resolve().parents[1] / "src" / "nowplan" / "data" / "pddl"
+
+
+def table_for(domain, objects, init) -> tuple[_Search, PairReach]:
+    srch = _Search(domain, objects, init, flat_levels(), PlannerConfig(engine="regression", h2=True), None)
+    pr = srch.pairs()
+    assert pr is not None
+    return srch, pr
+
+
+def reachable_states(domain, objects, init: State, limit: int = 20_000) -> list[State]:
+    acts = ground_actions(domain, list(objects), init)
+    seen = {init}
+    frontier = [init]
+    while frontier and len(seen) < limit:
+        nxt = []
+        for s in frontier:
+            for a in acts:
+                if applicable(a, s):
+                    s2 = step(s, a)
+                    if s2 not in seen:
+                        seen.add(s2)
+                        nxt.append(s2)
+        frontier = nxt
+    return list(seen)
+
+
+def check_sound(domain, objects, init: State) -> tuple[PairReach, int]:
+    srch, pr = table_for(domain, objects, init)
+    T = domain.facts
+    pairs_seen = 0
+    for s in reachable_states(domain, objects, init):
+        ids = sorted({T.id(a) for a in s.atoms() if a.value is True} & set(pr.bit))
+        for f in ids:
+            assert (pr.facts >> pr.bit[f]) & 1, f"{T.atoms[f]} holds in a reachable state, h2 says unreachable"
+        for i, f in enumerate(ids):
+            for g in ids[i + 1:]:
+                assert not pr.mutex(f, g), f"{T.atoms[f]} & {T.atoms[g]} hold together in {s}, h2 says never"
+                pairs_seen += 1
+        assert not pr.excluded(ids)
+    return pr, pairs_seen
+
+
+@pytest.mark.parametrize("family", sorted(set(FAMILIES) - {"hanoi"}))
+@settings(max_examples=12, deadline=None, suppress_health_check=list(HealthCheck))
+@given(data=st.data())
+def test_every_reachable_pair_is_kept(family: str, data: st.DataObject) -> None:
+    case: Case = data.draw(FAMILIES[family], label="case")
+    check_sound(case.domain, {o: None for o in case.objects}, case.init)
+
+
+def test_blocksworld_pairs_sound_and_informed() -> None:
+    p = load_pddl(DATA / "blocksworld" / "domain.pddl", DATA / "blocksworld" / "p02.pddl")
+    pr, seen = check_sound(p.domain, p.objects, p.init)
+    assert seen > 0
+    T = p.domain.facts
+    blocks = sorted(o for o in p.objects)
+    a, b = blocks[0], blocks[1]
+    assert pr.atoms_mutex(Atom("holding", (a,)), Atom("on", (a, b)))
+    assert pr.atoms_mutex(Atom("holding", (a,)), Atom("handempty", ()))
+    assert not pr.atoms_mutex(Atom("on", (a, b)), Atom("clear", (a,)))
+    assert pr.excluded([T.id(Atom("holding", (a,))), T.id(Atom("clear", (b,))), T.id(Atom("on", (a, b)))])
+
+
+def test_gridfix_full_battery_away_from_a_dock_is_unreachable() -> None:
+    pytest.importorskip("gridfix_domain")
+    from gridfix_domain.model import DOMAIN
+    from gridfix_domain.scenarios import episode
+
+    ep = episode(seed=0)
+    srch, pr = table_for(DOMAIN, ep.problem.objects, ep.belief)
+    assert pr.sweeps >= 2
+    full, dock, away = Atom("batt", ("e4",)), Atom("van_at", ("sub",)), Atom("van_at", ("j2",))
+    assert pr.atoms_mutex(full, away)
+    assert not pr.atoms_mutex(full, dock)
+    assert not pr.atoms_mutex(Atom("batt", ("e2",)), away)
+
+
+def test_a_start_outside_the_table_grows_it() -> None:
+    p = load_pddl(DATA / "blocksworld" / "domain.pddl", DATA / "blocksworld" / "p02.pddl")
+    srch, pr = table_for(p.domain, p.objects, p.init)
+    T = p.domain.facts
+    a, b = sorted(p.objects)[:2]
+    x, y = T.id(Atom("holding", (a,))), T.id(Atom("on", (a, b)))
+    assert pr.mutex(x, y)
+    assert pr.start_from([x, y])  # (a start no action reaches: a world changed by something else)
+    assert not pr.mutex(x, y)
+    assert not pr.start_from([x, y])  # nothing new the second time
+
+
+def test_pruning_keeps_every_plan_on_blocksworld() -> None:
+    """The same optimal cost with and without h2 (A* with an admissible estimate), fewer nodes."""
+    p = load_pddl(DATA / "blocksworld" / "domain.pddl", DATA / "blocksworld" / "p02.pddl")
+    base = PlannerConfig(engine="regression", heuristic="hmax", serialization=False, monotonic=False,
+                         prune=False, max_nodes=200_000, time_limit=600.0, clock="cpu")
+    off = plan(p.domain, p.objects, p.init, p.goal, flat_levels(), base)
+    on = plan(p.domain, p.objects, p.init, p.goal, flat_levels(), replace(base, h2=True))
+    assert off.plan is not None and on.plan is not None
+    assert len(on.plan) == len(off.plan)  # (unit costs)
+    assert on.expanded <= off.expanded
+
+
+def test_the_table_is_kept_with_the_ground_task() -> None:
+    p = load_pddl(DATA / "gripper" / "domain.pddl", DATA / "gripper" / "p01.pddl")
+    s1, pr1 = table_for(p.domain, p.objects, p.init)
+    s2, pr2 = table_for(p.domain, p.objects, p.init)
+    assert pr1 is pr2 is pair_reach(ground_task(s1.grounder, s1.drop), p.domain)
