@@ -46,7 +46,7 @@ log = logging.getLogger(__name__)
 
 MAX_FACTS = 6_000
 MAX_ACTIONS = 60_000
-MAX_PLAIN = 1_500  # participants up to which plain conflict rules add deletes (asked per pair)
+MAX_PLAIN = 120  # participants up to which plain conflict rules add deletes (asked per pair of facts: ~20 ms)
 MAX_SWEEPS = 10_000  # a bound that the fixpoint never meets (each sweep adds a pair or stops)
 
 
@@ -114,16 +114,21 @@ class PairReach:
         # plain (pairwise) rules are asked per pair of facts: skipped on large tasks (fewer deletes, so a
         # table that knows fewer mutexes, still sound)
         plain = bool(T.plain) and len(self.fact_of) <= MAX_PLAIN
+        excl: dict[int, int] = {}  # per added bit: the participants its rules exclude (asked once per fact)
         out = []
         for pre, add, dele, adds in self._acts:
             for b in adds:
-                f = self.fact_of[b]
-                for key in T.gkeys[f]:
-                    dele |= by_key[key] & ~(1 << b)
-                if plain:
-                    for b2, g in enumerate(self.fact_of):
-                        if b2 != b and T.plain_conflict(f, g):
-                            dele |= 1 << b2
+                x = excl.get(b)
+                if x is None:
+                    f, x = self.fact_of[b], 0
+                    for key in T.gkeys[f]:
+                        x |= by_key[key]
+                    if plain:
+                        for b2, g in enumerate(self.fact_of):
+                            if b2 != b and T.plain_conflict(f, g):
+                                x |= 1 << b2
+                    x = excl[b] = x & ~(1 << b)
+                dele |= x
             out.append((pre, add, dele & ~add, adds))
         self._acts = out
 
