@@ -93,7 +93,7 @@ def test_same_seed_same_run():
 
 
 def test_unknown_and_planned_strategies_are_refused():
-    with pytest.raises(ScenarioError, match="valid strategies: aggressive, deferred, domain-planner, flat, flexible, foresight, h2, hpn"):
+    with pytest.raises(ScenarioError, match="valid strategies: aggressive, deferred, domain-planner, flat, flexible, foresight, h2, hpn, maintain, monitor"):
         parse_strategy("hpn+bogus")
     # seed 004's switches select the online policy; the plan-stack executive refuses them
     from nowplan.acting.hpn import Executive

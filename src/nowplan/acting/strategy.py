@@ -149,7 +149,12 @@ register_switch(
 )
 register_switch(
     Switch("h2", "regression drops subgoals holding two facts no reachable state holds together "
-           "(planning/h2.py: h² mutexes of the concrete problem, sound at every level)", planner={"h2": True})
+           "(planning/h2.py: h² mutexes of the concrete problem, sound at every level); on by default "
+           "with flat, off with hpn", planner={"h2": True})
+)
+register_switch(
+    Switch("noh2", "no h² pruning of regression's subgoals, also where the strategy plans flat (the ablation)",
+           planner={"h2": False})
 )
 register_switch(
     Switch("nofallback", "no last resort: where the root's abstract plans make no progress (a hierarchy "
@@ -261,4 +266,6 @@ def parse_strategy(spec: str, *, base_planner: PlannerConfig | None = None, **ov
     _check_compatible(parts)
     if overrides:
         s = replace(s, **overrides)
+    if s.planner.h2 is None:  # h² pruning where the strategy plans flat (the `h2` / `noh2` switches decide otherwise)
+        s = replace(s, planner=replace(s.planner, h2=not s.hierarchical))
     return s

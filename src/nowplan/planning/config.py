@@ -84,8 +84,10 @@ class PlannerConfig:
     # greedy elimination checked by regression); the forward engine trims its own by replay
     prune: bool = True
     # regression drops a subgoal holding two facts no state reachable from the call's start holds
-    # together (planning/h2.py: h² over the concrete ground task); the `h2` switch
-    h2: bool = False
+    # together (planning/h2.py: h² over the concrete ground task); None: off in a plan() call, and in
+    # the executive on where the strategy plans flat (parse_strategy), off with HPN; the `h2` and
+    # `noh2` switches, `nowplan plan` (on unless --no-mutexes)
+    h2: bool | None = None
 
 
 
