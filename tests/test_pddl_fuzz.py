@@ -66,6 +66,13 @@ def _read_and_ground(tmp: Path, domain: str, problem: str) -> None:
         from nowplan.planning.task import grounding
 
         grounding(prob.domain, prob.objects, prob.init, 0)
+        if not prob.domain.axioms:  # the h2 table `nowplan plan --engine regression` builds (planning/h2.py)
+            from nowplan.core.levels import flat_levels as _flat
+            from nowplan.planning.regression import PlannerConfig
+            from nowplan.planning.regression_search import _Search
+
+            _Search(prob.domain, prob.objects, prob.init, _flat(), PlannerConfig(engine="regression", h2=True),
+                    None).pairs()
         if prob.domain.axioms:  # the rules' grounding and the evaluation of the initial state
             from nowplan.core.levels import flat_levels
             from nowplan.planning.task import build_task
