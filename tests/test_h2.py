@@ -133,3 +133,28 @@ def test_the_table_is_kept_with_the_ground_task() -> None:
     s1, pr1 = table_for(p.domain, p.objects, p.init)
     s2, pr2 = table_for(p.domain, p.objects, p.init)
     assert pr1 is pr2 is pair_reach(ground_task(s1.grounder, s1.drop), p.domain)
+
+
+def test_a_fluent_the_belief_is_unsure_of_starts_true_with_every_fact() -> None:
+    """A particle belief unsure whether the door is open: no action opens it (one shuts it, so it is no
+    static), yet the table keeps it reachable with every fact the belief lists (a later belief may know
+    it true: plans need it)."""
+    from nowplan.belief.particle_belief import ParticleBelief
+    from nowplan.core.domain import Domain, Predicate
+    from nowplan.core.operators import Operator, Precondition
+    from nowplan.core.atoms import Var
+
+    x, y = Var("x"), Var("y")
+    dom = Domain("unsure", {"at": Predicate("at", 1), "open": Predicate("open", 0), "road": Predicate("road", 2)},
+                 (Operator("go", (x, y), (Precondition(Atom("at", (x,)), 1), Precondition(Atom("open", ()), 1),
+                                          Precondition(Atom("road", (x, y)), 1)),
+                           (Atom("at", (y,)), Atom("at", (x,), False))),
+                  Operator("shut", (), (), (Atom("open", (), False),))))
+    facts = [Atom("at", ("a",)), Atom("road", ("a", "b"))]
+    belief = ParticleBelief([State(facts + [Atom("open", ())]), State(facts)])
+    assert ("open", ()) in belief.unknowns()
+    _, pr = table_for(dom, {"a": None, "b": None}, belief)
+    T = dom.facts
+    assert not pr.excluded([T.id(Atom("open", ())), T.id(Atom("at", ("b",)))])
+    assert not pr.atoms_mutex(Atom("open", ()), Atom("at", ("a",)))
+    assert pr.atoms_mutex(Atom("at", ("a",)), Atom("at", ("b",)))  # (go deletes where it leaves)
