@@ -119,7 +119,8 @@ class Strategy:
 
 
 register_switch(Switch("hpn", "hierarchical planning over criticality levels", {"hierarchical": True}))
-register_switch(Switch("flat", "no hierarchy: plan every step concretely", {"hierarchical": False}))
+register_switch(Switch("flat", "no hierarchy: plan every step concretely (a full search that spends its nodes "
+                        "searches once more with weight 5)", {"hierarchical": False}, planner={"retry_weight": 5.0}))
 register_switch(
     Switch("foresight", "planner and generators see the plan stack (taboo regions, shadows)",
            {"foresight": True})

@@ -27,6 +27,10 @@ class PlannerConfig:
     # machine as on a quiet one, for experiments)
     clock: Literal["wall", "cpu"] = "wall"
     weight: float = 1.0  # f = g + weight * h
+    # a regression call whose full search spends its nodes without a plan searches once more with this
+    # weight (0: not), within max_nodes again: a greedier search finds a plan where the (already
+    # inadmissible) h_add A* exhausts its budget; the `flat` strategy sets 5
+    retry_weight: float = 0.0
     serialization: bool = True  # HPN shortcut 1
     monotonic: bool = True  # HPN shortcut 2
     shortcut_nodes: int = 2_000  # expansions allowed to each shortcut

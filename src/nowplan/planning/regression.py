@@ -273,6 +273,13 @@ def _plan(
         result = search.run(goal, budget(config.max_nodes))
         attempts.append(f"full:{result[0].value}")
         method = "full"
+        if (result[0] is PlanStatus.NODE_LIMIT and config.retry_weight > config.weight and search.now() < search.deadline
+                and not (config.call_nodes > 0 and search.expanded >= config.call_nodes)):
+            search.config = replace(config, weight=config.retry_weight)  # (read by both search loops)
+            result = search.run(goal, budget(config.max_nodes))
+            search.config = config
+            attempts.append(f"weighted:{result[0].value}")
+            method = "weighted"
     elif result[0] is not PlanStatus.SOLVED:
         result = (PlanStatus.TIME_LIMIT, None, f"time limit of {config.time_limit:g} s reached")
     status, steps, reason = result
