@@ -158,3 +158,16 @@ def test_a_fluent_the_belief_is_unsure_of_starts_true_with_every_fact() -> None:
     assert not pr.excluded([T.id(Atom("open", ())), T.id(Atom("at", ("b",)))])
     assert not pr.atoms_mutex(Atom("open", ()), Atom("at", ("a",)))
     assert pr.atoms_mutex(Atom("at", ("a",)), Atom("at", ("b",)))  # (go deletes where it leaves)
+
+
+def test_a_fixpoint_past_its_bound_prunes_nothing(monkeypatch: pytest.MonkeyPatch) -> None:
+    import nowplan.planning.h2 as h2
+
+    monkeypatch.setattr(h2, "MAX_SWEEPS", 1)
+    p = load_pddl(DATA / "blocksworld" / "domain.pddl", DATA / "blocksworld" / "p02.pddl")
+    task_srch = _Search(p.domain, p.objects, p.init, flat_levels(), PlannerConfig(engine="regression"), None)
+    pr = PairReach(ground_task(task_srch.grounder, task_srch.drop), p.domain)
+    pr.start_from(p.domain.facts.ids_of(p.init.atoms()))
+    a, b = sorted(p.objects)[:2]
+    assert not pr.atoms_mutex(Atom("holding", (a,)), Atom("on", (a, b)))  # (found with the bound: see above)
+    assert not pr.excluded(list(pr.bit))
