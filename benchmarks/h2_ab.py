@@ -16,6 +16,13 @@ shipped PDDL problems and the classical benchmark's p01-p03, without and with h2
 nodes expanded, the plan length and the CPU seconds of each call (the h² table's build included):
 
     PYTHONPATH=src .venv/bin/python benchmarks/h2_ab.py --flat-pddl --time-limit 30
+
+``--build`` times the table (CPU: a regression call's set-up, which grounds the task, then ``PairReach``
+and its first fixpoint)
+on the first instance of each domain of ``benchmarks/criticality_auto.py``'s largest tier, generated
+as that script does:
+
+    .venv/bin/python benchmarks/h2_ab.py --build
 """
 
 from __future__ import annotations
@@ -62,6 +69,44 @@ def flat_pddl(time_limit: float, native: bool) -> None:
         print(f"| {d.name}/{p.stem} | {cells[0]} | {cells[1]} | {ratio} |", flush=True)
 
 
+def build_times() -> None:
+    import sys
+    import tempfile
+    import time
+
+    for p in (ROOT, ROOT / "src"):  # this checkout's benchmarks package, as criticality_auto.py does
+        if str(p) not in sys.path:
+            sys.path.insert(0, str(p))
+    from criticality_auto import LARGEST
+    from benchmarks.classical.generate import domain_file, generate
+    from nowplan.core.levels import flat_levels
+    from nowplan.io.pddl_read import load_pddl
+    from nowplan.planning.h2 import MAX_ACTIONS, MAX_FACTS, PairReach, start_facts
+    from nowplan.planning.heuristics import ground_task
+    from nowplan.planning.regression import PlannerConfig
+    from nowplan.planning.regression_search import _Search
+
+    print("| instance | ground actions | participants | search set-up CPU s | table CPU s | sweeps | h2 runs |")
+    print("|---|---|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as tmp:
+        for d, specs in LARGEST.items():
+            params, seed = specs[0]
+            path = Path(tmp) / f"{d}.pddl"
+            path.write_text(generate(d, params, seed))
+            prob = load_pddl(domain_file(d), path)
+            c0 = time.process_time()  # (the search's set-up grounds the task for its h_add)
+            srch = _Search(prob.domain, prob.objects, prob.init, flat_levels(), PlannerConfig(engine="regression"), None)
+            task = ground_task(srch.grounder, srch.drop)
+            c1 = time.process_time()
+            pr = PairReach(task, prob.domain)
+            pr.start_from(start_facts(srch.table, srch.belief, srch.true_ids()))
+            c2 = time.process_time()
+            runs = task.n <= MAX_ACTIONS and len(pr.fact_of) <= MAX_FACTS
+            name = d + "-" + "-".join(str(v) for v in params.values())
+            print(f"| {name} | {task.n} | {len(pr.fact_of)} | {c1 - c0:.2f} | {c2 - c1:.2f} | {pr.sweeps} | "
+                  f"{'yes' if runs else 'no (too large)'} |", flush=True)
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("runs", type=Path, nargs="?", help="JSONL of benchmarks/heldout17.py")
@@ -69,9 +114,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--flat-pddl", action="store_true", help="plan PDDL problems flat, h2 off and on")
     ap.add_argument("--time-limit", type=float, default=30.0, help="CPU seconds per call (--flat-pddl)")
     ap.add_argument("--python", action="store_true", help="--flat-pddl in the Python loop only")
+    ap.add_argument("--build", action="store_true", help="time the table on the largest tier's instances")
     args = ap.parse_args(argv)
     if args.flat_pddl:
         flat_pddl(args.time_limit, not args.python)
+        return 0
+    if args.build:
+        build_times()
         return 0
     if args.runs is None:
         ap.error("give the runs' JSONL, or --flat-pddl")

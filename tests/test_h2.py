@@ -171,3 +171,46 @@ def test_a_fixpoint_past_its_bound_prunes_nothing(monkeypatch: pytest.MonkeyPatc
     a, b = sorted(p.objects)[:2]
     assert not pr.atoms_mutex(Atom("holding", (a,)), Atom("on", (a, b)))  # (found with the bound: see above)
     assert not pr.excluded(list(pr.bit))
+
+
+def reference_pairs(pr: PairReach, start: set[int]) -> tuple[set[int], set[frozenset[int]]]:
+    """h² by its definition over sets (one sweep over every action until nothing changes), from the
+    table's own action model (its bits as sets): the check of the semi-naive fixpoint."""
+    def bits(x: int) -> set[int]:
+        return {i for i in range(x.bit_length()) if x >> i & 1}
+
+    acts = [(bits(p), bits(a), bits(d)) for p, a, d, _ in pr._acts]
+    facts = set(start)
+    pairs = {frozenset((x, y)) for x in start for y in start}
+    changed = True
+    while changed:
+        changed = False
+        for pre, add, dele in acts:
+            if not pre <= facts or any(frozenset((x, y)) not in pairs for x in pre for y in pre):
+                continue
+            new = set(add) | {q for q in facts - dele if all(frozenset((q, p)) in pairs for p in pre)}
+            for e in add:
+                for q in new:
+                    if frozenset((e, q)) not in pairs:
+                        pairs.add(frozenset((e, q)))
+                        changed = True
+            if not add <= facts:
+                facts |= add
+                changed = True
+    return facts, pairs
+
+
+@pytest.mark.parametrize("family", sorted(set(FAMILIES) - {"hanoi"}))
+@settings(max_examples=10, deadline=None, suppress_health_check=list(HealthCheck))
+@given(data=st.data())
+def test_the_fixpoint_equals_the_definition(family: str, data: st.DataObject) -> None:
+    case: Case = data.draw(FAMILIES[family], label="case")
+    srch = _Search(case.domain, {o: None for o in case.objects}, case.init, flat_levels(),
+                   PlannerConfig(engine="regression"), None)
+    pr = PairReach(ground_task(srch.grounder, srch.drop), case.domain)
+    ids = {pr.bit[f] for f in case.domain.facts.ids_of(case.init.atoms()) if f in pr.bit}
+    pr.start_from(pr.fact_of[b] for b in ids)
+    facts, pairs = reference_pairs(pr, ids)
+    assert {b for b in range(len(pr.fact_of)) if pr.facts >> b & 1} == facts
+    got = {frozenset((a, b)) for a in range(len(pr.fact_of)) for b in range(len(pr.fact_of)) if pr.reach[a] >> b & 1}
+    assert got == pairs

@@ -65,7 +65,6 @@ class PairReach:
             return (a.value is True and p is not None and p.boolean and p.test is None
                     and a.predicate not in derived and a.predicate not in task.drop)
 
-        self._takes_part = takes_part
         self.bit: dict[int, int] = {}  # participant fact -> its bit
         self.mask: dict[int, int] = {}  # participant fact -> 1 << its bit
         self.fact_of: list[int] = []  # bit index -> fact
@@ -157,25 +156,26 @@ class PairReach:
         return False
 
     def _fixpoint(self) -> None:
+        """Sweep the actions until no pair is added.  After the first sweep an action is evaluated
+        again only when the row of one of its preconditions grew since the sweep before (semi-naive:
+        otherwise it would add what it added already); one without preconditions, always."""
         self.version += 1
         reach = self.reach
+        dirty_last = -1  # every bit: the first sweep evaluates every action
         for _ in range(MAX_SWEEPS):
             changed = False
+            dirty = 0  # the bits whose row grows in this sweep
             self.sweeps += 1
             for pre, add, dele, adds in self._acts:
-                if pre & ~self.facts:
+                if pre & ~self.facts or (pre and not pre & (dirty_last | dirty)):
                     continue
                 keep = self.facts
                 rest = pre
                 while rest:
                     low = rest & -rest
-                    rb = reach[low.bit_length() - 1]
-                    if pre & ~rb:  # two preconditions not reachable together
-                        keep = -1
-                        break
-                    keep &= rb
+                    keep &= reach[low.bit_length() - 1]
                     rest ^= low
-                if keep == -1:
+                if pre & ~keep:  # two preconditions not reachable together
                     continue
                 new = (keep & ~dele) | add
                 for b in adds:
@@ -185,6 +185,7 @@ class PairReach:
                     changed = True
                     reach[b] |= delta
                     low_b = 1 << b
+                    dirty |= delta | low_b
                     while delta:  # the other half of each new pair
                         low = delta & -delta
                         reach[low.bit_length() - 1] |= low_b
@@ -194,6 +195,7 @@ class PairReach:
                     changed = True
             if not changed:
                 return
+            dirty_last = dirty
         # (each sweep adds a fact or a pair, so the sweeps are bounded by their number; past this many,
         # the table gives up soundly: every pair reachable, nothing pruned)
         log.info("h2 pruning off: the fixpoint took more than %d sweeps", MAX_SWEEPS)
